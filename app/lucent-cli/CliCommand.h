@@ -1,0 +1,16 @@
+#pragma once
+
+#include <QStringList>
+
+// Exit status of every lucent-cli command: 0 ok, 2 usage, 3 nothing loadable or bad input.
+namespace lucent::cli {
+
+constexpr int kOk = 0;
+constexpr int kUsage = 2;
+constexpr int kBadInput = 3;
+
+// Each takes the arguments after the command name, with the program name first.
+int runInfo(const QStringList& args);
+int runConvert(const QStringList& args);
+
+} // namespace lucent::cli

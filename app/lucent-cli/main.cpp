@@ -1,0 +1,45 @@
+#include <QCoreApplication>
+#include <QTextStream>
+
+#include "CliCommand.h"
+
+namespace {
+
+const char* kUsageText =
+    "usage: lucent-cli COMMAND ...\n"
+    "  info PATH [--json]                   what PATH holds: series, geometry, warnings\n"
+    "  convert PATH OUT.mhd [--series UID]  write one series as MetaImage (.mhd + .raw)\n"
+    "PATH: a DICOM folder (searched recursively), a DICOM file, a DICOMDIR,\n"
+    "      or a .mhd/.mha, .nii/.nii.gz or InVesalius .inv3 volume.\n"
+    "Exit status: 0 ok, 2 usage, 3 nothing loadable or bad input.\n";
+
+} // namespace
+
+int main(int argc, char** argv) {
+    QCoreApplication app(argc, argv);
+    QCoreApplication::setApplicationName("lucent-cli");
+    QCoreApplication::setApplicationVersion(LUCENT_VERSION);
+    QStringList args = QCoreApplication::arguments();
+    QTextStream err(stderr);
+    if (args.size() < 2) {
+        err << kUsageText;
+        return lucent::cli::kUsage;
+    }
+    const QString command = args.takeAt(1);
+    if (command == "--help" || command == "-h" || command == "help") {
+        QTextStream(stdout) << kUsageText;
+        return lucent::cli::kOk;
+    }
+    if (command == "--version") {
+        QTextStream(stdout) << "lucent-cli " << LUCENT_VERSION << "\n";
+        return lucent::cli::kOk;
+    }
+    if (command == "info") {
+        return lucent::cli::runInfo(args);
+    }
+    if (command == "convert") {
+        return lucent::cli::runConvert(args);
+    }
+    err << "lucent-cli: unknown command '" << command << "'\n" << kUsageText;
+    return lucent::cli::kUsage;
+}

@@ -1,0 +1,330 @@
+// Header reading for one DICOM file with GDCM: classic single-frame images,
+// legacy multi-frame, and Enhanced CT/MR with per-frame functional groups.
+#include "core/dicom/DicomStructure.h"
+#include "core/dicom/DicomTags.h"
+#include "core/dicom/ImageRecord.h"
+#include "core/io/LoadControl.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <mutex>
+
+#include <gdcmMediaStorage.h>
+#include <gdcmReader.h>
+#include <gdcmSequenceOfItems.h>
+#include <gdcmTrace.h>
+
+namespace lucent {
+namespace {
+
+namespace fs = std::filesystem;
+
+const gdcm::Tag kPixelData(0x7fe0, 0x0010);
+const std::string kExplicitLE = "1.2.840.10008.1.2.1";
+const std::string kImplicitLE = "1.2.840.10008.1.2";
+const std::string kDeflated = "1.2.840.10008.1.2.1.99";
+
+// Lucent reports problems itself; GDCM's own messages on stderr would only confuse.
+void quietGdcm() {
+    static std::once_flag once;
+    std::call_once(once, [] {
+        gdcm::Trace::SetWarning(false);
+        gdcm::Trace::SetDebug(false);
+        gdcm::Trace::SetError(false);
+    });
+}
+const gdcm::Tag kPerFrameGroups(0x5200, 0x9230);
+
+// Classic, per-file attributes common to every frame.
+void readCommon(const gdcm::DataSet& ds, ImageRecord& r) {
+    r.sopClassUid = tagString(ds, 0x0008, 0x0016);
+    r.sopInstanceUid = tagString(ds, 0x0008, 0x0018);
+    r.seriesUid = tagString(ds, 0x0020, 0x000e);
+    r.studyUid = tagString(ds, 0x0020, 0x000d);
+    r.modality = tagString(ds, 0x0008, 0x0060);
+    r.description = tagString(ds, 0x0008, 0x103e);
+    r.patientName = tagString(ds, 0x0010, 0x0010);
+    r.patientId = tagString(ds, 0x0010, 0x0020);
+    r.studyDate = tagString(ds, 0x0008, 0x0020);
+    r.imageType = tagString(ds, 0x0008, 0x0008);
+    r.seriesNumber = tagInt(ds, 0x0020, 0x0011).value_or(0);
+    r.instanceNumber = tagInt(ds, 0x0020, 0x0013).value_or(0);
+    r.sliceThickness = tagDoubles(ds, 0x0018, 0x0050).value_or(std::vector<double>{0.0})[0];
+}
+
+// Geometry and rescale of a frame: looked up in the per-frame item first, then
+// in the shared item, then (classic objects) at the top level.
+struct FrameGroups {
+    const gdcm::DataSet* perFrame = nullptr;
+    const gdcm::DataSet* shared = nullptr;
+};
+
+std::optional<std::vector<double>> frameValues(const FrameGroups& g, std::uint16_t seqGroup,
+                                               std::uint16_t seqElement, std::uint16_t group,
+                                               std::uint16_t element) {
+    for (const gdcm::DataSet* ds : {g.perFrame, g.shared}) {
+        if (ds == nullptr) {
+            continue;
+        }
+        if (const SequenceItem item = firstItem(*ds, seqGroup, seqElement)) {
+            if (auto v = tagDoubles(*item, group, element)) {
+                return v;
+            }
+        }
+    }
+    return std::nullopt;
+}
+
+std::string frameType(const FrameGroups& g) {
+    // MR, CT and the generic frame type sequences all carry FrameType (0008,9007).
+    for (const gdcm::DataSet* ds : {g.perFrame, g.shared}) {
+        if (ds == nullptr) {
+            continue;
+        }
+        for (const std::uint16_t element : {0x9226, 0x9329, 0x9012}) {
+            if (const SequenceItem item = firstItem(*ds, 0x0018, element)) {
+                const std::string t = tagString(*item, 0x0008, 0x9007);
+                if (!t.empty()) {
+                    return t;
+                }
+            }
+        }
+    }
+    return {};
+}
+
+void applyGeometry(ImageRecord& r, const std::optional<std::vector<double>>& ipp,
+                   const std::optional<std::vector<double>>& iop,
+                   const std::optional<std::vector<double>>& spacing) {
+    if (ipp && ipp->size() >= 3 && iop && iop->size() >= 6) {
+        r.hasPosition = true;
+        r.position = {(*ipp)[0], (*ipp)[1], (*ipp)[2]};
+        r.rowDir = glm::normalize(glm::dvec3((*iop)[0], (*iop)[1], (*iop)[2]));
+        r.colDir = glm::normalize(glm::dvec3((*iop)[3], (*iop)[4], (*iop)[5]));
+    }
+    if (spacing && spacing->size() >= 2 && (*spacing)[0] > 0.0 && (*spacing)[1] > 0.0) {
+        r.hasPixelSpacing = true;
+        // PixelSpacing is [between rows, between columns].
+        r.pixelSpacing = {(*spacing)[1], (*spacing)[0]};
+    }
+}
+
+FileScan skip(std::string reason) {
+    return FileScan{{}, std::move(reason)};
+}
+
+} // namespace
+
+FileScan scanDicomFile(const std::string& file) {
+    try {
+        const DicomStructure structure = checkDicomStructure(file);
+        if (!structure.ok) {
+            return skip(structure.problem == "not a DICOM file" || structure.problem == "empty file"
+                            ? "not a DICOM file (" + structure.problem + ")"
+                            : "corrupt DICOM file: " + structure.problem);
+        }
+        quietGdcm();
+        gdcm::Reader reader;
+        reader.SetFileName(file.c_str());
+        if (!reader.ReadUpToTag(kPixelData, {kPixelData})) {
+            return skip("not a DICOM file (or its header is unreadable)");
+        }
+        const gdcm::File& gfile = reader.GetFile();
+        const gdcm::DataSet& ds = gfile.GetDataSet();
+        const std::string& syntax = structure.transferSyntax;
+
+        gdcm::MediaStorage ms;
+        ms.SetFromFile(gfile);
+        if (ms == gdcm::MediaStorage::MediaStorageDirectoryStorage) {
+            return skip("DICOMDIR: open it directly to load the files it lists");
+        }
+
+        ImageRecord base;
+        base.file = file;
+        readCommon(ds, base);
+        if (base.sopClassUid == "1.2.840.10008.5.1.4.1.1.66.4") {
+            return skip("DICOM Segmentation object: not an image series");
+        }
+        if (!ds.FindDataElement(gdcm::Tag(0x0028, 0x0010)) ||
+            !ds.FindDataElement(gdcm::Tag(0x0028, 0x0011))) {
+            return skip("no image (Rows/Columns missing): " + (base.modality.empty()
+                                                                   ? std::string("non-image object")
+                                                                   : base.modality + " object"));
+        }
+        if (!structure.hasPixelData && syntax != kDeflated) {
+            return skip("no pixel data (7FE0,0010 missing)");
+        }
+
+        const int rows = tagUShort(ds, 0x0028, 0x0010).value_or(0);
+        const int cols = tagUShort(ds, 0x0028, 0x0011).value_or(0);
+        if (rows <= 0 || cols <= 0) {
+            return skip("zero-size image (Rows " + std::to_string(rows) + ", Columns " +
+                        std::to_string(cols) + ")");
+        }
+        base.samplesPerPixel = tagUShort(ds, 0x0028, 0x0002).value_or(1);
+        if (base.samplesPerPixel != 1) {
+            return skip("colour image (" + std::to_string(base.samplesPerPixel) +
+                        " samples per pixel): only greyscale volumes are supported");
+        }
+        PixelLayout& px = base.pixels;
+        px.rows = rows;
+        px.columns = cols;
+        px.bitsAllocated = tagUShort(ds, 0x0028, 0x0100).value_or(16);
+        px.bitsStored = tagUShort(ds, 0x0028, 0x0101).value_or(px.bitsAllocated);
+        px.highBit = tagUShort(ds, 0x0028, 0x0102).value_or(px.bitsStored - 1);
+        px.isSigned = tagUShort(ds, 0x0028, 0x0103).value_or(0) == 1;
+        px.transferSyntax = syntax;
+        if (px.bitsAllocated != 8 && px.bitsAllocated != 16 && px.bitsAllocated != 32) {
+            return skip("unsupported BitsAllocated " + std::to_string(px.bitsAllocated));
+        }
+        if (px.bitsStored < 1 || px.bitsStored > px.bitsAllocated ||
+            px.highBit < px.bitsStored - 1 || px.highBit >= px.bitsAllocated) {
+            return skip("inconsistent BitsStored " + std::to_string(px.bitsStored) + " / HighBit " +
+                        std::to_string(px.highBit) + " for BitsAllocated " +
+                        std::to_string(px.bitsAllocated));
+        }
+
+        const int frames = std::max(1, tagInt(ds, 0x0028, 0x0008).value_or(1));
+        base.frameCount = frames;
+        const std::uint64_t frameBytes = static_cast<std::uint64_t>(rows) * cols *
+                                         static_cast<std::uint64_t>(px.bitsAllocated / 8);
+        const std::uint64_t fileSize = fs::file_size(file);
+        std::uint64_t offset = 0;
+        if (structure.hasPixelData && !structure.encapsulated) {
+            const std::uint64_t expected = frameBytes * static_cast<std::uint64_t>(frames);
+            const std::uint64_t available =
+                std::min<std::uint64_t>(structure.pixelLength, fileSize - structure.pixelOffset);
+            if (available < expected) {
+                return skip("truncated pixel data: expected " + std::to_string(expected) +
+                            " bytes, found " + std::to_string(available));
+            }
+            if (syntax == kExplicitLE || syntax == kImplicitLE) {
+                offset = structure.pixelOffset;
+            }
+        }
+
+        base.localizer = hasWord(base.imageType, "LOCALIZER");
+        const auto slope = tagDoubles(ds, 0x0028, 0x1053);
+        const auto intercept = tagDoubles(ds, 0x0028, 0x1052);
+        base.slope = slope ? (*slope)[0] : 1.0;
+        base.intercept = intercept ? (*intercept)[0] : 0.0;
+
+        FileScan out;
+        const SequenceItem shared = firstItem(ds, 0x5200, 0x9229);
+        const gdcm::SmartPointer<gdcm::SequenceOfItems> perFrame =
+            ds.FindDataElement(kPerFrameGroups) ? ds.GetDataElement(kPerFrameGroups).GetValueAsSQ()
+                                                : nullptr;
+        if (perFrame && perFrame->GetNumberOfItems() >= static_cast<std::size_t>(frames)) {
+            for (int f = 0; f < frames; ++f) {
+                ImageRecord r = base;
+                r.enhanced = true;
+                r.frame = f;
+                const FrameGroups g{&perFrame->GetItem(f + 1).GetNestedDataSet(), shared.dataSet};
+                applyGeometry(r, frameValues(g, 0x0020, 0x9113, 0x0020, 0x0032),
+                              frameValues(g, 0x0020, 0x9116, 0x0020, 0x0037),
+                              frameValues(g, 0x0028, 0x9110, 0x0028, 0x0030));
+                if (auto t = frameValues(g, 0x0028, 0x9110, 0x0018, 0x0050)) {
+                    r.sliceThickness = (*t)[0];
+                }
+                if (auto s = frameValues(g, 0x0028, 0x9145, 0x0028, 0x1053)) {
+                    r.slope = (*s)[0];
+                }
+                if (auto i = frameValues(g, 0x0028, 0x9145, 0x0028, 0x1052)) {
+                    r.intercept = (*i)[0];
+                }
+                const std::string ft = frameType(g);
+                if (!ft.empty()) {
+                    r.imageType = ft;
+                    r.localizer = hasWord(ft, "LOCALIZER");
+                }
+                r.pixelOffset = offset == 0 ? 0 : offset + frameBytes * f;
+                out.images.push_back(std::move(r));
+            }
+            return out;
+        }
+
+        applyGeometry(base, tagDoubles(ds, 0x0020, 0x0032), tagDoubles(ds, 0x0020, 0x0037),
+                      tagDoubles(ds, 0x0028, 0x0030));
+        if (frames == 1) {
+            base.pixelOffset = offset;
+            out.images.push_back(std::move(base));
+            return out;
+        }
+        // Legacy multi-frame: frames stacked along the normal at SpacingBetweenSlices.
+        const auto between = tagDoubles(ds, 0x0018, 0x0088);
+        if (!base.hasPosition || !between || (*between)[0] <= 0.0) {
+            return skip("multi-frame image without per-frame positions or SpacingBetweenSlices");
+        }
+        const glm::dvec3 normal = glm::normalize(glm::cross(base.rowDir, base.colDir));
+        for (int f = 0; f < frames; ++f) {
+            ImageRecord r = base;
+            r.frame = f;
+            r.position = base.position + normal * ((*between)[0] * f);
+            r.pixelOffset = offset == 0 ? 0 : offset + frameBytes * f;
+            out.images.push_back(std::move(r));
+        }
+        return out;
+    } catch (const std::exception& e) {
+        return skip(std::string("unreadable header: ") + e.what());
+    }
+}
+
+bool isDicomdir(const std::string& file) {
+    if (fs::path(file).filename() == "DICOMDIR") {
+        return true;
+    }
+    if (!checkDicomStructure(file).ok) {
+        return false;
+    }
+    quietGdcm();
+    gdcm::Reader reader;
+    reader.SetFileName(file.c_str());
+    if (!reader.ReadUpToTag(gdcm::Tag(0x0004, 0x1220))) {
+        return false;
+    }
+    gdcm::MediaStorage ms;
+    ms.SetFromFile(reader.GetFile());
+    return ms == gdcm::MediaStorage::MediaStorageDirectoryStorage;
+}
+
+std::vector<std::string> dicomdirReferences(const std::string& dicomdir) {
+    if (const DicomStructure st = checkDicomStructure(dicomdir); !st.ok) {
+        throw LoadError(dicomdir + ": not a readable DICOMDIR (" + st.problem + ")");
+    }
+    quietGdcm();
+    gdcm::Reader reader;
+    reader.SetFileName(dicomdir.c_str());
+    if (!reader.Read()) {
+        throw LoadError(dicomdir + ": not a readable DICOMDIR");
+    }
+    const gdcm::DataSet& ds = reader.GetFile().GetDataSet();
+    const gdcm::Tag records(0x0004, 0x1220);
+    if (!ds.FindDataElement(records)) {
+        throw LoadError(dicomdir + ": DICOMDIR without a Directory Record Sequence (0004,1220)");
+    }
+    const auto seq = ds.GetDataElement(records).GetValueAsSQ();
+    const fs::path root = fs::path(dicomdir).parent_path();
+    std::vector<std::string> files;
+    for (std::size_t i = 1; seq && i <= seq->GetNumberOfItems(); ++i) {
+        const gdcm::DataSet& item = seq->GetItem(i).GetNestedDataSet();
+        const std::string id = tagString(item, 0x0004, 0x1500);
+        if (id.empty()) {
+            continue;
+        }
+        fs::path p = root;
+        std::size_t start = 0;
+        // ReferencedFileID: path components separated by backslashes.
+        while (start <= id.size()) {
+            const std::size_t end = id.find('\\', start);
+            p /= id.substr(start, end == std::string::npos ? std::string::npos : end - start);
+            if (end == std::string::npos) {
+                break;
+            }
+            start = end + 1;
+        }
+        files.push_back(p.string());
+    }
+    return files;
+}
+
+} // namespace lucent

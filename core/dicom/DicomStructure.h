@@ -1,0 +1,24 @@
+#pragma once
+// A structural check of a DICOM file before any library parses it: walks the
+// element stream (tags and lengths only, sequences and encapsulated fragments
+// included) up to the Pixel Data element. GDCM as packaged aborts on some
+// truncated or malformed headers, so nothing reaches it unchecked.
+
+#include <cstdint>
+#include <string>
+
+namespace lucent {
+
+struct DicomStructure {
+    bool ok = false;     // the element stream is sound up to Pixel Data
+    std::string problem; // why not, in words (with the byte offset)
+    std::string transferSyntax;
+    bool hasPixelData = false;
+    bool encapsulated = false;     // compressed fragments
+    std::uint64_t pixelOffset = 0; // first byte of the Pixel Data value
+    std::uint64_t pixelLength = 0; // its length (defined lengths only)
+};
+
+DicomStructure checkDicomStructure(const std::string& file);
+
+} // namespace lucent

@@ -1,0 +1,41 @@
+#pragma once
+// Getting the stored pixel values of DICOM frames: read straight from the file
+// for uncompressed little-endian data, decoded by GDCM for everything else.
+// Private to lucent_io.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/io/SeriesEntry.h"
+
+namespace lucent {
+
+// Stored-value layout of a decoded buffer (it may differ from the header for some codecs).
+struct RawFormat {
+    int bitsAllocated = 16;
+    int bitsStored = 16;
+    int highBit = 15;
+    bool isSigned = false;
+};
+
+RawFormat rawFormatOf(const PixelLayout& layout);
+
+// Every frame of one file, decoded by GDCM. Throws LoadError naming the file.
+struct DecodedFrames {
+    std::vector<char> buffer;
+    RawFormat format;
+    std::size_t frameBytes = 0;
+    const char* frame(int index) const { return buffer.data() + frameBytes * index; }
+};
+// GDCM, and DCMTK's dcmdjpls for JPEG-LS streams that GDCM rejects.
+DecodedFrames decodeFrames(const std::string& file, const PixelLayout& expected, int frames);
+
+bool isJpegLs(const std::string& transferSyntax);
+DecodedFrames decodeJpegLsWithDcmtk(const std::string& file, const PixelLayout& expected,
+                                    int frames);
+
+// Reads bytes at offset into dst. Throws LoadError naming the file.
+void readNativeFrame(const std::string& file, std::uint64_t offset, std::size_t bytes, void* dst);
+
+} // namespace lucent

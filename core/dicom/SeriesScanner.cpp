@@ -1,0 +1,218 @@
+#include "core/dicom/SeriesScanner.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <mutex>
+
+#include "core/dicom/ImageRecord.h"
+#include "core/dicom/ProgressReporter.h"
+#include "core/dicom/StackGeometry.h"
+
+namespace lucent {
+namespace {
+
+// Images that can be stacked together: one series, one orientation, one size,
+// one kind; for enhanced objects also one file and one frame type.
+struct Group {
+    std::vector<const ImageRecord*> images;
+    const ImageRecord& first() const { return *images.front(); }
+};
+
+bool sameStack(const ImageRecord& a, const ImageRecord& b) {
+    constexpr double kOrientationTolerance = 1e-3;
+    if (a.localizer != b.localizer || a.pixels.rows != b.pixels.rows ||
+        a.pixels.columns != b.pixels.columns || a.hasPosition != b.hasPosition ||
+        a.enhanced != b.enhanced) {
+        return false;
+    }
+    if (a.enhanced && (a.file != b.file || a.imageType != b.imageType)) {
+        return false;
+    }
+    if (glm::length(a.rowDir - b.rowDir) > kOrientationTolerance ||
+        glm::length(a.colDir - b.colDir) > kOrientationTolerance) {
+        return false;
+    }
+    return glm::length(a.pixelSpacing - b.pixelSpacing) <= 1e-4 * glm::length(a.pixelSpacing);
+}
+
+// The voxel type that holds every rescaled value of the entry exactly, if one does.
+VoxelType chooseVoxelType(const std::vector<const ImageRecord*>& images) {
+    double lo = std::numeric_limits<double>::max();
+    double hi = std::numeric_limits<double>::lowest();
+    bool integral = true;
+    for (const ImageRecord* r : images) {
+        const PixelLayout& p = r->pixels;
+        const double rawLo = p.isSigned ? -std::ldexp(1.0, p.bitsStored - 1) : 0.0;
+        const double rawHi =
+            p.isSigned ? std::ldexp(1.0, p.bitsStored - 1) - 1 : std::ldexp(1.0, p.bitsStored) - 1;
+        integral = integral && r->slope == std::round(r->slope) &&
+                   r->intercept == std::round(r->intercept);
+        for (const double raw : {rawLo, rawHi}) {
+            const double v = raw * r->slope + r->intercept;
+            lo = std::min(lo, v);
+            hi = std::max(hi, v);
+        }
+    }
+    if (integral && lo >= -32768.0 && hi <= 32767.0) {
+        return VoxelType::Int16;
+    }
+    if (integral && lo >= 0.0 && hi <= 65535.0) {
+        return VoxelType::UInt16;
+    }
+    return VoxelType::Float32;
+}
+
+SeriesEntry makeEntry(const Group& group, SeriesKind kind, std::vector<SkippedFile>& skipped) {
+    const ImageRecord& f = group.first();
+    SeriesEntry e;
+    e.seriesUid = f.seriesUid;
+    e.studyUid = f.studyUid;
+    e.modality = f.modality;
+    e.description = f.description;
+    e.patientName = f.patientName;
+    e.patientId = f.patientId;
+    e.studyDate = f.studyDate;
+    e.kind = kind;
+    e.format = SourceFormat::Dicom;
+    e.pixels = f.pixels;
+    e.voxelType = chooseVoxelType(group.images);
+    if (!f.hasPixelSpacing) {
+        e.warnings.push_back("no PixelSpacing: 1 mm assumed in the image plane");
+    }
+    if (!f.hasPosition) {
+        e.warnings.push_back("no ImagePositionPatient/ImageOrientationPatient: the image grid "
+                             "is shown without patient geometry");
+    }
+
+    StackInput in;
+    in.rowDir = f.rowDir;
+    in.colDir = f.colDir;
+    in.pixelSpacing = f.pixelSpacing;
+    in.columns = f.pixels.columns;
+    in.rows = f.pixels.rows;
+    in.sliceThickness = f.sliceThickness;
+    for (const ImageRecord* r : group.images) {
+        in.positions.push_back(r->position);
+    }
+    StackPlan plan = planStack(in);
+    if (!plan.error.empty()) {
+        e.warnings.push_back(plan.error + "; only the first image is used");
+        in.positions.resize(1);
+        plan = planStack(in);
+        e.kind = SeriesKind::Image;
+    }
+    if (!plan.dropped.empty()) {
+        const ImageRecord& d = *group.images[plan.dropped.front()];
+        e.warnings.push_back("dropped " + std::to_string(plan.dropped.size()) +
+                             " image(s) at a position already taken (first: " + d.file +
+                             (d.enhanced ? " frame " + std::to_string(d.frame + 1) : "") + ")");
+        for (int i : plan.dropped) {
+            const ImageRecord& r = *group.images[i];
+            skipped.push_back({r.file, "duplicate position in series " + r.seriesUid});
+        }
+    }
+    for (std::string& w : plan.warnings) {
+        e.warnings.push_back(std::move(w));
+    }
+    e.geometry = plan.geometry;
+    e.resampled = plan.resample;
+    for (std::size_t s = 0; s < plan.order.size(); ++s) {
+        const ImageRecord& r = *group.images[plan.order[s]];
+        e.slices.push_back({r.file, r.frame, r.position, r.slope, r.intercept, r.pixelOffset});
+    }
+    if (e.kind == SeriesKind::Volume && e.slices.size() == 1) {
+        e.kind = SeriesKind::Image;
+    }
+    return e;
+}
+
+} // namespace
+
+void scanDicomFiles(const std::vector<std::string>& files, Catalog& catalog,
+                    const LoadControl& control) {
+    std::vector<FileScan> scans(files.size());
+    ProgressReporter progress(control, "scanning", files.size());
+    const int count = static_cast<int>(files.size());
+#pragma omp parallel for schedule(dynamic, 8) num_threads(workerThreads(control))
+    for (int i = 0; i < count; ++i) {
+        if (control.stopRequested()) {
+            continue;
+        }
+        scans[i] = scanDicomFile(files[i]);
+        progress.step();
+    }
+    if (control.stopRequested()) {
+        throw LoadCancelled();
+    }
+
+    // Group by series, then split each series into stackable groups.
+    std::map<std::string, std::vector<const ImageRecord*>> bySeries;
+    for (std::size_t i = 0; i < scans.size(); ++i) {
+        if (scans[i].images.empty()) {
+            catalog.skipped.push_back({files[i], scans[i].skipReason});
+            continue;
+        }
+        for (const ImageRecord& r : scans[i].images) {
+            bySeries[r.seriesUid].push_back(&r);
+        }
+    }
+    struct Part {
+        SeriesEntry entry;
+        int seriesNumber;
+    };
+    std::vector<Part> parts;
+    for (auto& [uid, images] : bySeries) {
+        std::stable_sort(images.begin(), images.end(),
+                         [](const ImageRecord* a, const ImageRecord* b) {
+                             return std::tie(a->instanceNumber, a->file, a->frame) <
+                                    std::tie(b->instanceNumber, b->file, b->frame);
+                         });
+        std::vector<Group> groups;
+        for (const ImageRecord* r : images) {
+            auto it = std::find_if(groups.begin(), groups.end(),
+                                   [r](const Group& g) { return sameStack(g.first(), *r); });
+            if (it == groups.end()) {
+                groups.push_back({{r}});
+            } else {
+                it->images.push_back(r);
+            }
+        }
+        // The main stack is the largest non-localizer group; other orientations are scouts.
+        std::stable_sort(groups.begin(), groups.end(), [](const Group& a, const Group& b) {
+            if (a.first().localizer != b.first().localizer) {
+                return !a.first().localizer;
+            }
+            return a.images.size() > b.images.size();
+        });
+        const ImageRecord& main = groups.front().first();
+        int n = 0;
+        for (const Group& g : groups) {
+            const ImageRecord& f = g.first();
+            const bool otherOrientation = &g != &groups.front() && !f.enhanced &&
+                                          (glm::length(f.rowDir - main.rowDir) > 1e-3 ||
+                                           glm::length(f.colDir - main.colDir) > 1e-3);
+            SeriesKind kind = g.images.size() > 1 ? SeriesKind::Volume : SeriesKind::Image;
+            if (f.localizer || otherOrientation) {
+                kind = SeriesKind::Localizer;
+            }
+            SeriesEntry e = makeEntry(g, kind, catalog.skipped);
+            e.id = n == 0 ? uid : uid + "#" + std::to_string(n + 1);
+            if (f.enhanced && !f.imageType.empty()) {
+                e.description +=
+                    (e.description.empty() ? "" : " ") + std::string("[") + f.imageType + "]";
+            }
+            parts.push_back({std::move(e), f.seriesNumber});
+            ++n;
+        }
+    }
+    std::stable_sort(parts.begin(), parts.end(),
+                     [](const Part& a, const Part& b) { return a.seriesNumber < b.seriesNumber; });
+    for (Part& p : parts) {
+        catalog.series.push_back(std::move(p.entry));
+    }
+}
+
+} // namespace lucent

@@ -1,0 +1,187 @@
+#include "core/dicom/StackGeometry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+
+namespace lucent {
+namespace {
+
+constexpr double kDuplicateMm = 1e-3;
+// Below this in-plane drift over the whole stack (in pixels) a tilt changes
+// no voxel measurably, and resampling would only blur.
+constexpr double kTiltPixels = 0.02;
+
+std::string mm(double v) {
+    std::ostringstream s;
+    s.precision(3);
+    s << std::fixed << v;
+    std::string t = s.str();
+    while (t.size() > 1 && t.back() == '0') {
+        t.pop_back();
+    }
+    if (t.back() == '.') {
+        t.pop_back();
+    }
+    return t;
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+} // namespace
+
+StackPlan planStack(const StackInput& in) {
+    StackPlan plan;
+    const glm::dvec3 r = glm::normalize(in.rowDir);
+    const glm::dvec3 n = glm::normalize(glm::cross(r, in.colDir));
+    const glm::dvec3 c = glm::normalize(glm::cross(n, r)); // orthonormal even if IOP is not quite
+    const double sx = in.pixelSpacing.x;
+    const double sy = in.pixelSpacing.y;
+
+    // Positions in the frame (r, c, n) of the first input image.
+    const glm::dvec3 p0 = in.positions.empty() ? glm::dvec3(0.0) : in.positions.front();
+    auto frame = [&](const glm::dvec3& p) {
+        const glm::dvec3 d = p - p0;
+        return glm::dvec3(glm::dot(d, r), glm::dot(d, c), glm::dot(d, n));
+    };
+
+    std::vector<int> idx(in.positions.size());
+    std::iota(idx.begin(), idx.end(), 0);
+    // Stable: among equal positions the earlier input (lower InstanceNumber) is kept.
+    std::stable_sort(idx.begin(), idx.end(), [&](int a, int b) {
+        return frame(in.positions[a]).z < frame(in.positions[b]).z;
+    });
+    for (int i : idx) {
+        if (!plan.order.empty() &&
+            glm::length(in.positions[i] - in.positions[plan.order.back()]) < kDuplicateMm) {
+            plan.dropped.push_back(i);
+        } else {
+            plan.order.push_back(i);
+        }
+    }
+
+    const std::size_t count = plan.order.size();
+    VolumeGeometry& g = plan.geometry;
+    g.direction = glm::dmat3(r, c, n);
+    g.dims = {in.columns, in.rows, static_cast<int>(count)};
+    if (count == 0) {
+        return plan;
+    }
+    std::vector<glm::dvec3> f(count);
+    for (std::size_t s = 0; s < count; ++s) {
+        f[s] = frame(in.positions[plan.order[s]]);
+    }
+    // Re-base on the lowest image along the normal.
+    const glm::dvec3 base = f.front();
+    for (glm::dvec3& v : f) {
+        v -= base;
+    }
+    const glm::dvec3 first = in.positions[plan.order.front()];
+
+    if (count == 1) {
+        g.spacing = {sx, sy, in.sliceThickness > 0.0 ? in.sliceThickness : 1.0};
+        g.origin = first;
+        plan.placement.assign(1, glm::dvec3(0.0));
+        return plan;
+    }
+
+    std::vector<double> gaps(count - 1);
+    for (std::size_t s = 0; s + 1 < count; ++s) {
+        gaps[s] = f[s + 1].z - f[s].z;
+    }
+    const double extent = f.back().z;
+    if (extent < kDuplicateMm * static_cast<double>(count)) {
+        plan.error = "images lie in one plane at different in-plane offsets: not a stack";
+        return plan;
+    }
+    const double typical = median(gaps);
+    const double minGap = *std::min_element(gaps.begin(), gaps.end());
+    const double maxGap = *std::max_element(gaps.begin(), gaps.end());
+    const double tolerance = std::max(0.01, 0.01 * typical);
+    plan.unevenGaps = maxGap - minGap > tolerance;
+
+    double maxDrift = 0.0; // in pixels
+    for (const glm::dvec3& v : f) {
+        maxDrift = std::max({maxDrift, std::abs(v.x) / sx, std::abs(v.y) / sy});
+    }
+    const bool tilted = maxDrift > kTiltPixels;
+    plan.tiltDegrees = glm::degrees(std::atan2(glm::length(glm::dvec2(f.back())), extent));
+
+    if (!tilted && !plan.unevenGaps) {
+        g.spacing = {sx, sy, extent / static_cast<double>(count - 1)};
+        g.origin = first;
+        for (std::size_t s = 0; s < count; ++s) {
+            plan.placement.emplace_back(0.0, 0.0, static_cast<double>(s));
+        }
+        return plan;
+    }
+
+    plan.resample = true;
+    // Along the normal: even gaps keep one grid slice per image; uneven gaps
+    // take the smallest gap, so no acquired slice is undersampled (bounded
+    // so that a near-duplicate cannot blow the grid up).
+    double sz = extent / static_cast<double>(count - 1);
+    int nk = static_cast<int>(count);
+    if (plan.unevenGaps) {
+        sz = std::max(minGap, extent / (4.0 * static_cast<double>(count)));
+        nk = static_cast<int>(std::lround(extent / sz)) + 1;
+        sz = extent / static_cast<double>(nk - 1);
+    }
+    // In the plane: the union of every image's footprint, on the first image's pixel lattice.
+    double uMin = 0.0, uMax = 0.0, wMin = 0.0, wMax = 0.0;
+    for (const glm::dvec3& v : f) {
+        uMin = std::min(uMin, v.x);
+        wMin = std::min(wMin, v.y);
+        uMax = std::max(uMax, v.x + (in.columns - 1) * sx);
+        wMax = std::max(wMax, v.y + (in.rows - 1) * sy);
+    }
+    const double i0 = std::floor(uMin / sx + 1e-6);
+    const double j0 = std::floor(wMin / sy + 1e-6);
+    const int ni = static_cast<int>(std::ceil(uMax / sx - 1e-6) - i0) + 1;
+    const int nj = static_cast<int>(std::ceil(wMax / sy - 1e-6) - j0) + 1;
+
+    g.dims = {ni, nj, nk};
+    g.spacing = {sx, sy, sz};
+    g.origin = first + r * (i0 * sx) + c * (j0 * sy);
+    for (const glm::dvec3& v : f) {
+        plan.placement.emplace_back(v.x / sx - i0, v.y / sy - j0, v.z / sz);
+    }
+
+    if (tilted) {
+        plan.warnings.push_back(
+            "gantry tilt " + mm(plan.tiltDegrees) + " deg (slices shift " +
+            mm(glm::length(glm::dvec2(f.back()))) + " mm in plane over " + mm(extent) +
+            " mm): resampled onto a rectilinear grid along the slice normal, " +
+            std::to_string(ni) + "x" + std::to_string(nj) + " pixels to keep every slice whole");
+    }
+    if (plan.unevenGaps) {
+        int missing = 0;
+        std::ostringstream list;
+        for (std::size_t s = 0; s < gaps.size(); ++s) {
+            const double ratio = gaps[s] / typical;
+            const long whole = std::lround(ratio);
+            if (whole >= 2 && std::abs(ratio - static_cast<double>(whole)) < 0.05) {
+                missing += static_cast<int>(whole - 1);
+            }
+        }
+        plan.missingSlices = missing;
+        for (std::size_t s = 0; s < gaps.size(); ++s) {
+            if (std::abs(gaps[s] - typical) > tolerance) {
+                list << (list.tellp() > 0 ? ", " : "") << mm(gaps[s]) << " mm after slice " << s;
+            }
+        }
+        std::string what = missing > 0 ? std::to_string(missing) + " missing slice(s); " : "";
+        plan.warnings.push_back("uneven slice gaps (" + what + "typical " + mm(typical) + " mm; " +
+                                list.str() + "): resampled along the normal at " + mm(sz) +
+                                " mm, " + std::to_string(nk) +
+                                " slices, interpolating linearly between acquired slices");
+    }
+    return plan;
+}
+
+} // namespace lucent

@@ -1,0 +1,66 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/volume/Volume.h"
+
+namespace lucent {
+
+// What an entry of a catalog is: a stack that makes a volume, a scout, or a lone image.
+enum class SeriesKind { Volume, Localizer, Image };
+const char* seriesKindName(SeriesKind kind);
+
+enum class SourceFormat { Dicom, MetaImage, Nifti, InVesalius };
+
+// One 2D image of a DICOM series: a file, and a frame in it for multi-frame objects.
+struct SliceRef {
+    std::string file;
+    int frame = 0;
+    glm::dvec3 position{0.0}; // ImagePositionPatient of its first pixel, LPS mm
+    double slope = 1.0;
+    double intercept = 0.0;
+    // Byte offset of uncompressed little-endian pixel data in the file, read
+    // directly; 0 when the frame must be decoded through GDCM.
+    std::uint64_t pixelOffset = 0;
+};
+
+// How the stored pixels of a DICOM entry look before rescale.
+struct PixelLayout {
+    int rows = 0;
+    int columns = 0;
+    int bitsAllocated = 16;
+    int bitsStored = 16;
+    int highBit = 15;
+    bool isSigned = false;
+    std::string transferSyntax; // UID
+};
+
+// Something a path holds that can be loaded as a volume. The geometry is the
+// one the loaded volume will have (after any regularisation the warnings describe).
+struct SeriesEntry {
+    std::string id;        // unique in its catalog: the series UID, or UID#n for further parts
+    std::string seriesUid; // DICOM Series Instance UID; the file path for other formats
+    std::string studyUid;
+    std::string modality;
+    std::string description;
+    std::string patientName;
+    std::string patientId;
+    std::string studyDate;
+    SeriesKind kind = SeriesKind::Volume;
+    SourceFormat format = SourceFormat::Dicom;
+    VolumeGeometry geometry;
+    VoxelType voxelType = VoxelType::Int16;
+    std::vector<std::string> warnings;
+
+    // DICOM only: the images, sorted ascending along the slice normal.
+    std::vector<SliceRef> slices;
+    PixelLayout pixels;
+    // DICOM only: true when the images are resampled onto geometry (tilt, uneven gaps).
+    bool resampled = false;
+
+    // Other formats: the file to read.
+    std::string file;
+};
+
+} // namespace lucent

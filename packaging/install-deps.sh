@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package that building, running and testing Lucent need.
+# Idempotent: when everything is present it prints nothing and exits 0.
+set -euo pipefail
+
+packages=(
+  # toolchain
+  build-essential cmake ninja-build ccache pkg-config git
+  # libraries
+  qt6-base-dev libqt6opengl6-dev libgl-dev
+  libgdcm-dev libgdcm-tools libdcmtk-dev dcmtk libglm-dev libegl-dev libepoxy-dev
+  zlib1g-dev
+  # GL without a GPU, and a display for the GUI tests
+  libegl-mesa0 libgl1-mesa-dri mesa-utils xvfb xauth
+  # the demo study (real head CT, opened with no download)
+  invesalius-examples
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+SUDO=""
+[ "$(id -u)" -ne 0 ] && SUDO="sudo"
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
