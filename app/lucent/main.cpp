@@ -1,0 +1,58 @@
+// lucent [PATH] [--series UID]: the workstation. Without PATH it opens the demo CT.
+#include <QApplication>
+#include <QCommandLineParser>
+#include <QFileInfo>
+#include <QMessageBox>
+#include <QTimer>
+
+#include "ui/MainWindow.h"
+
+namespace {
+const QString kDemo = QStringLiteral("/usr/share/doc/invesalius-examples/examples/Cranium.inv3");
+}
+
+int main(int argc, char** argv) {
+    QApplication app(argc, argv);
+    QApplication::setApplicationName(QStringLiteral("Lucent"));
+    QApplication::setApplicationVersion(QStringLiteral(LUCENT_VERSION));
+
+    QCommandLineParser parser;
+    parser.setApplicationDescription(QStringLiteral("Lucent CT/MR workstation"));
+    parser.addHelpOption();
+    parser.addVersionOption();
+    parser.addPositionalArgument(
+        QStringLiteral("path"),
+        QStringLiteral("DICOM folder, DICOM file, DICOMDIR, .mhd, .nii(.gz) or .inv3 to open "
+                       "(default: the InVesalius demo CT)"),
+        QStringLiteral("[PATH]"));
+    const QCommandLineOption series(QStringLiteral("series"),
+                                    QStringLiteral("Open the series with this UID or id."),
+                                    QStringLiteral("UID"));
+    parser.addOption(series);
+    parser.process(app);
+    const QStringList args = parser.positionalArguments();
+    if (args.size() > 1) {
+        parser.showHelp(2);
+    }
+
+    lucent::MainWindow window;
+    window.show();
+
+    QString path = args.value(0);
+    if (path.isEmpty()) {
+        if (QFileInfo::exists(kDemo)) {
+            path = kDemo;
+        } else {
+            QMessageBox::information(&window, QStringLiteral("Lucent"),
+                                     QStringLiteral("The demo CT %1 is not installed (Debian "
+                                                    "package invesalius-examples). Use File > "
+                                                    "Open to open a study.")
+                                         .arg(kDemo));
+        }
+    }
+    if (!path.isEmpty()) {
+        const QString uid = parser.value(series);
+        QTimer::singleShot(0, &window, [&window, path, uid] { window.openPath(path, uid); });
+    }
+    return QApplication::exec();
+}
