@@ -228,13 +228,15 @@ DicomStructure checkDicomStructure(const std::string& file) {
     if (size >= 132 && std::memcmp(d + 128, "DICM", 4) == 0) {
         // File meta information: group 0002, always explicit little endian.
         at = 132;
-        while (at + 8 <= size && w.u16(at) == 0x0002) {
+        std::uint64_t metaEnd = 0; // from (0002,0000) when present
+        while (at < size && (at + 8 > size || w.u16(at) == 0x0002)) {
             Walker::Header h{};
             if (!w.header(at, h, true) || h.length == kUndefined || h.length > size - h.valueAt) {
-                if (out.problem.empty()) {
-                    out.problem = "truncated file meta information at byte " + std::to_string(at);
-                }
+                out.problem = "truncated file meta information at byte " + std::to_string(at);
                 return out;
+            }
+            if (h.element == 0x0000 && h.length == 4) {
+                metaEnd = h.valueAt + 4 + std::uint64_t(w.u32(h.valueAt));
             }
             if (h.element == 0x0010) {
                 std::string uid(reinterpret_cast<const char*>(d + h.valueAt), h.length);
@@ -244,6 +246,15 @@ DicomStructure checkDicomStructure(const std::string& file) {
                 out.transferSyntax = uid;
             }
             at = h.valueAt + h.length;
+        }
+        if (metaEnd != 0 && metaEnd != at) {
+            out.problem = metaEnd > size ? "truncated file meta information"
+                                         : "file meta information group length does not match";
+            return out;
+        }
+        if (at >= size) {
+            out.problem = "no data set after the file meta information";
+            return out;
         }
         if (out.transferSyntax.empty()) {
             out.problem = "file meta information without a transfer syntax";

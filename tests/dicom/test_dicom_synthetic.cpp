@@ -312,6 +312,90 @@ private slots:
         verifyVoxels(v, s, {0, 1});
     }
 
+    void dicomdirListsTheFilesToLoad() {
+        QTemporaryDir dir;
+        const std::string root = dir.path().toStdString();
+        fs::create_directories(root + "/DCM/S1");
+        SyntheticSeries s;
+        const auto positions = along({0, 0, 0}, {0, 0, 1.5}, 3);
+        std::vector<std::string> listed;
+        for (int n = 2; n >= 0; --n) {
+            const std::string rel = "DCM/S1/IM" + std::to_string(n);
+            test::writeImage(root + "/" + rel, s, n, positions[n], n + 1);
+            listed.push_back(rel);
+        }
+        // A stray image of another series in the same tree, not in the DICOMDIR.
+        SyntheticSeries stray = s;
+        stray.seriesUid = "1.2.826.0.1.3680043.2.1125.55";
+        test::writeImage(root + "/DCM/STRAY", stray, 0, {0, 0, 0}, 1);
+        const std::string dicomdir = test::writeDicomdir(root, listed);
+        const Catalog c = scanPath(dicomdir);
+        QCOMPARE(c.series.size(), std::size_t(1));
+        QCOMPARE(c.series[0].seriesUid, s.seriesUid);
+        QVERIFY(std::abs(c.series[0].geometry.spacing.z - 1.5) < 1e-9);
+        verifyVoxels(loadSeries(c.series[0]), s, {0, 1, 2});
+    }
+
+    void mixedImageSizesInOneSeriesAreSeparateEntries() {
+        QTemporaryDir dir;
+        SyntheticSeries s;
+        test::writeSeries(dir.path().toStdString(), s, along({0, 0, 0}, {0, 0, 1}, 3), "a");
+        SyntheticSeries wide = s;
+        wide.columns = 12;
+        test::writeSeries(dir.path().toStdString(), wide, along({0, 0, 10}, {0, 0, 1}, 2), "b");
+        const Catalog c = scanPath(dir.path().toStdString());
+        QCOMPARE(c.series.size(), std::size_t(2));
+        QCOMPARE(c.series[0].geometry.dims, glm::ivec3(8, 6, 3));
+        QCOMPARE(c.series[1].geometry.dims, glm::ivec3(12, 6, 2));
+        verifyVoxels(loadSeries(c.series[0]), s, {0, 1, 2});
+        verifyVoxels(loadSeries(c.series[1]), wide, {0, 1});
+    }
+
+    void truncatedHeadersAreReportedNotFatal() {
+        // GDCM as packaged aborts on headers cut short; every cut must be a clean skip.
+        QTemporaryDir dir;
+        SyntheticSeries s;
+        const std::string whole =
+            test::writeImage(dir.filePath("whole.dcm").toStdString(), s, 0, {0, 0, 0}, 1);
+        const auto size = fs::file_size(whole);
+        QTemporaryDir cuts;
+        for (std::uintmax_t n = 1; n < size; n += 7) {
+            const std::string cut = cuts.filePath(QString("cut%1.dcm").arg(n)).toStdString();
+            fs::copy_file(whole, cut);
+            fs::resize_file(cut, n);
+        }
+        const Catalog c = scanPath(cuts.path().toStdString());
+        QVERIFY(c.series.empty());
+        QCOMPARE(c.skipped.size(), std::size_t((size - 2) / 7 + 1));
+        for (const SkippedFile& f : c.skipped) {
+            QVERIFY2(!f.reason.empty(), f.file.c_str());
+        }
+    }
+
+    void undecodablePixelDataNamesTheFile() {
+        // A JPEG lossless image whose start-of-frame marker is destroyed.
+        QTemporaryDir dir;
+        SyntheticSeries s;
+        s.encoding = Encoding::JpegLossless;
+        const std::string file =
+            test::writeImage(dir.filePath("broken.dcm").toStdString(), s, 0, {0, 0, 0}, 1);
+        std::string bytes;
+        {
+            std::ifstream in(file, std::ios::binary);
+            bytes.assign(std::istreambuf_iterator<char>(in), {});
+        }
+        const std::size_t sof = bytes.find("\xFF\xC3");
+        QVERIFY(sof != std::string::npos);
+        bytes[sof + 1] = '\x01';
+        std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
+        try {
+            loadPath(dir.path().toStdString());
+            QFAIL("expected LoadError");
+        } catch (const LoadError& e) {
+            QVERIFY2(QString(e.what()).contains("broken.dcm"), e.what());
+        }
+    }
+
     void progressIsReportedAndCancelStops() {
         QTemporaryDir dir;
         SyntheticSeries s;

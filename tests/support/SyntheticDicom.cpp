@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include <dcmtk/config/osconfig.h>
+#include <dcmtk/dcmdata/dcddirif.h>
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcfilefo.h>
 #include <dcmtk/dcmdata/dcrleerg.h>
@@ -11,6 +12,7 @@
 #include <dcmtk/dcmjpeg/djencode.h>
 #include <dcmtk/dcmjpeg/djrplol.h>
 #include <dcmtk/dcmjpeg/djrploss.h>
+#include <dcmtk/oflog/oflog.h>
 
 namespace lucent::test {
 namespace {
@@ -32,6 +34,7 @@ std::string vec(std::initializer_list<double> values) {
 void registerCodecs() {
     static std::once_flag once;
     std::call_once(once, [] {
+        OFLog::configure(OFLogger::ERROR_LOG_LEVEL); // DICOMDIR writing is chatty at INFO
         DJEncoderRegistration::registerCodecs();
         DcmRLEEncoderRegistration::registerCodecs();
     });
@@ -161,6 +164,19 @@ void writeWithoutPixelData(const std::string& path, const SyntheticSeries& s) {
     fillHeader(d, s, 99);
     d.putAndInsertString(DCM_ImagePositionPatient, "0\\0\\0");
     check(file.saveFile(path.c_str(), EXS_LittleEndianExplicit), "writing " + path);
+}
+
+std::string writeDicomdir(const std::string& root, const std::vector<std::string>& relativeFiles) {
+    registerCodecs();
+    const std::string path = root + "/DICOMDIR";
+    DicomDirInterface dir;
+    dir.enableInventMode(OFTrue); // fill attributes the records need but tests do not set
+    check(dir.createNewDicomDir(DicomDirInterface::AP_GeneralPurpose, path.c_str()), "DICOMDIR");
+    for (const std::string& f : relativeFiles) {
+        check(dir.addDicomFile(f.c_str(), root.c_str()), "DICOMDIR entry " + f);
+    }
+    check(dir.writeDicomDir(), "writing " + path);
+    return path;
 }
 
 double expectedValue(const SyntheticSeries& s, int i, int j, int image) {

@@ -57,6 +57,10 @@ std::vector<std::string> writeSeries(const std::string& dir, const SyntheticSeri
 // A file with the header of an image but no Pixel Data element.
 void writeWithoutPixelData(const std::string& path, const SyntheticSeries& s);
 
+// A DICOMDIR in root listing files given relative to root (DICOM file IDs:
+// upper case, at most 8 characters a component). Returns its path.
+std::string writeDicomdir(const std::string& root, const std::vector<std::string>& relativeFiles);
+
 // HU at pixel (i, j) of image n, as the series defines it.
 double expectedValue(const SyntheticSeries& s, int i, int j, int image);
 
