@@ -9,7 +9,7 @@ packages=(
   # libraries
   qt6-base-dev libqt6opengl6-dev libgl-dev
   libgdcm-dev libgdcm-tools libdcmtk-dev dcmtk libglm-dev libegl-dev libepoxy-dev
-  zlib1g-dev
+  zlib1g-dev nlohmann-json3-dev libpng-dev
   # GL without a GPU, and a display for the GUI tests
   libegl-mesa0 libgl1-mesa-dri mesa-utils xvfb xauth
   # the demo study (real head CT, opened with no download)

@@ -3,6 +3,7 @@
 #include <QTextStream>
 
 #include "CliCommand.h"
+#include "TerminalProgress.h"
 #include "core/formats/MetaImage.h"
 #include "core/io/Catalog.h"
 
@@ -30,9 +31,11 @@ int runConvert(const QStringList& args) {
         err << "lucent-cli convert: expected PATH and an OUT.mhd file name\n" << parser.helpText();
         return kUsage;
     }
+    const TerminalProgress progress;
     try {
-        const Volume volume =
-            loadPath(positional[0].toStdString(), parser.value("series").toStdString());
+        const Volume volume = loadPath(positional[0].toStdString(),
+                                       parser.value("series").toStdString(), progress.control());
+        progress.finish();
         writeMetaImage(volume, positional[1].toStdString());
         const glm::ivec3 d = volume.dims();
         QTextStream(stdout) << "wrote " << positional[1] << " (" << d.x << "x" << d.y << "x" << d.z
@@ -41,6 +44,7 @@ int runConvert(const QStringList& args) {
             err << "warning: " << QString::fromStdString(w) << "\n";
         }
     } catch (const std::exception& e) {
+        progress.finish();
         err << "lucent-cli convert: " << e.what() << "\n";
         return kBadInput;
     }

@@ -6,6 +6,7 @@
 #include <QTextStream>
 
 #include "CliCommand.h"
+#include "TerminalProgress.h"
 #include "core/io/Catalog.h"
 
 namespace lucent::cli {
@@ -102,9 +103,12 @@ int runInfo(const QStringList& args) {
     }
     const QString path = parser.positionalArguments().front();
     Catalog catalog;
+    const TerminalProgress progress;
     try {
-        catalog = scanPath(path.toStdString());
+        catalog = scanPath(path.toStdString(), progress.control());
+        progress.finish();
     } catch (const std::exception& e) {
+        progress.finish();
         err << "lucent-cli info: " << e.what() << "\n";
         return kBadInput;
     }

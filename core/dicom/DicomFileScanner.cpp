@@ -113,6 +113,32 @@ FileScan skip(std::string reason) {
     return FileScan{{}, std::move(reason)};
 }
 
+// The transfer syntaxes Lucent decodes (GDCM, and dcmdjpls for JPEG-LS);
+// nullptr for anything else, so the user hears about it at scan time.
+const char* supportedSyntaxName(const std::string& uid) {
+    static const std::pair<const char*, const char*> known[] = {
+        {"1.2.840.10008.1.2", "Implicit VR Little Endian"},
+        {"1.2.840.10008.1.2.1", "Explicit VR Little Endian"},
+        {"1.2.840.10008.1.2.2", "Explicit VR Big Endian"},
+        {"1.2.840.10008.1.2.1.99", "Deflated Explicit VR Little Endian"},
+        {"1.2.840.10008.1.2.4.50", "JPEG Baseline"},
+        {"1.2.840.10008.1.2.4.51", "JPEG Extended"},
+        {"1.2.840.10008.1.2.4.57", "JPEG Lossless"},
+        {"1.2.840.10008.1.2.4.70", "JPEG Lossless SV1"},
+        {"1.2.840.10008.1.2.4.80", "JPEG-LS Lossless"},
+        {"1.2.840.10008.1.2.4.81", "JPEG-LS Near-Lossless"},
+        {"1.2.840.10008.1.2.4.90", "JPEG 2000 Lossless"},
+        {"1.2.840.10008.1.2.4.91", "JPEG 2000"},
+        {"1.2.840.10008.1.2.5", "RLE Lossless"},
+    };
+    for (const auto& [u, name] : known) {
+        if (uid == u) {
+            return name;
+        }
+    }
+    return nullptr;
+}
+
 } // namespace
 
 FileScan scanDicomFile(const std::string& file) {
@@ -132,6 +158,9 @@ FileScan scanDicomFile(const std::string& file) {
         const gdcm::File& gfile = reader.GetFile();
         const gdcm::DataSet& ds = gfile.GetDataSet();
         const std::string& syntax = structure.transferSyntax;
+        if (supportedSyntaxName(syntax) == nullptr) {
+            return skip("unsupported transfer syntax " + syntax);
+        }
 
         gdcm::MediaStorage ms;
         ms.SetFromFile(gfile);

@@ -170,10 +170,20 @@ StackPlan planStack(const StackInput& in) {
             }
         }
         plan.missingSlices = missing;
-        for (std::size_t s = 0; s < gaps.size(); ++s) {
-            if (std::abs(gaps[s] - typical) > tolerance) {
-                list << (list.tellp() > 0 ? ", " : "") << mm(gaps[s]) << " mm after slice " << s;
+        // Runs of equal gaps in one phrase: "6.999 mm after slices 14-26".
+        for (std::size_t s = 0; s < gaps.size();) {
+            if (std::abs(gaps[s] - typical) <= tolerance) {
+                ++s;
+                continue;
             }
+            std::size_t e = s;
+            while (e + 1 < gaps.size() && std::abs(gaps[e + 1] - gaps[s]) <= tolerance) {
+                ++e;
+            }
+            list << (list.tellp() > 0 ? ", " : "") << mm(gaps[s]) << " mm after slice"
+                 << (e > s ? "s " + std::to_string(s) + "-" + std::to_string(e)
+                           : " " + std::to_string(s));
+            s = e + 1;
         }
         std::string what = missing > 0 ? std::to_string(missing) + " missing slice(s); " : "";
         plan.warnings.push_back("uneven slice gaps (" + what + "typical " + mm(typical) + " mm; " +

@@ -396,6 +396,41 @@ private slots:
         }
     }
 
+    void unsupportedTransferSyntaxIsNamed() {
+        // JPEG lossless relabelled as JPIP Referenced (same UID length): not decodable here.
+        QTemporaryDir dir;
+        SyntheticSeries s;
+        s.encoding = Encoding::JpegLossless;
+        const std::string file =
+            test::writeImage(dir.filePath("jpip.dcm").toStdString(), s, 0, {0, 0, 0}, 1);
+        std::string bytes;
+        {
+            std::ifstream in(file, std::ios::binary);
+            bytes.assign(std::istreambuf_iterator<char>(in), {});
+        }
+        const std::size_t at = bytes.find("1.2.840.10008.1.2.4.70");
+        QVERIFY(at != std::string::npos);
+        bytes.replace(at, 22, "1.2.840.10008.1.2.4.94");
+        std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
+        const Catalog c = scanPath(dir.path().toStdString());
+        QVERIFY(c.series.empty());
+        QCOMPARE(c.skipped.size(), std::size_t(1));
+        QCOMPARE(c.skipped[0].reason,
+                 std::string("unsupported transfer syntax 1.2.840.10008.1.2.4.94"));
+    }
+
+    void zeroSizeImageIsSkipped() {
+        QTemporaryDir dir;
+        SyntheticSeries s;
+        s.columns = 0;
+        test::writeImage(dir.filePath("empty.dcm").toStdString(), s, 0, {0, 0, 0}, 1);
+        const Catalog c = scanPath(dir.path().toStdString());
+        QVERIFY(c.series.empty());
+        QCOMPARE(c.skipped.size(), std::size_t(1));
+        QVERIFY2(QString::fromStdString(c.skipped[0].reason).contains("zero-size image"),
+                 c.skipped[0].reason.c_str());
+    }
+
     void progressIsReportedAndCancelStops() {
         QTemporaryDir dir;
         SyntheticSeries s;
