@@ -12,5 +12,7 @@ constexpr int kBadInput = 3;
 // Each takes the arguments after the command name, with the program name first.
 int runInfo(const QStringList& args);
 int runConvert(const QStringList& args);
+int runCompare(const QStringList& args);
+int runRender(const QStringList& args);
 
 } // namespace lucent::cli

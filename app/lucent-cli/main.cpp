@@ -9,6 +9,9 @@ const char* kUsageText =
     "usage: lucent-cli COMMAND ...\n"
     "  info PATH [--json]                   what PATH holds: series, geometry, warnings\n"
     "  convert PATH OUT.mhd [--series UID]  write one series as MetaImage (.mhd + .raw)\n"
+    "  render PATH -o OUT.png [options]     volume rendering (CPU ray caster); --help lists "
+    "options\n"
+    "  compare A.png B.png                  print psnr_db=<x> ssim=<y> for two images\n"
     "PATH: a DICOM folder (searched recursively), a DICOM file, a DICOMDIR,\n"
     "      or a .mhd/.mha, .nii/.nii.gz or InVesalius .inv3 volume.\n"
     "Exit status: 0 ok, 2 usage, 3 nothing loadable or bad input.\n";
@@ -39,6 +42,12 @@ int main(int argc, char** argv) {
     }
     if (command == "convert") {
         return lucent::cli::runConvert(args);
+    }
+    if (command == "render") {
+        return lucent::cli::runRender(args);
+    }
+    if (command == "compare") {
+        return lucent::cli::runCompare(args);
     }
     err << "lucent-cli: unknown command '" << command << "'\n" << kUsageText;
     return lucent::cli::kUsage;

@@ -1,0 +1,230 @@
+// lucent-cli render PATH -o OUT.png [options]: a volume rendering to a PNG,
+// with --stats and --repeat for benchmarks (see DESIGN.md's contract).
+#include <QCommandLineParser>
+#include <QElapsedTimer>
+#include <QTextStream>
+
+#include <algorithm>
+
+#include "CliCommand.h"
+#include "TerminalProgress.h"
+#include "core/image/PngIO.h"
+#include "core/io/Catalog.h"
+#include "core/raycast/CpuRayCaster.h"
+
+namespace lucent::cli {
+namespace {
+
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+double number(const QCommandLineParser& p, const QString& name, double fallback) {
+    if (!p.isSet(name)) {
+        return fallback;
+    }
+    bool ok = false;
+    const double v = p.value(name).toDouble(&ok);
+    if (!ok) {
+        throw UsageError("--" + name.toStdString() + ": '" + p.value(name).toStdString() +
+                         "' is not a number");
+    }
+    return v;
+}
+
+template <class E>
+E choice(const QCommandLineParser& p, const QString& name, E fallback,
+         std::initializer_list<std::pair<const char*, E>> options) {
+    if (!p.isSet(name)) {
+        return fallback;
+    }
+    std::string known;
+    for (const auto& [key, value] : options) {
+        if (p.value(name) == key) {
+            return value;
+        }
+        known += (known.empty() ? "" : ", ") + std::string(key);
+    }
+    throw UsageError("--" + name.toStdString() + ": '" + p.value(name).toStdString() +
+                     "' is not one of " + known);
+}
+
+RenderDescription describe(const QCommandLineParser& p, const Volume& volume) {
+    RenderDescription d;
+    d.volume = &volume;
+    if (p.isSet("size")) {
+        const QStringList wh = p.value("size").split('x');
+        bool okW = false, okH = false;
+        if (wh.size() == 2) {
+            d.width = wh[0].toInt(&okW);
+            d.height = wh[1].toInt(&okH);
+        }
+        if (!okW || !okH) {
+            throw UsageError("--size: '" + p.value("size").toStdString() + "' is not WIDTHxHEIGHT");
+        }
+    }
+    d.mode = choice(p, "mode", RenderMode::Dvr,
+                    {{"dvr", RenderMode::Dvr},
+                     {"mip", RenderMode::Mip},
+                     {"minip", RenderMode::MinIp},
+                     {"avg", RenderMode::Average},
+                     {"iso", RenderMode::Isosurface}});
+    d.isoValue = number(p, "iso", d.isoValue);
+    d.camera.azimuth = number(p, "azimuth", 0.0);
+    d.camera.elevation = number(p, "elevation", 0.0);
+    d.camera.zoom = number(p, "zoom", 1.0);
+    SamplingSettings& s = d.sampling;
+    s.step = number(p, "step", s.step);
+    s.interpolation = choice(p, "interp", Interpolation::Linear,
+                             {{"nearest", Interpolation::Nearest},
+                              {"linear", Interpolation::Linear},
+                              {"cubic", Interpolation::Cubic}});
+    s.precision = choice(p, "precision", Precision::Float,
+                         {{"float", Precision::Float}, {"double", Precision::Double}});
+    s.classification = p.isSet("preclassify") ? Classification::Pre : Classification::Post;
+    s.preintegrate = p.isSet("preintegrate");
+    s.emptySpaceLeaping = !p.isSet("no-leaping");
+    s.brickSize = static_cast<int>(number(p, "brick", s.brickSize));
+    if (p.isSet("preset") && p.isSet("tf")) {
+        throw UsageError("--preset and --tf exclude each other");
+    }
+    if (p.isSet("tf")) {
+        d.transferFunction = readTransferFunction(p.value("tf").toStdString());
+    } else {
+        std::string preset = p.value("preset").toStdString();
+        if (preset.empty()) {
+            const bool ct = volume.modality == "CT";
+            preset = !ct ? "mr-default" : d.mode == RenderMode::Dvr ? "ct-bone" : "ct-mip";
+        }
+        d.transferFunction = loadPreset(preset);
+    }
+    if (p.isSet("no-shading")) {
+        d.transferFunction.shading.enabled = false;
+    }
+    return d;
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+} // namespace
+
+int runRender(const QStringList& args) {
+    QCommandLineParser parser;
+    parser.setApplicationDescription("Renders a volume to a PNG image.");
+    parser.addPositionalArgument("PATH", "DICOM folder, file or DICOMDIR, or a volume file");
+    parser.addOptions({
+        {{"o", "output"}, "The PNG to write.", "OUT.png"},
+        {"series", "Series id or UID (default: the largest volume).", "UID"},
+        {"backend", "cpu (this build), gl or ws://HOST:PORT (later).", "NAME", "cpu"},
+        {"token", "Access token for a remote backend.", "T"},
+        {"size", "Image size (default 512x512).", "WxH"},
+        {"preset", "Transfer function preset (default ct-bone, ct-mip or mr-default).", "NAME"},
+        {"tf", "Transfer function JSON file.", "FILE.json"},
+        {"mode", "dvr, mip, minip, avg or iso.", "MODE"},
+        {"iso", "Isosurface value (HU for CT).", "HU"},
+        {"azimuth", "Turn about the head-foot axis, degrees.", "DEG"},
+        {"elevation", "Turn about the left-right axis, degrees.", "DEG"},
+        {"zoom", "1 fits the volume.", "F"},
+        {"step", "Sampling step in voxels of the smallest spacing (default 0.5).", "VOXELS"},
+        {"interp", "nearest, linear or cubic.", "NAME"},
+        {"precision", "float (fast) or double (reference).", "NAME"},
+        {"preclassify", "Classify voxels before interpolation."},
+        {"preintegrate", "Pre-integrated transfer function."},
+        {"no-shading", "Switch shading off."},
+        {"no-leaping", "Switch empty-space leaping off."},
+        {"brick", "Brick size in voxels (default 64).", "N"},
+        {"gpu-budget", "GPU memory budget (GPU backend).", "MiB"},
+        {"stats", "Print timing and sampling figures."},
+        {"repeat", "Render N frames turning 5 degrees each; render_ms is their median.", "N"},
+    });
+    parser.addHelpOption();
+    QTextStream err(stderr);
+    if (!parser.parse(args)) {
+        err << "lucent-cli render: " << parser.errorText() << "\n";
+        return kUsage;
+    }
+    if (parser.isSet("help")) {
+        QTextStream(stdout) << parser.helpText();
+        return kOk;
+    }
+    if (parser.positionalArguments().size() != 1 || !parser.isSet("output")) {
+        err << "lucent-cli render: expected PATH and -o OUT.png\n";
+        return kUsage;
+    }
+    if (parser.value("backend") != "cpu") {
+        err << "lucent-cli render: backend '" << parser.value("backend")
+            << "' is not available in this build (use --backend cpu)\n";
+        return kUsage;
+    }
+    int repeat = 1;
+    try {
+        repeat = static_cast<int>(number(parser, "repeat", 1));
+        if (repeat < 1 || repeat > 10000) {
+            throw UsageError("--repeat must be between 1 and 10000");
+        }
+    } catch (const UsageError& e) {
+        err << "lucent-cli render: " << e.what() << "\n";
+        return kUsage;
+    }
+
+    QElapsedTimer timer;
+    timer.start();
+    Volume volume;
+    const TerminalProgress progress;
+    try {
+        volume = loadPath(parser.positionalArguments()[0].toStdString(),
+                          parser.value("series").toStdString(), progress.control());
+        progress.finish();
+    } catch (const std::exception& e) {
+        progress.finish();
+        err << "lucent-cli render: " << e.what() << "\n";
+        return kBadInput;
+    }
+    const double loadMs = double(timer.nsecsElapsed()) / 1e6;
+
+    try {
+        RenderDescription desc = describe(parser, volume);
+        desc.validate();
+        CpuRayCaster caster(volume);
+        std::vector<double> frames;
+        RenderResult first;
+        for (int n = 0; n < repeat; ++n) {
+            timer.restart();
+            RenderResult r = caster.render(desc);
+            frames.push_back(double(timer.nsecsElapsed()) / 1e6);
+            if (n == 0) {
+                first = std::move(r);
+            }
+            desc.camera.azimuth += 5.0;
+        }
+        writePng(first.image, parser.value("output").toStdString());
+        if (parser.isSet("stats")) {
+            const RenderStats& s = first.stats;
+            QTextStream out(stdout);
+            out << "load_ms=" << QString::number(loadMs, 'f', 1);
+            if (repeat > 1) {
+                out << " first_ms=" << QString::number(frames.front(), 'f', 1);
+                frames.erase(frames.begin());
+            }
+            out << " render_ms=" << QString::number(median(frames), 'f', 1)
+                << " samples=" << s.samples << " bricks_total=" << s.bricksTotal
+                << " bricks_used=" << s.bricksUsed << " lod=" << s.lod << " frames=" << repeat
+                << "\n";
+        }
+    } catch (const UsageError& e) {
+        err << "lucent-cli render: " << e.what() << "\n";
+        return kUsage;
+    } catch (const std::invalid_argument& e) {
+        err << "lucent-cli render: " << e.what() << "\n";
+        return kUsage;
+    } catch (const std::exception& e) {
+        err << "lucent-cli render: " << e.what() << "\n";
+        return kBadInput;
+    }
+    return kOk;
+}
+
+} // namespace lucent::cli

@@ -1,0 +1,279 @@
+#include "core/raycast/CpuRayCaster.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+#include "core/raycast/BSplinePrefilter.h"
+#include "core/raycast/RayKernel.h"
+#include "core/raycast/ViewFrame.h"
+
+namespace lucent {
+
+struct CpuRayCaster::Cache {
+    std::pair<double, double> range{0.0, 0.0};
+    std::vector<float> coefficientsF;
+    std::vector<double> coefficientsD;
+    std::pair<double, double> coefficientRange{0.0, 0.0};
+    std::map<std::pair<int, bool>, BrickGrid> grids; // (brick size, over coefficients)
+};
+
+namespace {
+
+constexpr int kTableSize = 4096;
+constexpr int kPreintegrationSize = 256;
+constexpr int kTile = 16;
+constexpr int kLeapCell = 8;
+
+template <class Real, class Field>
+void castImage(const RaySetup<Real>& setup, const Field& field, const VolumeGeometry& g,
+               const ViewFrame& frame, const RenderDescription& desc, ImageRGBA8& image,
+               std::vector<glm::vec4>& premultiplied, std::size_t& samples) {
+    const RayKernel<Real, Field> kernel(setup, field);
+    const glm::dmat3 toIndexLinear = glm::inverse(glm::dmat3(
+        g.direction[0] * g.spacing.x, g.direction[1] * g.spacing.y, g.direction[2] * g.spacing.z));
+    const glm::dvec3 origin = g.toIndex(frame.eye);
+    const int tilesX = (desc.width + kTile - 1) / kTile;
+    const int tilesY = (desc.height + kTile - 1) / kTile;
+    std::size_t total = 0;
+#pragma omp parallel for schedule(dynamic) reduction(+ : total)
+    for (int tile = 0; tile < tilesX * tilesY; ++tile) {
+        const int x0 = (tile % tilesX) * kTile, y0 = (tile / tilesX) * kTile;
+        for (int y = y0; y < std::min(y0 + kTile, desc.height); ++y) {
+            for (int x = x0; x < std::min(x0 + kTile, desc.width); ++x) {
+                const glm::dvec3 w = frame.rayDirection(x, y, desc.width, desc.height);
+                const RayOutput r = kernel.cast(origin, toIndexLinear * w, w);
+                total += r.samples;
+                premultiplied[std::size_t(y) * desc.width + x] = glm::vec4(r.rgba);
+                const glm::dvec3 rgb = glm::dvec3(r.rgba) + (1.0 - r.rgba.a) * desc.background;
+                std::uint8_t* px = image.at(x, y);
+                for (int c = 0; c < 3; ++c) {
+                    px[c] = static_cast<std::uint8_t>(
+                        std::lround(std::clamp(rgb[c], 0.0, 1.0) * 255.0));
+                }
+                px[3] = 255;
+            }
+        }
+    }
+    samples = total;
+}
+
+} // namespace
+
+CpuRayCaster::CpuRayCaster(const Volume& volume)
+    : volume_(volume), cache_(std::make_unique<Cache>()) {
+    cache_->range = volume.valueRange();
+}
+
+CpuRayCaster::~CpuRayCaster() = default;
+
+RenderResult CpuRayCaster::render(const RenderDescription& desc) {
+    desc.validate();
+    if (desc.volume != nullptr && desc.volume != &volume_) {
+        throw std::invalid_argument("render description names another volume than this caster's");
+    }
+    const VolumeGeometry& g = volume_.geometry();
+    const SamplingSettings& sampling = desc.sampling;
+    const bool cubic = sampling.interpolation == Interpolation::Cubic;
+    const bool exact = sampling.precision == Precision::Double;
+    Cache& cache = *cache_;
+    if (cubic && exact && cache.coefficientsD.empty()) {
+        cache.coefficientsD = bsplineCoefficients<double>(volume_);
+    }
+    if (cubic && !exact && cache.coefficientsF.empty()) {
+        cache.coefficientsF = bsplineCoefficients<float>(volume_);
+    }
+    auto gridFor = [&](int size) -> const BrickGrid& {
+        const auto key = std::pair(size, cubic);
+        auto it = cache.grids.find(key);
+        if (it == cache.grids.end()) {
+            if (cubic) {
+                // Spline values are convex combinations of coefficients: their brick
+                // min/max bound what a sample can see, the voxels' do not.
+                Volume coef(g, VoxelType::Float32);
+                const auto dst = coef.voxels<float>();
+                for (std::size_t i = 0; i < dst.size(); ++i) {
+                    dst[i] = exact ? float(cache.coefficientsD[i]) : cache.coefficientsF[i];
+                }
+                it = cache.grids.emplace(key, BrickGrid(coef, size, 3)).first;
+            } else {
+                it = cache.grids.emplace(key, BrickGrid(volume_, size, 3)).first;
+            }
+        }
+        return it->second;
+    };
+    const BrickGrid& grid = gridFor(sampling.brickSize);
+    // Inside bricks that cannot be leapt, rays still leap over empty cells of this size.
+    const BrickGrid& cells = gridFor(std::min(sampling.brickSize, kLeapCell));
+
+    RaySetup<double> sd;
+    RaySetup<float> sf;
+    auto fill = [&](auto& s) {
+        s.mode = desc.mode;
+        s.classification = sampling.classification;
+        s.preintegrate = sampling.preintegrate && desc.mode == RenderMode::Dvr;
+        s.shading = desc.transferFunction.shading.enabled;
+        s.exactTf = exact;
+        s.tf = &desc.transferFunction;
+        s.light = desc.transferFunction.shading;
+        s.stepRatio = sampling.step;
+        s.dt = sampling.step * std::min({g.spacing.x, g.spacing.y, g.spacing.z});
+        s.earlyTermination = static_cast<decltype(s.earlyTermination)>(sampling.earlyTermination);
+        s.isoValue = desc.isoValue;
+        const glm::dmat3 linear(g.direction[0] * g.spacing.x, g.direction[1] * g.spacing.y,
+                                g.direction[2] * g.spacing.z);
+        s.gradientToWorld = glm::transpose(glm::inverse(linear));
+        s.boxLo = glm::dvec3(0.0);
+        s.boxHi = glm::dvec3(g.dims - 1);
+        s.clipLo = glm::max(desc.clip.lo, s.boxLo);
+        s.clipHi = glm::min(desc.clip.hi, s.boxHi);
+    };
+    fill(sd);
+    fill(sf);
+
+    // Tables over the values a sample can take: the voxel range, or for cubic
+    // the coefficient range (a spline can overshoot its samples).
+    double tLo = cache.range.first, tHi = cache.range.second;
+    if (cubic) {
+        tLo = std::numeric_limits<double>::max();
+        tHi = std::numeric_limits<double>::lowest();
+        for (const Brick& b : grid.bricks()) {
+            tLo = std::min(tLo, double(b.minValue));
+            tHi = std::max(tHi, double(b.maxValue));
+        }
+    }
+    if (!(tHi > tLo)) {
+        tHi = tLo + 1.0;
+    }
+    std::vector<glm::vec4> rawTable, table;
+    if (!exact) {
+        rawTable = bakeTable(desc.transferFunction, tLo, tHi, kTableSize).rgba;
+        table = rawTable;
+        for (glm::vec4& e : table) {
+            e.a = e.a <= 0.0f
+                      ? 0.0f
+                      : float(1.0 - std::pow(1.0 - std::min(double(e.a), 1.0), sampling.step));
+        }
+        sf.rawTable = &rawTable;
+        sf.table = &table;
+        sf.tableLo = tLo;
+        sf.tableScale = double(kTableSize - 1) / (tHi - tLo);
+    }
+    PreintegrationTable preTable;
+    if (sf.preintegrate) {
+        preTable = buildPreintegrationTable(desc.transferFunction, tLo, tHi, kPreintegrationSize,
+                                            sampling.step);
+        sf.preTable = sd.preTable = &preTable;
+    }
+
+    // Empty-space leaping: which bricks can be passed over, decided so that no
+    // sample that could contribute is ever skipped.
+    const double cell =
+        (tHi - tLo) / double((sf.preintegrate ? kPreintegrationSize : kTableSize) - 1);
+    const double widen =
+        (exact && !sf.preintegrate ? 0.0 : cell) + 1e-6 * (std::abs(tLo) + std::abs(tHi) + 1.0);
+    const TransferFunction& tf = desc.transferFunction;
+    const auto visible = [&](double a, double b) {
+        if (desc.mode == RenderMode::Isosurface) {
+            return desc.isoValue >= a - widen && desc.isoValue <= b + widen;
+        }
+        if (desc.mode != RenderMode::Dvr) {
+            return true;
+        }
+        return tf.maxOpacity(a - widen, b + widen) > 0.0;
+    };
+    struct LevelData {
+        std::vector<std::uint8_t> skippable;
+        std::vector<glm::vec2> range;
+    };
+    auto levelData = [&](const BrickGrid& level) {
+        LevelData out{std::vector<std::uint8_t>(level.count(), 0),
+                      std::vector<glm::vec2>(level.count())};
+        for (std::size_t i = 0; i < level.count(); ++i) {
+            const Brick& b = level.bricks()[i];
+            out.skippable[i] = visible(b.minValue, b.maxValue) ? 0 : 1;
+            // Voxel min/max bound trilinear and nearest samples exactly; coefficient
+            // bounds went through float, so cubic keeps a margin.
+            const double margin =
+                cubic ? 1e-5 * (std::abs(b.minValue) + std::abs(b.maxValue) + 1.0) : 0.0;
+            out.range[i] = glm::vec2(float(b.minValue - margin), float(b.maxValue + margin));
+        }
+        return out;
+    };
+    const LevelData coarse = levelData(grid), fine = levelData(cells);
+    auto setLevels = [&](auto& s) {
+        s.leap = sampling.emptySpaceLeaping;
+        s.levels[0] = {grid.brickSize(), grid.bricksPerAxis(), &coarse.skippable, &coarse.range};
+        s.levels[1] = {cells.brickSize(), cells.bricksPerAxis(), &fine.skippable, &fine.range};
+    };
+    setLevels(sf);
+    setLevels(sd);
+
+    // Values outside the transfer function's non-zero opacity need no lookup.
+    const auto& op = tf.opacity;
+    double visLo = -std::numeric_limits<double>::infinity(), visHi = -visLo;
+    if (!op.empty() && op.front().opacity <= 0.0) {
+        std::size_t i = 0;
+        while (i + 1 < op.size() && op[i + 1].opacity <= 0.0) {
+            ++i;
+        }
+        visLo = i + 1 < op.size() ? op[i].value : std::numeric_limits<double>::infinity();
+    }
+    if (!op.empty() && op.back().opacity <= 0.0) {
+        std::size_t i = op.size() - 1;
+        while (i > 0 && op[i - 1].opacity <= 0.0) {
+            --i;
+        }
+        visHi = i > 0 ? op[i].value : -std::numeric_limits<double>::infinity();
+    }
+    const double tableCell = exact ? 0.0 : (tHi - tLo) / double(kTableSize - 1);
+    sf.visibleLo = sd.visibleLo = visLo - tableCell;
+    sf.visibleHi = sd.visibleHi = visHi + tableCell;
+
+    RenderResult result;
+    result.image = ImageRGBA8::filled(desc.width, desc.height, 0);
+    result.premultiplied.assign(std::size_t(desc.width) * desc.height, glm::vec4(0.0f));
+    result.stats.bricksTotal = grid.count();
+    result.stats.bricksUsed = visibleBricks(grid, visible, desc.clip).size();
+    const ViewFrame frame = makeViewFrame(g, desc.camera, desc.width, desc.height);
+
+    auto run = [&](const auto& setup, auto tag) {
+        using Real = decltype(tag);
+        switch (sampling.interpolation) {
+        case Interpolation::Cubic: {
+            const Real* c = nullptr;
+            if constexpr (std::is_same_v<Real, double>) {
+                c = cache.coefficientsD.data();
+            } else {
+                c = cache.coefficientsF.data();
+            }
+            castImage(setup, CubicField<Real>{Grid<Real, Real>(c, g.dims)}, g, frame, desc,
+                      result.image, result.premultiplied, result.stats.samples);
+            return;
+        }
+        case Interpolation::Nearest:
+            visitVoxels(volume_, [&](auto v) {
+                using T = std::remove_const_t<typename decltype(v)::element_type>;
+                castImage(setup, NearestField<Real, T>{Grid<Real, T>(v.data(), g.dims)}, g, frame,
+                          desc, result.image, result.premultiplied, result.stats.samples);
+            });
+            return;
+        case Interpolation::Linear:
+            visitVoxels(volume_, [&](auto v) {
+                using T = std::remove_const_t<typename decltype(v)::element_type>;
+                castImage(setup, LinearField<Real, T>{Grid<Real, T>(v.data(), g.dims)}, g, frame,
+                          desc, result.image, result.premultiplied, result.stats.samples);
+            });
+            return;
+        }
+    };
+    if (exact) {
+        run(sd, double{});
+    } else {
+        run(sf, float{});
+    }
+    return result;
+}
+
+} // namespace lucent

@@ -1,0 +1,388 @@
+#pragma once
+// The per-ray work of the CPU ray caster, templated on precision and filter.
+// Private to core/raycast.
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "core/raycast/RenderDescription.h"
+#include "core/raycast/VolumeFields.h"
+
+namespace lucent {
+
+// Everything a ray needs that does not change from pixel to pixel.
+template <class Real> struct RaySetup {
+    RenderMode mode = RenderMode::Dvr;
+    Classification classification = Classification::Post;
+    bool preintegrate = false;
+    bool shading = false;
+    bool exactTf = false; // evaluate the transfer function itself (reference) instead of the table
+    const TransferFunction* tf = nullptr;
+    Shading light;
+    double stepRatio = 1.0; // dt / dt_ref
+    double dt = 1.0;        // mm
+    Real earlyTermination = Real(0.99);
+    double isoValue = 0.0;
+    glm::dmat3 gradientToWorld{1.0};   // inverse transpose of the index-to-patient linear part
+    glm::dvec3 boxLo{0.0}, boxHi{0.0}; // volume box (voxel centres) in index space
+    glm::dvec3 clipLo{0.0}, clipHi{0.0};
+    // Tables (float precision path).
+    const std::vector<glm::vec4>* table =
+        nullptr; // rgb (not premultiplied), alpha corrected for dt
+    const std::vector<glm::vec4>* rawTable =
+        nullptr; // the same with alpha per dt_ref (pre-classification)
+    double tableLo = 0.0, tableScale = 1.0;
+    const PreintegrationTable* preTable = nullptr;
+    // Samples whose value lies outside [visibleLo, visibleHi] are transparent
+    // (post-classification DVR): they need no table lookup.
+    double visibleLo = -std::numeric_limits<double>::infinity();
+    double visibleHi = std::numeric_limits<double>::infinity();
+    // Empty-space leaping over two levels: the bricks, then finer cells inside
+    // the bricks that cannot be leapt. skippable[] holds the static decisions
+    // (DVR, iso); range[] the min/max that MIP/MinIP decide on as they go.
+    struct LeapLevel {
+        int size = 64;
+        glm::ivec3 perAxis{1};
+        const std::vector<std::uint8_t>* skippable = nullptr;
+        const std::vector<glm::vec2>* range = nullptr;
+    };
+    bool leap = false;
+    LeapLevel levels[2];
+};
+
+struct RayOutput {
+    glm::dvec4 rgba{0.0}; // premultiplied colour, alpha
+    std::size_t samples = 0;
+};
+
+template <class Real, class Field> class RayKernel {
+public:
+    RayKernel(const RaySetup<Real>& s, const Field& f) : s_(s), f_(f) {}
+
+    // o, d: ray origin and direction per mm of patient distance, in index space;
+    // w: the unit ray direction in patient space.
+    RayOutput cast(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& w) const;
+
+private:
+    struct Rgba {
+        Real r, g, b, a; // r, g, b not premultiplied
+    };
+
+    // Alpha per dt_ref (raw) or already corrected for dt (the float table path only).
+    Rgba classifyValue(double v, bool raw) const;
+    Rgba sampleColour(const Vec3<Real>& p, Real value) const; // alpha corrected for dt
+    Real corrected(Real a) const {
+        return a <= Real(0)
+                   ? Real(0)
+                   : Real(1) - std::pow(Real(1) - std::min(a, Real(1)), Real(s_.stepRatio));
+    }
+    Vec3<Real> shade(const Vec3<Real>& base, const Vec3<Real>& p, const glm::dvec3& w) const;
+    static int cellOf(const typename RaySetup<Real>::LeapLevel& l, const Vec3<Real>& p);
+    static double cellExit(const typename RaySetup<Real>::LeapLevel& l, int cell,
+                           const glm::dvec3& o, const glm::dvec3& d, double t);
+    bool skippable(const typename RaySetup<Real>::LeapLevel& l, int cell, bool havePrev,
+                   Real extreme) const;
+
+    const RaySetup<Real>& s_;
+    const Field& f_;
+};
+
+template <class Real, class Field>
+typename RayKernel<Real, Field>::Rgba RayKernel<Real, Field>::classifyValue(double v,
+                                                                            bool raw) const {
+    if (s_.exactTf) {
+        const glm::dvec3 c = s_.tf->colourAt(v);
+        const Real a = Real(s_.tf->opacityAt(v));
+        return {Real(c.r), Real(c.g), Real(c.b), raw ? a : corrected(a)};
+    }
+    const std::vector<glm::vec4>& t = raw ? *s_.rawTable : *s_.table;
+    const double x = std::clamp((v - s_.tableLo) * s_.tableScale, 0.0, double(t.size() - 1));
+    const std::size_t i = std::min(static_cast<std::size_t>(x), t.size() - 2);
+    const float f = float(x - double(i));
+    const glm::vec4 c = t[i] + f * (t[i + 1] - t[i]);
+    return {Real(c.r), Real(c.g), Real(c.b), Real(c.a)};
+}
+
+template <class Real, class Field>
+typename RayKernel<Real, Field>::Rgba RayKernel<Real, Field>::sampleColour(const Vec3<Real>& p,
+                                                                           Real value) const {
+    if (s_.classification == Classification::Post || Field::isNearest) {
+        return classifyValue(double(value), false);
+    }
+    // Pre-classification (trilinear): classify the eight voxels, interpolate
+    // their premultiplied colour and opacity, then correct the opacity for dt.
+    const Vec3<Real> q = glm::clamp(p, Vec3<Real>(s_.boxLo), Vec3<Real>(s_.boxHi));
+    const glm::ivec3 base(glm::floor(q));
+    const Vec3<Real> frac = q - Vec3<Real>(base);
+    Real r = 0, g = 0, b = 0, a = 0;
+    for (int n = 0; n < 8; ++n) {
+        const glm::ivec3 o(n & 1, (n >> 1) & 1, (n >> 2) & 1);
+        const Real wgt =
+            (o.x ? frac.x : 1 - frac.x) * (o.y ? frac.y : 1 - frac.y) * (o.z ? frac.z : 1 - frac.z);
+        if (wgt == Real(0)) {
+            continue;
+        }
+        const glm::ivec3 v = glm::min(base + o, glm::ivec3(s_.boxHi));
+        const Rgba k = classifyValue(double(f_.value(Vec3<Real>(v))), true);
+        r += wgt * k.r * k.a;
+        g += wgt * k.g * k.a;
+        b += wgt * k.b * k.a;
+        a += wgt * k.a;
+    }
+    if (a <= Real(0)) {
+        return {0, 0, 0, 0};
+    }
+    return {r / a, g / a, b / a, corrected(a)};
+}
+
+template <class Real, class Field>
+Vec3<Real> RayKernel<Real, Field>::shade(const Vec3<Real>& base, const Vec3<Real>& p,
+                                         const glm::dvec3& w) const {
+    const Vec3<Real> g = glm::mat<3, 3, Real>(s_.gradientToWorld) * f_.gradient(p);
+    const Real len = glm::length(g);
+    if (len < Real(1e-6)) {
+        return base; // no surface to light: a homogeneous region keeps its colour
+    }
+    // Headlight: the light comes from the eye, so L = V = H = -w; two-sided.
+    const Real ndotl = std::min(Real(1), std::abs(glm::dot(g, Vec3<Real>(w))) / len);
+    const Real diffuse = Real(s_.light.ambient) + Real(s_.light.diffuse) * ndotl;
+    const Real specular = Real(s_.light.specular) * std::pow(ndotl, Real(s_.light.specularPower));
+    return base * diffuse + Vec3<Real>(specular);
+}
+
+template <class Real, class Field>
+int RayKernel<Real, Field>::cellOf(const typename RaySetup<Real>::LeapLevel& l,
+                                   const Vec3<Real>& p) {
+    // Samples lie inside the box (p >= 0 up to rounding): truncation is floor.
+    const glm::ivec3 b = glm::min(glm::ivec3(p / Real(l.size)), l.perAxis - 1);
+    return b.x + l.perAxis.x * (b.y + l.perAxis.y * b.z);
+}
+
+// Patient distance at which the ray leaves the cell's core region [first, last).
+template <class Real, class Field>
+double RayKernel<Real, Field>::cellExit(const typename RaySetup<Real>::LeapLevel& l, int cell,
+                                        const glm::dvec3& o, const glm::dvec3& d, double t) {
+    const glm::ivec3 n = l.perAxis;
+    const glm::ivec3 idx(cell % n.x, (cell / n.x) % n.y, cell / (n.x * n.y));
+    double exit = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a) {
+        const double lo = double(idx[a] * l.size);
+        const double hi = lo + double(l.size);
+        if (d[a] > 1e-15 && idx[a] < n[a] - 1) {
+            exit = std::min(exit, (hi - o[a]) / d[a]);
+        } else if (d[a] < -1e-15 && idx[a] > 0) {
+            exit = std::min(exit, (lo - o[a]) / d[a]);
+        }
+    }
+    return std::max(exit, t);
+}
+
+template <class Real, class Field>
+bool RayKernel<Real, Field>::skippable(const typename RaySetup<Real>::LeapLevel& l, int cell,
+                                       bool havePrev, Real extreme) const {
+    switch (s_.mode) {
+    case RenderMode::Mip:
+        return havePrev && (*l.range)[cell].y <= float(extreme);
+    case RenderMode::MinIp:
+        return havePrev && (*l.range)[cell].x >= float(extreme);
+    case RenderMode::Average:
+        return false;
+    case RenderMode::Dvr:
+    case RenderMode::Isosurface:
+        break;
+    }
+    return (*l.skippable)[cell] != 0;
+}
+
+template <class Real, class Field>
+RayOutput RayKernel<Real, Field>::cast(const glm::dvec3& o, const glm::dvec3& d,
+                                       const glm::dvec3& w) const {
+    RayOutput out;
+    // Entry and exit of the volume box: the sample lattice is anchored at the entry.
+    double t0 = -std::numeric_limits<double>::infinity(),
+           t1 = std::numeric_limits<double>::infinity();
+    double c0 = t0, c1 = t1;
+    for (int a = 0; a < 3; ++a) {
+        if (std::abs(d[a]) < 1e-15) {
+            if (o[a] < s_.boxLo[a] || o[a] > s_.boxHi[a] || o[a] < s_.clipLo[a] ||
+                o[a] > s_.clipHi[a]) {
+                return out;
+            }
+            continue;
+        }
+        const double ta = (s_.boxLo[a] - o[a]) / d[a], tb = (s_.boxHi[a] - o[a]) / d[a];
+        t0 = std::max(t0, std::min(ta, tb));
+        t1 = std::min(t1, std::max(ta, tb));
+        const double ca = (s_.clipLo[a] - o[a]) / d[a], cb = (s_.clipHi[a] - o[a]) / d[a];
+        c0 = std::max(c0, std::min(ca, cb));
+        c1 = std::min(c1, std::max(ca, cb));
+    }
+    t0 = std::max(t0, 0.0);
+    const double tEnd = std::min(t1, c1);
+    if (t1 < t0 || tEnd < std::max(t0, c0)) {
+        return out;
+    }
+    const double dt = s_.dt;
+    const long nFirst = c0 > t0 ? long(std::ceil((c0 - t0) / dt - 1e-9)) : 0;
+    const long nLast = long(std::floor((tEnd - t0) / dt + 1e-9));
+
+    Real accR = 0, accG = 0, accB = 0, accA = 0;
+    Real extreme = s_.mode == RenderMode::MinIp ? std::numeric_limits<Real>::max()
+                                                : std::numeric_limits<Real>::lowest();
+    double sum = 0.0;
+    long count = 0;
+    bool havePrev = false;
+    Real prev = 0;
+    double tPrev = 0.0;
+    int checkedCell = -1;
+    const bool continuity = s_.preintegrate || s_.mode == RenderMode::Isosurface;
+    auto position = [&](double t) { return Vec3<Real>(o + d * t); };
+
+    for (long n = nFirst; n <= nLast; ++n) {
+        const double t = t0 + double(n) * dt;
+        const Vec3<Real> p = position(t);
+        if (s_.leap) {
+            const int fine = cellOf(s_.levels[1], p);
+            if (fine != checkedCell) {
+                checkedCell = fine;
+                // The brick first (one leap covers it all), then the cell.
+                const int coarse = cellOf(s_.levels[0], p);
+                double exit = -1.0;
+                if (skippable(s_.levels[0], coarse, havePrev, extreme)) {
+                    exit = cellExit(s_.levels[0], coarse, o, d, t);
+                } else if (skippable(s_.levels[1], fine, havePrev, extreme)) {
+                    exit = cellExit(s_.levels[1], fine, o, d, t);
+                }
+                if (exit >= 0.0) {
+                    // Resume at the last lattice sample not beyond the exit: it may
+                    // still lie inside (then it is taken, harmlessly), never past a sample that
+                    // counts.
+                    const long resume = std::max(n + 1, long(std::floor((exit - t0) / dt)));
+                    if (!continuity) {
+                        n = resume - 1;
+                        continue;
+                    }
+                    // Iso and pre-integration need the samples on both sides of the
+                    // leap: sample n is taken below, and the last one before `resume`
+                    // becomes the previous sample of the one we resume at.
+                    const Real vn = f_.value(p);
+                    ++out.samples;
+                    const bool crossing = s_.mode == RenderMode::Isosurface && havePrev &&
+                                          (prev < Real(s_.isoValue)) != (vn < Real(s_.isoValue));
+                    if (!crossing && resume - 1 > n) {
+                        const double tl = t0 + double(resume - 1) * dt;
+                        prev = f_.value(position(tl));
+                        tPrev = tl;
+                        havePrev = true;
+                        ++out.samples;
+                        n = resume - 1;
+                        continue;
+                    }
+                }
+            }
+        }
+        ++out.samples;
+        const Real v = f_.valueInside(p);
+        switch (s_.mode) {
+        case RenderMode::Mip:
+            extreme = std::max(extreme, v);
+            havePrev = true;
+            continue;
+        case RenderMode::MinIp:
+            extreme = std::min(extreme, v);
+            havePrev = true;
+            continue;
+        case RenderMode::Average:
+            sum += double(v);
+            ++count;
+            continue;
+        case RenderMode::Isosurface: {
+            const Real iso = Real(s_.isoValue);
+            if (havePrev && (prev < iso) != (v < iso)) {
+                // Bisection between the two lattice samples for the crossing.
+                double a = tPrev, b = t;
+                Real va = prev;
+                for (int it = 0; it < 40 && b - a > 1e-9 * dt; ++it) {
+                    const double m = 0.5 * (a + b);
+                    const Real vm = f_.value(position(m));
+                    if ((va < iso) == (vm < iso)) {
+                        a = m;
+                        va = vm;
+                    } else {
+                        b = m;
+                    }
+                }
+                const Vec3<Real> hit = position(0.5 * (a + b));
+                const Rgba c = classifyValue(s_.isoValue, true);
+                Vec3<Real> rgb(c.r, c.g, c.b);
+                if (s_.shading) {
+                    rgb = shade(rgb, hit, w);
+                }
+                out.rgba = glm::dvec4(glm::dvec3(rgb), 1.0);
+                return out;
+            }
+            prev = v;
+            tPrev = t;
+            havePrev = true;
+            continue;
+        }
+        case RenderMode::Dvr:
+            break;
+        }
+
+        Rgba c{0, 0, 0, 0};
+        if (s_.preintegrate) {
+            if (!havePrev) {
+                prev = v;
+                havePrev = true;
+                continue; // the first sample opens the first segment
+            }
+            const glm::vec4 seg = s_.preTable->lookup(double(prev), double(v));
+            prev = v;
+            if (seg.a <= 0.0f) {
+                continue;
+            }
+            c = {Real(seg.r / seg.a), Real(seg.g / seg.a), Real(seg.b / seg.a), Real(seg.a)};
+        } else {
+            if (s_.classification == Classification::Post &&
+                (double(v) < s_.visibleLo || double(v) > s_.visibleHi)) {
+                continue; // transparent: no table lookup, no shading
+            }
+            c = sampleColour(p, v);
+        }
+        if (c.a <= Real(0)) {
+            continue;
+        }
+        Vec3<Real> rgb(c.r, c.g, c.b);
+        if (s_.shading) {
+            rgb = shade(rgb, p, w);
+        }
+        const Real weight = (Real(1) - accA) * c.a;
+        accR += weight * rgb.r;
+        accG += weight * rgb.g;
+        accB += weight * rgb.b;
+        accA += weight;
+        if (accA >= s_.earlyTermination) {
+            break;
+        }
+    }
+
+    if (s_.mode == RenderMode::Mip || s_.mode == RenderMode::MinIp ||
+        s_.mode == RenderMode::Average) {
+        const bool any = s_.mode == RenderMode::Average ? count > 0 : havePrev;
+        if (!any) {
+            return out;
+        }
+        const double v = s_.mode == RenderMode::Average ? sum / double(count) : double(extreme);
+        const Rgba c = classifyValue(v, true);
+        // Projections show the transfer function's colour and opacity of the projected value.
+        const double a = double(c.a);
+        out.rgba = glm::dvec4(glm::dvec3(c.r, c.g, c.b) * a, a);
+        return out;
+    }
+    out.rgba = glm::dvec4(accR, accG, accB, accA);
+    return out;
+}
+
+} // namespace lucent

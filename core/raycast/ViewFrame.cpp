@@ -1,0 +1,50 @@
+#include "core/raycast/ViewFrame.h"
+
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace lucent {
+
+glm::dvec3 volumeCentre(const VolumeGeometry& g) {
+    return g.toPatient(glm::dvec3(g.dims - 1) * 0.5);
+}
+
+double volumeRadius(const VolumeGeometry& g) {
+    const glm::dvec3 c = volumeCentre(g);
+    double r = 0.0;
+    for (int n = 0; n < 8; ++n) {
+        const glm::dvec3 corner((n & 1) ? g.dims.x - 1 : 0, (n & 2) ? g.dims.y - 1 : 0,
+                                (n & 4) ? g.dims.z - 1 : 0);
+        r = std::max(r, glm::length(g.toPatient(corner) - c));
+    }
+    return std::max(r, 1e-6);
+}
+
+ViewFrame makeViewFrame(const VolumeGeometry& geometry, const Camera& camera, int width,
+                        int height) {
+    ViewFrame f;
+    // Elevation about the left-right axis first, then azimuth about the head-foot axis.
+    const glm::dmat4 rot = glm::rotate(glm::dmat4(1.0), glm::radians(camera.azimuth), {0, 0, 1}) *
+                           glm::rotate(glm::dmat4(1.0), glm::radians(camera.elevation), {1, 0, 0});
+    const glm::dmat3 r(rot);
+    f.forward = glm::normalize(r * glm::dvec3(0, 1, 0));
+    f.right = glm::normalize(r * glm::dvec3(1, 0, 0));
+    f.up = glm::normalize(r * glm::dvec3(0, 0, 1));
+    f.aspect = static_cast<double>(width) / static_cast<double>(height);
+    const double halfFov = glm::radians(camera.fieldOfView) * 0.5;
+    // Zoom 1: the bounding sphere just fits the narrower side of the view.
+    const double fitHalf = std::min(halfFov, std::atan(std::tan(halfFov) * f.aspect));
+    const double distance = volumeRadius(geometry) / std::sin(fitHalf);
+    f.tanHalfFov = std::tan(halfFov) / camera.zoom;
+    f.eye = volumeCentre(geometry) - f.forward * distance;
+    return f;
+}
+
+glm::dvec3 ViewFrame::rayDirection(double x, double y, int width, int height) const {
+    const double sx = (2.0 * (x + 0.5) / width - 1.0) * tanHalfFov * aspect;
+    const double sy = (1.0 - 2.0 * (y + 0.5) / height) * tanHalfFov;
+    return glm::normalize(forward + right * sx + up * sy);
+}
+
+} // namespace lucent

@@ -1,0 +1,29 @@
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include "core/raycast/RenderDescription.h"
+
+namespace lucent {
+
+// Where the camera is and which way each pixel's ray goes, in patient LPS mm.
+struct ViewFrame {
+    glm::dvec3 eye{0.0};
+    glm::dvec3 forward{0.0, 1.0, 0.0}; // anterior view: looking from the front towards posterior
+    glm::dvec3 right{1.0, 0.0, 0.0};   // patient's left appears on screen right
+    glm::dvec3 up{0.0, 0.0, 1.0};      // head up
+    double tanHalfFov = 0.0;
+    double aspect = 1.0;
+
+    // Unit direction of the ray through the centre of pixel (x, y); y = 0 is the top row.
+    glm::dvec3 rayDirection(double x, double y, int width, int height) const;
+};
+
+ViewFrame makeViewFrame(const VolumeGeometry& geometry, const Camera& camera, int width,
+                        int height);
+
+// Centre and radius of the sphere around the voxel centres, in LPS mm.
+glm::dvec3 volumeCentre(const VolumeGeometry& geometry);
+double volumeRadius(const VolumeGeometry& geometry);
+
+} // namespace lucent
