@@ -362,6 +362,37 @@ private slots:
         }
     }
 
+    void clipBoxRemovesWhatLiesOutside() {
+        // Two blobs side by side along x; a clip box keeping x <= 19 removes the right one.
+        const Volume v = makeVolume({40, 24, 24}, [](int i, int j, int k) {
+            const double l = glm::length(glm::dvec3(i - 10, j - 12, k - 12));
+            const double r = glm::length(glm::dvec3(i - 30, j - 12, k - 12));
+            return l < 6 ? 120.0 : r < 6 ? 140.0 : 0.0;
+        });
+        RenderDescription d = describe(v, rampTf(false), 64);
+        CpuRayCaster caster(v);
+        const RenderResult whole = caster.render(d);
+        d.clip.hi.x = 19.0;
+        const RenderResult clipped = caster.render(d);
+        auto opacityOnSide = [](const RenderResult& r, bool right) {
+            double sum = 0.0;
+            for (int y = 0; y < 64; ++y) {
+                for (int x = right ? 32 : 0; x < (right ? 64 : 32); ++x) {
+                    sum += r.premultiplied[std::size_t(y) * 64 + x].a;
+                }
+            }
+            return sum;
+        };
+        QVERIFY(opacityOnSide(whole, true) > 10.0);
+        QCOMPARE(opacityOnSide(clipped, true), 0.0); // screen right is patient left, +x
+        QVERIFY(std::abs(opacityOnSide(clipped, false) - opacityOnSide(whole, false)) < 1e-3);
+        QVERIFY(clipped.stats.bricksUsed <= whole.stats.bricksUsed);
+        // A clip box that holds everything changes nothing.
+        d.clip.lo = glm::dvec3(-5.0);
+        d.clip.hi = glm::dvec3(100.0);
+        QVERIFY(caster.render(d).premultiplied == whole.premultiplied);
+    }
+
     void badSettingsAreRejected() {
         const Volume v = makeVolume({4, 4, 4}, [](int, int, int) { return 0.0; });
         CpuRayCaster caster(v);
