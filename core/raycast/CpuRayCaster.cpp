@@ -204,8 +204,11 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
     const LevelData coarse = levelData(grid), fine = levelData(cells);
     auto setLevels = [&](auto& s) {
         s.leap = sampling.emptySpaceLeaping;
-        s.levels[0] = {grid.brickSize(), grid.bricksPerAxis(), &coarse.skippable, &coarse.range};
-        s.levels[1] = {cells.brickSize(), cells.bricksPerAxis(), &fine.skippable, &fine.range};
+        using Real = decltype(s.earlyTermination);
+        s.levels[0] = {grid.brickSize(), Real(1) / Real(grid.brickSize()), grid.bricksPerAxis(),
+                       &coarse.skippable, &coarse.range};
+        s.levels[1] = {cells.brickSize(), Real(1) / Real(cells.brickSize()), cells.bricksPerAxis(),
+                       &fine.skippable, &fine.range};
     };
     setLevels(sf);
     setLevels(sd);

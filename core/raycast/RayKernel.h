@@ -43,6 +43,7 @@ template <class Real> struct RaySetup {
     // (DVR, iso); range[] the min/max that MIP/MinIP decide on as they go.
     struct LeapLevel {
         int size = 64;
+        Real inverseSize = Real(1) / Real(64);
         glm::ivec3 perAxis{1};
         const std::vector<std::uint8_t>* skippable = nullptr;
         const std::vector<glm::vec2>* range = nullptr;
@@ -57,6 +58,8 @@ struct RayOutput {
 };
 
 template <class Real, class Field> class RayKernel {
+    static constexpr long kPrefetchAhead = 16;
+
 public:
     RayKernel(const RaySetup<Real>& s, const Field& f) : s_(s), f_(f) {}
 
@@ -155,7 +158,7 @@ template <class Real, class Field>
 int RayKernel<Real, Field>::cellOf(const typename RaySetup<Real>::LeapLevel& l,
                                    const Vec3<Real>& p) {
     // Samples lie inside the box (p >= 0 up to rounding): truncation is floor.
-    const glm::ivec3 b = glm::min(glm::ivec3(p / Real(l.size)), l.perAxis - 1);
+    const glm::ivec3 b = glm::min(glm::ivec3(p * l.inverseSize), l.perAxis - 1);
     return b.x + l.perAxis.x * (b.y + l.perAxis.y * b.z);
 }
 
@@ -238,10 +241,13 @@ RayOutput RayKernel<Real, Field>::cast(const glm::dvec3& o, const glm::dvec3& d,
     int checkedCell = -1;
     const bool continuity = s_.preintegrate || s_.mode == RenderMode::Isosurface;
     auto position = [&](double t) { return Vec3<Real>(o + d * t); };
+    // Lattice samples: one formula for every path, so leaping never moves a sample.
+    const Vec3<Real> entry(o + d * t0), stride(d * dt);
+    auto lattice = [&](long n) { return entry + stride * Real(n); };
 
     for (long n = nFirst; n <= nLast; ++n) {
         const double t = t0 + double(n) * dt;
-        const Vec3<Real> p = position(t);
+        const Vec3<Real> p = lattice(n);
         if (s_.leap) {
             const int fine = cellOf(s_.levels[1], p);
             if (fine != checkedCell) {
@@ -272,7 +278,7 @@ RayOutput RayKernel<Real, Field>::cast(const glm::dvec3& o, const glm::dvec3& d,
                                           (prev < Real(s_.isoValue)) != (vn < Real(s_.isoValue));
                     if (!crossing && resume - 1 > n) {
                         const double tl = t0 + double(resume - 1) * dt;
-                        prev = f_.value(position(tl));
+                        prev = f_.value(lattice(resume - 1));
                         tPrev = tl;
                         havePrev = true;
                         ++out.samples;
@@ -283,6 +289,8 @@ RayOutput RayKernel<Real, Field>::cast(const glm::dvec3& o, const glm::dvec3& d,
             }
         }
         ++out.samples;
+        // Volume reads along a ray miss the cache; ask for them well ahead.
+        f_.g.prefetch(lattice(n + kPrefetchAhead));
         const Real v = f_.valueInside(p);
         switch (s_.mode) {
         case RenderMode::Mip:

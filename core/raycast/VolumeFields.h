@@ -22,6 +22,22 @@ template <class Real, class T> struct Grid {
     Grid(const T* d, glm::ivec3 dims)
         : data(d), nx(dims.x), ny(dims.y), nz(dims.z), sy(std::size_t(dims.x)),
           sz(std::size_t(dims.x) * dims.y) {}
+    // Asks for the cache lines a sample at p will read (rows j, j+1 of slices k, k+1).
+    void prefetch(const Vec3<Real>& p) const {
+        const int i = std::clamp(int(p.x), 0, nx - 1), j = std::clamp(int(p.y), 0, ny - 1),
+                  k = std::clamp(int(p.z), 0, nz - 1);
+        const T* d = data + std::size_t(i) + sy * j + sz * k;
+        __builtin_prefetch(d);
+        if (j + 1 < ny) {
+            __builtin_prefetch(d + sy);
+        }
+        if (k + 1 < nz) {
+            __builtin_prefetch(d + sz);
+            if (j + 1 < ny) {
+                __builtin_prefetch(d + sz + sy);
+            }
+        }
+    }
     Real at(int i, int j, int k) const {
         i = std::clamp(i, 0, nx - 1);
         j = std::clamp(j, 0, ny - 1);
