@@ -256,17 +256,17 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
             return;
         }
         case Interpolation::Nearest:
-            visitVoxels(volume_, [&](auto v) {
-                using T = std::remove_const_t<typename decltype(v)::element_type>;
-                castImage(setup, NearestField<Real, T>{Grid<Real, T>(v.data(), g.dims)}, g, frame,
-                          desc, result.image, result.premultiplied, result.stats.samples);
-            });
-            return;
         case Interpolation::Linear:
             visitVoxels(volume_, [&](auto v) {
                 using T = std::remove_const_t<typename decltype(v)::element_type>;
-                castImage(setup, LinearField<Real, T>{Grid<Real, T>(v.data(), g.dims)}, g, frame,
-                          desc, result.image, result.premultiplied, result.stats.samples);
+                const Grid<Real, T> grid(v.data(), g.dims);
+                if (sampling.interpolation == Interpolation::Nearest) {
+                    castImage(setup, NearestField<Real, T>{grid}, g, frame, desc, result.image,
+                              result.premultiplied, result.stats.samples);
+                } else {
+                    castImage(setup, LinearField<Real, T>{grid}, g, frame, desc, result.image,
+                              result.premultiplied, result.stats.samples);
+                }
             });
             return;
         }

@@ -66,22 +66,7 @@ template <class Real, class T> struct LinearField {
     static constexpr bool isNearest = false;
     Grid<Real, T> g;
     Real value(const Vec3<Real>& p) const {
-        const Real x = std::clamp(p.x, Real(0), Real(g.nx - 1));
-        const Real y = std::clamp(p.y, Real(0), Real(g.ny - 1));
-        const Real z = std::clamp(p.z, Real(0), Real(g.nz - 1));
-        const int i = std::min(int(x), std::max(g.nx - 2, 0));
-        const int j = std::min(int(y), std::max(g.ny - 2, 0));
-        const int k = std::min(int(z), std::max(g.nz - 2, 0));
-        const Real fx = x - Real(i), fy = y - Real(j), fz = z - Real(k);
-        const T* d = g.data + std::size_t(i) + g.sy * j + g.sz * k;
-        const std::size_t dx = g.nx > 1 ? 1 : 0, dy = g.ny > 1 ? g.sy : 0, dz = g.nz > 1 ? g.sz : 0;
-        const Real c00 = Real(d[0]) + fx * (Real(d[dx]) - Real(d[0]));
-        const Real c10 = Real(d[dy]) + fx * (Real(d[dy + dx]) - Real(d[dy]));
-        const Real c01 = Real(d[dz]) + fx * (Real(d[dz + dx]) - Real(d[dz]));
-        const Real c11 = Real(d[dz + dy]) + fx * (Real(d[dz + dy + dx]) - Real(d[dz + dy]));
-        const Real c0 = c00 + fy * (c10 - c00);
-        const Real c1 = c01 + fy * (c11 - c01);
-        return c0 + fz * (c1 - c0);
+        return valueInside(glm::clamp(p, Vec3<Real>(0), Vec3<Real>(g.nx - 1, g.ny - 1, g.nz - 1)));
     }
     // For positions inside [0, dims-1] (up to rounding): no clamping of coordinates.
     Real valueInside(const Vec3<Real>& p) const {

@@ -7,6 +7,8 @@
 #include <QTemporaryDir>
 #include <QTest>
 
+#include "tests/support/CliRunner.h"
+
 #include <filesystem>
 #include <fstream>
 
@@ -18,22 +20,6 @@ using namespace lucent;
 namespace fs = std::filesystem;
 
 namespace {
-
-struct Run {
-    int exitCode = -1;
-    QByteArray out;
-    QByteArray err;
-};
-
-Run cli(const QStringList& args) {
-    QProcess p;
-    p.start(QString(LUCENT_BIN_DIR) + "/lucent-cli", args);
-    if (!p.waitForFinished(120000)) {
-        p.kill();
-    }
-    return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, p.readAllStandardOutput(),
-            p.readAllStandardError()};
-}
 
 test::SyntheticSeries obliqueSeries() {
     test::SyntheticSeries s;
@@ -68,9 +54,9 @@ private slots:
         QTemporaryDir dir;
         const test::SyntheticSeries s = obliqueSeries();
         test::writeSeries(dir.path().toStdString(), s, stackPositions(s, 4, 2.0));
-        const Run r = cli({"info", dir.path(), "--json"});
+        const test::CliRun r = test::runCli({"info", dir.path(), "--json"});
         QCOMPARE(r.exitCode, 0);
-        const QJsonObject doc = QJsonDocument::fromJson(r.out).object();
+        const QJsonObject doc = QJsonDocument::fromJson(r.out.toUtf8()).object();
         const QJsonArray series = doc["series"].toArray();
         QCOMPARE(series.size(), 1);
         const QJsonObject e = series[0].toObject();
@@ -95,7 +81,7 @@ private slots:
         const test::SyntheticSeries s = obliqueSeries();
         test::writeSeries(dir.path().toStdString(), s, stackPositions(s, 3, 1.0));
         std::ofstream(dir.filePath("notes.txt").toStdString()) << "hello";
-        const Run r = cli({"info", dir.path()});
+        const test::CliRun r = test::runCli({"info", dir.path()});
         QCOMPARE(r.exitCode, 0);
         QVERIFY(r.out.contains("volume"));
         QVERIFY(r.out.contains("9x7x3"));
@@ -103,22 +89,23 @@ private slots:
     }
 
     void exitStatusAndMessages() {
-        QCOMPARE(cli({}).exitCode, 2);
-        QCOMPARE(cli({"frobnicate"}).exitCode, 2);
-        QCOMPARE(cli({"info"}).exitCode, 2);
-        QCOMPARE(cli({"info", "a", "b"}).exitCode, 2);
-        QCOMPARE(cli({"info", "/x", "--bogus"}).exitCode, 2);
-        const Run missing = cli({"info", "/nonexistent/lucent"});
+        QCOMPARE(test::runCli({}).exitCode, 2);
+        QCOMPARE(test::runCli({"frobnicate"}).exitCode, 2);
+        QCOMPARE(test::runCli({"info"}).exitCode, 2);
+        QCOMPARE(test::runCli({"info", "a", "b"}).exitCode, 2);
+        QCOMPARE(test::runCli({"info", "/x", "--bogus"}).exitCode, 2);
+        const test::CliRun missing = test::runCli({"info", "/nonexistent/lucent"});
         QCOMPARE(missing.exitCode, 3);
         QVERIFY(missing.err.contains("/nonexistent/lucent: no such file or folder"));
         QTemporaryDir dir;
         std::ofstream(dir.filePath("scan.dcm").toStdString()) << "garbage, not DICOM";
-        const Run junk = cli({"info", dir.path()});
+        const test::CliRun junk = test::runCli({"info", dir.path()});
         QCOMPARE(junk.exitCode, 3);
-        QVERIFY2(junk.err.contains("scan.dcm") && junk.err.contains("nothing loadable"), junk.err);
-        QCOMPARE(cli({"convert", dir.path()}).exitCode, 2);
-        QCOMPARE(cli({"convert", dir.path(), "out.nii"}).exitCode, 2);
-        QCOMPARE(cli({"convert", dir.path(), dir.filePath("o.mhd")}).exitCode, 3);
+        QVERIFY2(junk.err.contains("scan.dcm") && junk.err.contains("nothing loadable"),
+                 qPrintable(junk.err));
+        QCOMPARE(test::runCli({"convert", dir.path()}).exitCode, 2);
+        QCOMPARE(test::runCli({"convert", dir.path(), "out.nii"}).exitCode, 2);
+        QCOMPARE(test::runCli({"convert", dir.path(), dir.filePath("o.mhd")}).exitCode, 3);
     }
 
     void convertRoundTripKeepsGeometryAndVoxels() {
@@ -128,8 +115,8 @@ private slots:
         const test::SyntheticSeries s = obliqueSeries();
         test::writeSeries(in.string(), s, stackPositions(s, 5, 1.5));
         const QString out = dir.filePath("vol.mhd");
-        const Run r = cli({"convert", QString::fromStdString(in.string()), out});
-        QVERIFY2(r.exitCode == 0, r.err);
+        const test::CliRun r = test::runCli({"convert", QString::fromStdString(in.string()), out});
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
         QVERIFY(fs::exists(dir.filePath("vol.raw").toStdString()));
 
         const Volume original = loadPath(in);
@@ -162,11 +149,13 @@ private slots:
         t.columns = 4;
         test::writeSeries(dir.path().toStdString(), t, stackPositions(t, 2, 1.0), "b");
         const QString out = dir.filePath("second.mhd");
-        QCOMPARE(cli({"convert", dir.path(), out, "--series", QString::fromStdString(t.seriesUid)})
+        QCOMPARE(test::runCli(
+                     {"convert", dir.path(), out, "--series", QString::fromStdString(t.seriesUid)})
                      .exitCode,
                  0);
         QCOMPARE(readMetaImage(out.toStdString()).dims(), glm::ivec3(4, 7, 2));
-        const Run unknown = cli({"convert", dir.path(), out, "--series", "1.2.3"});
+        const test::CliRun unknown =
+            test::runCli({"convert", dir.path(), out, "--series", "1.2.3"});
         QCOMPARE(unknown.exitCode, 3);
         QVERIFY(unknown.err.contains("no series with id or UID 1.2.3"));
     }
@@ -178,7 +167,7 @@ private slots:
         }
         QTemporaryDir dir;
         const QString out = dir.filePath("ct.mhd");
-        QCOMPARE(cli({"convert", QString::fromStdString(data.string()), out}).exitCode, 0);
+        QCOMPARE(test::runCli({"convert", QString::fromStdString(data.string()), out}).exitCode, 0);
         const Volume v = readMetaImage(out.toStdString());
         const Volume ref = loadPath(data);
         QCOMPARE(v.dims(), glm::ivec3(512, 512, 3));

@@ -5,6 +5,8 @@
 #include <QTemporaryDir>
 #include <QTest>
 
+#include "tests/support/CliRunner.h"
+
 #include <filesystem>
 #include <fstream>
 
@@ -14,24 +16,6 @@
 using namespace lucent;
 
 namespace {
-
-struct Run {
-    int exitCode = -1;
-    QString out;
-    QString err;
-};
-
-Run cli(const QStringList& args) {
-    QProcess p;
-    p.start(QString(LUCENT_BIN_DIR) + "/lucent-cli", args);
-    if (!p.waitForFinished(60000)) {
-        p.kill();
-        p.waitForFinished();
-    }
-    return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1,
-            QString::fromUtf8(p.readAllStandardOutput()),
-            QString::fromUtf8(p.readAllStandardError())};
-}
 
 ImageRGBA8 pattern(int w, int h, int shift) {
     ImageRGBA8 image = ImageRGBA8::filled(w, h, 255);
@@ -68,13 +52,13 @@ private slots:
     }
 
     void identicalImages() {
-        const Run r = cli({"compare", path("a.png"), path("a-copy.png")});
+        const test::CliRun r = test::runCli({"compare", path("a.png"), path("a-copy.png")});
         QCOMPARE(r.exitCode, 0);
         QCOMPARE(r.out, QString("psnr_db=inf ssim=1.0000\n"));
     }
 
     void differentImages() {
-        const Run r = cli({"compare", path("a.png"), path("b.png")});
+        const test::CliRun r = test::runCli({"compare", path("a.png"), path("b.png")});
         QCOMPARE(r.exitCode, 0);
         const QRegularExpression line("^psnr_db=(\\d+\\.\\d\\d) ssim=(-?\\d\\.\\d{4})\\n$");
         const QRegularExpressionMatch m = line.match(r.out);
@@ -87,31 +71,32 @@ private slots:
     }
 
     void sizeMismatchIsBadInput() {
-        const Run r = cli({"compare", path("a.png"), path("rotated.png")});
+        const test::CliRun r = test::runCli({"compare", path("a.png"), path("rotated.png")});
         QCOMPARE(r.exitCode, 3);
         QVERIFY(r.out.isEmpty());
         QVERIFY2(r.err.contains("40x30") && r.err.contains("30x40") &&
                      r.err.contains(path("rotated.png")),
                  qPrintable(r.err));
-        const Run tiny = cli({"compare", path("tiny.png"), path("tiny.png")});
+        const test::CliRun tiny = test::runCli({"compare", path("tiny.png"), path("tiny.png")});
         QCOMPARE(tiny.exitCode, 3);
         QVERIFY2(tiny.err.contains("11x11"), qPrintable(tiny.err));
     }
 
     void badFilesAreNamed() {
         for (const char* name : {"missing.png", "text.png"}) {
-            const Run r = cli({"compare", path("a.png"), path(name)});
+            const test::CliRun r = test::runCli({"compare", path("a.png"), path(name)});
             QCOMPARE(r.exitCode, 3);
             QVERIFY2(r.err.contains(path(name)), qPrintable(r.err));
         }
     }
 
     void usageErrors() {
-        QCOMPARE(cli({"compare", path("a.png")}).exitCode, 2);
-        QCOMPARE(cli({"compare"}).exitCode, 2);
-        QCOMPARE(cli({"compare", path("a.png"), path("b.png"), path("b.png")}).exitCode, 2);
-        QCOMPARE(cli({"compare", "--bogus", path("a.png"), path("b.png")}).exitCode, 2);
-        const Run help = cli({"compare", "--help"});
+        QCOMPARE(test::runCli({"compare", path("a.png")}).exitCode, 2);
+        QCOMPARE(test::runCli({"compare"}).exitCode, 2);
+        QCOMPARE(test::runCli({"compare", path("a.png"), path("b.png"), path("b.png")}).exitCode,
+                 2);
+        QCOMPARE(test::runCli({"compare", "--bogus", path("a.png"), path("b.png")}).exitCode, 2);
+        const test::CliRun help = test::runCli({"compare", "--help"});
         QCOMPARE(help.exitCode, 0);
         QVERIFY(help.out.contains("psnr_db"));
     }

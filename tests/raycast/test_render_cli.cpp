@@ -4,28 +4,14 @@
 #include <QTemporaryDir>
 #include <QTest>
 
+#include "tests/support/CliRunner.h"
+
 #include "core/formats/MetaImage.h"
 #include "core/image/PngIO.h"
 
 using namespace lucent;
 
 namespace {
-
-struct Run {
-    int exitCode = -1;
-    QString out, err;
-};
-
-Run cli(const QStringList& args) {
-    QProcess p;
-    p.start(QString(LUCENT_BIN_DIR) + "/lucent-cli", args);
-    if (!p.waitForFinished(120000)) {
-        p.kill();
-    }
-    return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1,
-            QString::fromUtf8(p.readAllStandardOutput()),
-            QString::fromUtf8(p.readAllStandardError())};
-}
 
 // A small CT-like volume: air around a water ball with a bone shell.
 QString writeVolume(const QTemporaryDir& dir) {
@@ -56,8 +42,8 @@ private slots:
     void rendersWithStats() {
         QTemporaryDir dir;
         const QString vol = writeVolume(dir), png = dir.filePath("out.png");
-        const Run r =
-            cli({"render", vol, "-o", png, "--size", "48x40", "--stats", "--repeat", "3"});
+        const test::CliRun r =
+            test::runCli({"render", vol, "-o", png, "--size", "48x40", "--stats", "--repeat", "3"});
         QVERIFY2(r.exitCode == 0, qPrintable(r.err));
         for (const char* key : {"load_ms=", "render_ms=", "first_ms=", "samples=", "bricks_total=",
                                 "bricks_used=", "lod=0"}) {
@@ -86,7 +72,8 @@ private slots:
         QFETCH(QStringList, options);
         QTemporaryDir dir;
         const QString vol = writeVolume(dir), png = dir.filePath("o.png");
-        const Run r = cli(QStringList{"render", vol, "-o", png, "--size", "32x32"} + options);
+        const test::CliRun r =
+            test::runCli(QStringList{"render", vol, "-o", png, "--size", "32x32"} + options);
         QVERIFY2(r.exitCode == 0, qPrintable(r.err));
         const ImageRGBA8 img = readPng(png.toStdString());
         if (options.contains("minip")) {
@@ -120,7 +107,8 @@ private slots:
         QFETCH(QString, message);
         QTemporaryDir dir;
         const QString vol = writeVolume(dir);
-        const Run r = cli(QStringList{"render", vol, "-o", dir.filePath("x.png")} + options);
+        const test::CliRun r =
+            test::runCli(QStringList{"render", vol, "-o", dir.filePath("x.png")} + options);
         QCOMPARE(r.exitCode, exitCode);
         QVERIFY2(r.err.contains(message), qPrintable(r.err));
         QVERIFY(!QFile::exists(dir.filePath("x.png")));
@@ -133,7 +121,8 @@ private slots:
         QVERIFY(f.open(QIODevice::WriteOnly));
         f.write(R"({"opacity": [[0, 0.5], [100, 1.5]], "colour": [[0, 1, 1, 1]]})");
         f.close();
-        const Run r = cli({"render", vol, "-o", dir.filePath("x.png"), "--tf", tf});
+        const test::CliRun r =
+            test::runCli({"render", vol, "-o", dir.filePath("x.png"), "--tf", tf});
         QCOMPARE(r.exitCode, 3);
         QVERIFY2(r.err.contains("broken.json") && r.err.contains("opacity"), qPrintable(r.err));
     }
@@ -141,12 +130,15 @@ private slots:
     void compareOfTwoRendersOfTheSameSceneIsIdentical() {
         QTemporaryDir dir;
         const QString vol = writeVolume(dir);
-        QCOMPARE(cli({"render", vol, "-o", dir.filePath("a.png"), "--size", "40x40"}).exitCode, 0);
         QCOMPARE(
-            cli({"render", vol, "-o", dir.filePath("b.png"), "--size", "40x40", "--brick", "8"})
-                .exitCode,
+            test::runCli({"render", vol, "-o", dir.filePath("a.png"), "--size", "40x40"}).exitCode,
             0);
-        const Run r = cli({"compare", dir.filePath("a.png"), dir.filePath("b.png")});
+        QCOMPARE(test::runCli({"render", vol, "-o", dir.filePath("b.png"), "--size", "40x40",
+                               "--brick", "8"})
+                     .exitCode,
+                 0);
+        const test::CliRun r =
+            test::runCli({"compare", dir.filePath("a.png"), dir.filePath("b.png")});
         QCOMPARE(r.exitCode, 0);
         QCOMPARE(r.out.trimmed(), QString("psnr_db=inf ssim=1.0000"));
     }
