@@ -100,9 +100,9 @@ typename RayKernel<Real, Field>::Rgba RayKernel<Real, Field>::classifyValue(doub
         return {Real(c.r), Real(c.g), Real(c.b), raw ? a : corrected(a)};
     }
     const std::vector<glm::vec4>& t = raw ? *s_.rawTable : *s_.table;
-    const double x = std::clamp((v - s_.tableLo) * s_.tableScale, 0.0, double(t.size() - 1));
+    const float x = std::clamp(float((v - s_.tableLo) * s_.tableScale), 0.0f, float(t.size() - 1));
     const std::size_t i = std::min(static_cast<std::size_t>(x), t.size() - 2);
-    const float f = float(x - double(i));
+    const float f = x - float(i);
     const glm::vec4 c = t[i] + f * (t[i + 1] - t[i]);
     return {Real(c.r), Real(c.g), Real(c.b), Real(c.a)};
 }

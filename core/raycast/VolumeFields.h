@@ -52,7 +52,10 @@ template <class Real, class T> struct NearestField {
     Real value(const Vec3<Real>& p) const {
         return g.at(int(std::lround(p.x)), int(std::lround(p.y)), int(std::lround(p.z)));
     }
-    Real valueInside(const Vec3<Real>& p) const { return value(p); }
+    // Inside the box p >= 0 (up to rounding), so adding a half and truncating rounds.
+    Real valueInside(const Vec3<Real>& p) const {
+        return g.at(int(p.x + Real(0.5)), int(p.y + Real(0.5)), int(p.z + Real(0.5)));
+    }
     Vec3<Real> gradient(const Vec3<Real>& p) const {
         const int i = int(std::lround(p.x)), j = int(std::lround(p.y)), k = int(std::lround(p.z));
         return Vec3<Real>(g.at(i + 1, j, k) - g.at(i - 1, j, k),
