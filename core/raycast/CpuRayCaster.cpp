@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/raycast/BSplinePrefilter.h"
+#include "core/raycast/FastDvrKernel.h"
 #include "core/raycast/RayKernel.h"
 #include "core/raycast/ViewFrame.h"
 
@@ -26,11 +27,11 @@ constexpr int kPreintegrationSize = 256;
 constexpr int kTile = 16;
 constexpr int kLeapCell = 8;
 
-template <class Real, class Field>
-void castImage(const RaySetup<Real>& setup, const Field& field, const VolumeGeometry& g,
-               const ViewFrame& frame, const RenderDescription& desc, ImageRGBA8& image,
+// kernel: anything with RayOutput cast(origin, direction, unit direction).
+template <class Kernel>
+void castImage(const Kernel& kernel, const VolumeGeometry& g, const ViewFrame& frame,
+               const RenderDescription& desc, ImageRGBA8& image,
                std::vector<glm::vec4>& premultiplied, std::size_t& samples) {
-    const RayKernel<Real, Field> kernel(setup, field);
     const glm::dmat3 toIndexLinear = glm::inverse(glm::dmat3(
         g.direction[0] * g.spacing.x, g.direction[1] * g.spacing.y, g.direction[2] * g.spacing.z));
     const glm::dvec3 origin = g.toIndex(frame.eye);
@@ -241,6 +242,9 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
     result.stats.bricksUsed = visibleBricks(grid, visible, desc.clip).size();
     const ViewFrame frame = makeViewFrame(g, desc.camera, desc.width, desc.height);
 
+    auto cast = [&](const auto& kernel) {
+        castImage(kernel, g, frame, desc, result.image, result.premultiplied, result.stats.samples);
+    };
     auto run = [&](const auto& setup, auto tag) {
         using Real = decltype(tag);
         switch (sampling.interpolation) {
@@ -251,8 +255,8 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
             } else {
                 c = cache.coefficientsF.data();
             }
-            castImage(setup, CubicField<Real>{Grid<Real, Real>(c, g.dims)}, g, frame, desc,
-                      result.image, result.premultiplied, result.stats.samples);
+            const CubicField<Real> field{Grid<Real, Real>(c, g.dims)};
+            cast(RayKernel<Real, CubicField<Real>>(setup, field));
             return;
         }
         case Interpolation::Nearest:
@@ -261,12 +265,18 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
                 using T = std::remove_const_t<typename decltype(v)::element_type>;
                 const Grid<Real, T> grid(v.data(), g.dims);
                 if (sampling.interpolation == Interpolation::Nearest) {
-                    castImage(setup, NearestField<Real, T>{grid}, g, frame, desc, result.image,
-                              result.premultiplied, result.stats.samples);
-                } else {
-                    castImage(setup, LinearField<Real, T>{grid}, g, frame, desc, result.image,
-                              result.premultiplied, result.stats.samples);
+                    const NearestField<Real, T> field{grid};
+                    cast(RayKernel<Real, NearestField<Real, T>>(setup, field));
+                    return;
                 }
+                if constexpr (std::is_same_v<Real, float>) {
+                    if (FastDvrKernel<T>::applies(setup, g.dims)) {
+                        cast(FastDvrKernel<T>(setup, grid));
+                        return;
+                    }
+                }
+                const LinearField<Real, T> field{grid};
+                cast(RayKernel<Real, LinearField<Real, T>>(setup, field));
             });
             return;
         }

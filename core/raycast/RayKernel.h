@@ -6,56 +6,10 @@
 #include <limits>
 #include <vector>
 
-#include "core/raycast/RenderDescription.h"
+#include "core/raycast/RaySetup.h"
 #include "core/raycast/VolumeFields.h"
 
 namespace lucent {
-
-// Everything a ray needs that does not change from pixel to pixel.
-template <class Real> struct RaySetup {
-    RenderMode mode = RenderMode::Dvr;
-    Classification classification = Classification::Post;
-    bool preintegrate = false;
-    bool shading = false;
-    bool exactTf = false; // evaluate the transfer function itself (reference) instead of the table
-    const TransferFunction* tf = nullptr;
-    Shading light;
-    double stepRatio = 1.0; // dt / dt_ref
-    double dt = 1.0;        // mm
-    Real earlyTermination = Real(0.99);
-    double isoValue = 0.0;
-    glm::dmat3 gradientToWorld{1.0};   // inverse transpose of the index-to-patient linear part
-    glm::dvec3 boxLo{0.0}, boxHi{0.0}; // volume box (voxel centres) in index space
-    glm::dvec3 clipLo{0.0}, clipHi{0.0};
-    // Tables (float precision path).
-    const std::vector<glm::vec4>* table =
-        nullptr; // rgb (not premultiplied), alpha corrected for dt
-    const std::vector<glm::vec4>* rawTable =
-        nullptr; // the same with alpha per dt_ref (pre-classification)
-    double tableLo = 0.0, tableScale = 1.0;
-    const PreintegrationTable* preTable = nullptr;
-    // Samples whose value lies outside [visibleLo, visibleHi] are transparent
-    // (post-classification DVR): they need no table lookup.
-    double visibleLo = -std::numeric_limits<double>::infinity();
-    double visibleHi = std::numeric_limits<double>::infinity();
-    // Empty-space leaping over two levels: the bricks, then finer cells inside
-    // the bricks that cannot be leapt. skippable[] holds the static decisions
-    // (DVR, iso); range[] the min/max that MIP/MinIP decide on as they go.
-    struct LeapLevel {
-        int size = 64;
-        Real inverseSize = Real(1) / Real(64);
-        glm::ivec3 perAxis{1};
-        const std::vector<std::uint8_t>* skippable = nullptr;
-        const std::vector<glm::vec2>* range = nullptr;
-    };
-    bool leap = false;
-    LeapLevel levels[2];
-};
-
-struct RayOutput {
-    glm::dvec4 rgba{0.0}; // premultiplied colour, alpha
-    std::size_t samples = 0;
-};
 
 template <class Real, class Field> class RayKernel {
     static constexpr long kPrefetchAhead = 16;
@@ -162,23 +116,12 @@ int RayKernel<Real, Field>::cellOf(const typename RaySetup<Real>::LeapLevel& l,
     return b.x + l.perAxis.x * (b.y + l.perAxis.y * b.z);
 }
 
-// Patient distance at which the ray leaves the cell's core region [first, last).
 template <class Real, class Field>
 double RayKernel<Real, Field>::cellExit(const typename RaySetup<Real>::LeapLevel& l, int cell,
                                         const glm::dvec3& o, const glm::dvec3& d, double t) {
     const glm::ivec3 n = l.perAxis;
     const glm::ivec3 idx(cell % n.x, (cell / n.x) % n.y, cell / (n.x * n.y));
-    double exit = std::numeric_limits<double>::infinity();
-    for (int a = 0; a < 3; ++a) {
-        const double lo = double(idx[a] * l.size);
-        const double hi = lo + double(l.size);
-        if (d[a] > 1e-15 && idx[a] < n[a] - 1) {
-            exit = std::min(exit, (hi - o[a]) / d[a]);
-        } else if (d[a] < -1e-15 && idx[a] > 0) {
-            exit = std::min(exit, (lo - o[a]) / d[a]);
-        }
-    }
-    return std::max(exit, t);
+    return leapCellExit(l.size, n, idx, o, d, t);
 }
 
 template <class Real, class Field>
@@ -202,33 +145,12 @@ template <class Real, class Field>
 RayOutput RayKernel<Real, Field>::cast(const glm::dvec3& o, const glm::dvec3& d,
                                        const glm::dvec3& w) const {
     RayOutput out;
-    // Entry and exit of the volume box: the sample lattice is anchored at the entry.
-    double t0 = -std::numeric_limits<double>::infinity(),
-           t1 = std::numeric_limits<double>::infinity();
-    double c0 = t0, c1 = t1;
-    for (int a = 0; a < 3; ++a) {
-        if (std::abs(d[a]) < 1e-15) {
-            if (o[a] < s_.boxLo[a] || o[a] > s_.boxHi[a] || o[a] < s_.clipLo[a] ||
-                o[a] > s_.clipHi[a]) {
-                return out;
-            }
-            continue;
-        }
-        const double ta = (s_.boxLo[a] - o[a]) / d[a], tb = (s_.boxHi[a] - o[a]) / d[a];
-        t0 = std::max(t0, std::min(ta, tb));
-        t1 = std::min(t1, std::max(ta, tb));
-        const double ca = (s_.clipLo[a] - o[a]) / d[a], cb = (s_.clipHi[a] - o[a]) / d[a];
-        c0 = std::max(c0, std::min(ca, cb));
-        c1 = std::min(c1, std::max(ca, cb));
-    }
-    t0 = std::max(t0, 0.0);
-    const double tEnd = std::min(t1, c1);
-    if (t1 < t0 || tEnd < std::max(t0, c0)) {
+    RaySpan span;
+    if (!raySpan(s_, o, d, span)) {
         return out;
     }
-    const double dt = s_.dt;
-    const long nFirst = c0 > t0 ? long(std::ceil((c0 - t0) / dt - 1e-9)) : 0;
-    const long nLast = long(std::floor((tEnd - t0) / dt + 1e-9));
+    const double t0 = span.t0, dt = s_.dt;
+    const long nFirst = span.nFirst, nLast = span.nLast;
 
     Real accR = 0, accG = 0, accB = 0, accA = 0;
     Real extreme = s_.mode == RenderMode::MinIp ? std::numeric_limits<Real>::max()
