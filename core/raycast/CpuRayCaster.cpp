@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <stdexcept>
+#include <tuple>
 
 #include "core/raycast/BSplinePrefilter.h"
 #include "core/raycast/FastDvrKernel.h"
@@ -17,7 +18,7 @@ struct CpuRayCaster::Cache {
     std::vector<float> coefficientsF;
     std::vector<double> coefficientsD;
     std::pair<double, double> coefficientRange{0.0, 0.0};
-    std::map<std::pair<int, bool>, BrickGrid> grids; // (brick size, over coefficients)
+    std::map<std::tuple<int, bool, int>, BrickGrid> grids; // (size, over coefficients, overlap)
 };
 
 namespace {
@@ -60,6 +61,26 @@ void castImage(const Kernel& kernel, const VolumeGeometry& g, const ViewFrame& f
     samples = total;
 }
 
+// Per fine cell: 2 where the brick holding the whole cell can be leapt, 1 where
+// the cell can, 0 where neither.
+std::vector<std::uint8_t> leapCodes(const BrickGrid& bricks,
+                                    const std::vector<std::uint8_t>& brickSkip,
+                                    const BrickGrid& cells,
+                                    const std::vector<std::uint8_t>& cellSkip) {
+    std::vector<std::uint8_t> codes(cells.count(), 0);
+    const int b = bricks.brickSize();
+    for (std::size_t n = 0; n < cells.count(); ++n) {
+        const Brick& c = cells.bricks()[n];
+        const glm::ivec3 lo = c.first / b, hi = (c.last - 1) / b;
+        if (lo == hi && brickSkip[bricks.idOf(lo)] != 0) {
+            codes[n] = 2;
+        } else {
+            codes[n] = cellSkip[n];
+        }
+    }
+    return codes;
+}
+
 } // namespace
 
 CpuRayCaster::CpuRayCaster(const Volume& volume)
@@ -85,8 +106,8 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
     if (cubic && !exact && cache.coefficientsF.empty()) {
         cache.coefficientsF = bsplineCoefficients<float>(volume_);
     }
-    auto gridFor = [&](int size) -> const BrickGrid& {
-        const auto key = std::pair(size, cubic);
+    auto gridFor = [&](int size, int overlap) -> const BrickGrid& {
+        const auto key = std::tuple(size, cubic, overlap);
         auto it = cache.grids.find(key);
         if (it == cache.grids.end()) {
             if (cubic) {
@@ -97,16 +118,21 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
                 for (std::size_t i = 0; i < dst.size(); ++i) {
                     dst[i] = exact ? float(cache.coefficientsD[i]) : cache.coefficientsF[i];
                 }
-                it = cache.grids.emplace(key, BrickGrid(coef, size, 3)).first;
+                it = cache.grids.emplace(key, BrickGrid(coef, size, overlap)).first;
             } else {
-                it = cache.grids.emplace(key, BrickGrid(volume_, size, 3)).first;
+                it = cache.grids.emplace(key, BrickGrid(volume_, size, overlap)).first;
             }
         }
         return it->second;
     };
-    const BrickGrid& grid = gridFor(sampling.brickSize);
-    // Inside bricks that cannot be leapt, rays still leap over empty cells of this size.
-    const BrickGrid& cells = gridFor(std::min(sampling.brickSize, kLeapCell));
+    const BrickGrid& grid = gridFor(sampling.brickSize, 3);
+    // Inside bricks that cannot be leapt, rays still leap over empty cells of this
+    // size. The fast kernel's trilinear samples read their cell's voxels and one
+    // beyond; a second voxel of overlap covers float rounding of positions.
+    const bool fast = !exact && sampling.interpolation == Interpolation::Linear &&
+                      desc.mode == RenderMode::Dvr && !sampling.preintegrate &&
+                      sampling.classification == Classification::Post;
+    const BrickGrid& cells = gridFor(std::min(sampling.brickSize, kLeapCell), fast ? 2 : 3);
 
     RaySetup<double> sd;
     RaySetup<float> sf;
@@ -213,6 +239,9 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
     };
     setLevels(sf);
     setLevels(sd);
+    const std::vector<std::uint8_t> cellLeap =
+        leapCodes(grid, coarse.skippable, cells, fine.skippable);
+    sf.cellLeap = &cellLeap;
 
     // Values outside the transfer function's non-zero opacity need no lookup.
     const auto& op = tf.opacity;

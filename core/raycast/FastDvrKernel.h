@@ -30,14 +30,17 @@ inline float integerPower(float x, unsigned n) {
 }
 
 template <class T> class FastDvrKernel {
+    static constexpr int kPrefetchAhead = 16;
+
 public:
     // Whether the fast kernel renders `s` over a volume of `dims` exactly as
     // RayKernel<float, LinearField> would (up to float rounding of the lookups).
     static bool applies(const RaySetup<float>& s, glm::ivec3 dims) {
         const int fine = s.levels[1].size;
         return s.mode == RenderMode::Dvr && s.classification == Classification::Post &&
-               !s.preintegrate && !s.exactTf && s.table != nullptr && dims.x >= 3 && dims.y >= 3 &&
-               dims.z >= 3 && (!s.leap || std::has_single_bit(unsigned(fine)));
+               !s.preintegrate && !s.exactTf && s.table != nullptr &&
+               (!s.leap || s.cellLeap != nullptr) && dims.x >= 3 && dims.y >= 3 && dims.z >= 3 &&
+               (!s.leap || std::has_single_bit(unsigned(fine)));
     }
 
     FastDvrKernel(const RaySetup<float>& s, const Grid<float, T>& g) : s_(s), g_(g) {
@@ -116,16 +119,15 @@ glm::vec3 FastDvrKernel<T>::shade(const glm::vec3& base, const glm::vec3& grad,
 template <class T>
 double FastDvrKernel<T>::leapExit(int i, int j, int k, int fine, const glm::dvec3& o,
                                   const glm::dvec3& d, double t) const {
-    const auto& coarse = s_.levels[0];
-    const glm::ivec3 c = glm::min(glm::ivec3(i, j, k) / coarse.size, coarse.perAxis - 1);
-    const int brick = c.x + coarse.perAxis.x * (c.y + coarse.perAxis.y * c.z);
-    if ((*coarse.skippable)[std::size_t(brick)] != 0) {
+    const std::uint8_t code = (*s_.cellLeap)[std::size_t(fine)];
+    if (code == 2) {
+        const auto& coarse = s_.levels[0];
+        const glm::ivec3 c = glm::min(glm::ivec3(i, j, k) / coarse.size, coarse.perAxis - 1);
         return leapCellExit(coarse.size, coarse.perAxis, c, o, d, t);
     }
-    const auto& cells = s_.levels[1];
-    if ((*cells.skippable)[std::size_t(fine)] != 0) {
+    if (code == 1) {
         const glm::ivec3 f(i >> fineShift_, j >> fineShift_, k >> fineShift_);
-        return leapCellExit(cells.size, cells.perAxis, f, o, d, t);
+        return leapCellExit(s_.levels[1].size, s_.levels[1].perAxis, f, o, d, t);
     }
     return -1.0;
 }
@@ -151,6 +153,7 @@ RayOutput FastDvrKernel<T>::cast(const glm::dvec3& o, const glm::dvec3& d,
     const LinearField<float, T> field{g_};
     float accR = 0, accG = 0, accB = 0, accA = 0;
     int checkedCell = -1;
+    bool checkedEmpty = false;
     std::size_t samples = 0;
 
     for (long n = span.nFirst; n <= span.nLast; ++n) {
@@ -163,17 +166,27 @@ RayOutput FastDvrKernel<T>::cast(const glm::dvec3& o, const glm::dvec3& d,
             const int cell =
                 (i >> fineShift_) +
                 cellsPerAxis.x * ((j >> fineShift_) + cellsPerAxis.y * (k >> fineShift_));
-            if (cell != checkedCell) {
+            if (cell == checkedCell) {
+                if (checkedEmpty) {
+                    continue; // a sample in a cell that cannot be seen
+                }
+            } else {
                 checkedCell = cell;
                 const double exit = leapExit(i, j, k, cell, o, d, t0 + double(n) * dt);
-                if (exit >= 0.0) {
-                    // Resume at the last lattice sample not beyond the exit.
+                checkedEmpty = exit >= 0.0;
+                if (checkedEmpty) {
+                    // Resume at the last lattice sample not beyond the exit: if
+                    // it still lies in this cell it is passed over as well.
                     n = std::max(n + 1, long(std::floor((exit - t0) / dt))) - 1;
                     continue;
                 }
             }
         }
         ++samples;
+        // Volume reads along a ray miss the cache; ask for them well ahead.
+        const float fa = fn + float(kPrefetchAhead);
+        g_.prefetch(
+            glm::vec3(entry.x + stride.x * fa, entry.y + stride.y * fa, entry.z + stride.z * fa));
         i = std::min(i, lastI);
         j = std::min(j, lastJ);
         k = std::min(k, lastK);

@@ -52,6 +52,9 @@ template <class Real> struct RaySetup {
     };
     bool leap = false;
     LeapLevel levels[2];
+    // Per cell of levels[1]: 2 where its whole brick can be leapt, 1 where the
+    // cell can, 0 where neither (the fast kernel's one lookup per cell).
+    const std::vector<std::uint8_t>* cellLeap = nullptr;
 };
 
 struct RayOutput {
