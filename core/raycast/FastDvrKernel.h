@@ -65,10 +65,12 @@ private:
     // (i, j, k), weights fx, fy, fz, all neighbours inside the volume.
     glm::vec3 gradientInside(const T* v, float fx, float fy, float fz) const;
     glm::vec3 shade(const glm::vec3& base, const glm::vec3& grad, const glm::vec3& w) const;
-    // Where a ray leaves the leapable cell or brick holding voxel (i, j, k), or
-    // -1 when neither can be leapt.
-    double leapExit(int i, int j, int k, int fine, const glm::dvec3& o, const glm::dvec3& d,
-                    double t) const;
+    struct Lattice {
+        glm::dvec3 entry, stride, inverse; // p(n) = entry + stride * n
+    };
+    // In lattice units, where the ray leaves the leapable cell or brick
+    // holding voxel (i, j, k), or -1 when neither can be leapt.
+    double leapExit(int i, int j, int k, int fine, const Lattice& l) const;
 
     const RaySetup<float>& s_;
     Grid<float, T> g_;
@@ -117,19 +119,25 @@ glm::vec3 FastDvrKernel<T>::shade(const glm::vec3& base, const glm::vec3& grad,
 }
 
 template <class T>
-double FastDvrKernel<T>::leapExit(int i, int j, int k, int fine, const glm::dvec3& o,
-                                  const glm::dvec3& d, double t) const {
+double FastDvrKernel<T>::leapExit(int i, int j, int k, int fine, const Lattice& l) const {
     const std::uint8_t code = (*s_.cellLeap)[std::size_t(fine)];
-    if (code == 2) {
-        const auto& coarse = s_.levels[0];
-        const glm::ivec3 c = glm::min(glm::ivec3(i, j, k) / coarse.size, coarse.perAxis - 1);
-        return leapCellExit(coarse.size, coarse.perAxis, c, o, d, t);
+    if (code == 0) {
+        return -1.0;
     }
-    if (code == 1) {
-        const glm::ivec3 f(i >> fineShift_, j >> fineShift_, k >> fineShift_);
-        return leapCellExit(s_.levels[1].size, s_.levels[1].perAxis, f, o, d, t);
+    const auto& level = s_.levels[code == 2 ? 0 : 1];
+    const glm::ivec3 idx = code == 2 ? glm::min(glm::ivec3(i, j, k) / level.size, level.perAxis - 1)
+                                     : glm::ivec3(i, j, k) >> fineShift_;
+    // In lattice units: the sample index at which the ray leaves the cell.
+    double exit = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a) {
+        const double lo = double(idx[a] * level.size);
+        if (l.stride[a] > 1e-15 && idx[a] < level.perAxis[a] - 1) {
+            exit = std::min(exit, (lo + double(level.size) - l.entry[a]) * l.inverse[a]);
+        } else if (l.stride[a] < -1e-15 && idx[a] > 0) {
+            exit = std::min(exit, (lo - l.entry[a]) * l.inverse[a]);
+        }
     }
-    return -1.0;
+    return exit;
 }
 
 template <class T>
@@ -143,6 +151,10 @@ RayOutput FastDvrKernel<T>::cast(const glm::dvec3& o, const glm::dvec3& d,
     const double t0 = span.t0, dt = s_.dt;
     // The lattice: p(n) = entry + stride * n, the same formula as RayKernel.
     const glm::vec3 entry(o + d * t0), stride(d * dt), wf(w);
+    Lattice lattice{o + d * t0, d * dt, glm::dvec3(0.0)};
+    for (int a = 0; a < 3; ++a) {
+        lattice.inverse[a] = std::abs(lattice.stride[a]) > 1e-15 ? 1.0 / lattice.stride[a] : 0.0;
+    }
     const T* data = g_.data;
     const std::size_t sy = g_.sy, sz = g_.sz;
     const int lastI = g_.nx - 2, lastJ = g_.ny - 2, lastK = g_.nz - 2;
@@ -172,12 +184,13 @@ RayOutput FastDvrKernel<T>::cast(const glm::dvec3& o, const glm::dvec3& d,
                 }
             } else {
                 checkedCell = cell;
-                const double exit = leapExit(i, j, k, cell, o, d, t0 + double(n) * dt);
+                const double exit = leapExit(i, j, k, cell, lattice);
                 checkedEmpty = exit >= 0.0;
                 if (checkedEmpty) {
                     // Resume at the last lattice sample not beyond the exit: if
-                    // it still lies in this cell it is passed over as well.
-                    n = std::max(n + 1, long(std::floor((exit - t0) / dt))) - 1;
+                    // it still lies in this cell it is passed over as well. The
+                    // samples before it lie a step or more inside the cell.
+                    n = exit > double(span.nLast) ? span.nLast : std::max(n + 1, long(exit)) - 1;
                     continue;
                 }
             }
