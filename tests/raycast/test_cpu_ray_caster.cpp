@@ -267,6 +267,44 @@ private slots:
         }
     }
 
+    void fastKernelAgreesWithTheGenericOne_data() {
+        QTest::addColumn<int>("type");
+        QTest::addColumn<bool>("shading");
+        QTest::newRow("int16-shaded") << int(VoxelType::Int16) << true;
+        QTest::newRow("uint16-shaded") << int(VoxelType::UInt16) << true;
+        QTest::newRow("float-unshaded") << int(VoxelType::Float32) << false;
+    }
+    void fastKernelAgreesWithTheGenericOne() {
+        QFETCH(int, type);
+        QFETCH(bool, shading);
+        // Blobs plus structure touching every face of the box, so that rays
+        // sample and shade right at the borders, where the fast kernel hands over.
+        const Volume v = makeVolume(
+            {37, 33, 30},
+            [](int i, int j, int k) {
+                const bool face = i == 0 || j == 0 || k == 0 || i == 36 || j == 32 || k == 29;
+                return blobs(i, j, k) + (face ? 90.0 + 3.0 * ((i + j + k) % 7) : 0.0);
+            },
+            VoxelType(type));
+        RenderDescription d = describe(v, rampTf(shading), 72);
+        d.camera.azimuth = 25.0;
+        d.camera.elevation = 15.0;
+        CpuRayCaster caster(v);
+        d.sampling.brickSize = 6; // leap cells of 6: not a power of two, the generic kernel
+        const RenderResult generic = caster.render(d);
+        for (const int size : {8, 16, 64}) { // leap cells of 8: the fast kernel
+            d.sampling.brickSize = size;
+            const RenderResult fast = caster.render(d);
+            float worst = 0.0f;
+            for (std::size_t n = 0; n < fast.premultiplied.size(); ++n) {
+                const glm::vec4 diff = glm::abs(fast.premultiplied[n] - generic.premultiplied[n]);
+                worst = std::max({worst, diff.r, diff.g, diff.b, diff.a});
+            }
+            QVERIFY2(worst < 1e-4f,
+                     qPrintable(QString("brick %1: max difference %2").arg(size).arg(worst)));
+        }
+    }
+
     void errorFallsAsTheStepShrinks() {
         const Volume v = makeVolume({40, 40, 36}, blobs, VoxelType::Int16);
         CpuRayCaster caster(v);
