@@ -172,6 +172,10 @@ void scanDicomFiles(const std::vector<std::string>& files, Catalog& catalog,
                          });
         std::vector<Group> groups;
         for (const ImageRecord* r : images) {
+            if (!r->hasPosition) {
+                groups.push_back({{r}}); // without a position an image cannot join a stack
+                continue;
+            }
             auto it = std::find_if(groups.begin(), groups.end(),
                                    [r](const Group& g) { return sameStack(g.first(), *r); });
             if (it == groups.end()) {

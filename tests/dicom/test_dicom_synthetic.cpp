@@ -211,6 +211,24 @@ private slots:
         verifyVoxels(loadSeries(c.series[0]), s, {0});
     }
 
+    void imagesWithoutGeometryAreSeparateImages() {
+        QTemporaryDir dir;
+        SyntheticSeries s;
+        s.withGeometry = false;
+        test::writeSeries(dir.path().toStdString(), s, along({0, 0, 0}, {0, 0, 1}, 3));
+        const Catalog c = scanPath(dir.path().toStdString());
+        QCOMPARE(c.series.size(), std::size_t(3));
+        for (std::size_t n = 0; n < 3; ++n) {
+            const SeriesEntry& e = c.series[n];
+            QCOMPARE(e.kind, SeriesKind::Image);
+            QCOMPARE(e.geometry.dims, glm::ivec3(8, 6, 1));
+            QVERIFY(anyWarning(e, "no ImagePositionPatient"));
+            QVERIFY(!anyWarning(e, "dropped"));
+            QCOMPARE(loadSeries(e).dims(), glm::ivec3(8, 6, 1));
+        }
+        QVERIFY(c.skipped.empty());
+    }
+
     void localizerInSameSeriesIsSeparate() {
         QTemporaryDir dir;
         SyntheticSeries s;

@@ -62,9 +62,11 @@ void fillHeader(DcmDataset& d, const SyntheticSeries& s, int instanceNumber) {
     d.putAndInsertString(DCM_ImageType, s.imageType.c_str());
     d.putAndInsertString(DCM_SeriesNumber, "3");
     d.putAndInsertString(DCM_InstanceNumber, std::to_string(instanceNumber).c_str());
-    d.putAndInsertString(
-        DCM_ImageOrientationPatient,
-        vec({s.rowDir.x, s.rowDir.y, s.rowDir.z, s.colDir.x, s.colDir.y, s.colDir.z}).c_str());
+    if (s.withGeometry) {
+        d.putAndInsertString(
+            DCM_ImageOrientationPatient,
+            vec({s.rowDir.x, s.rowDir.y, s.rowDir.z, s.colDir.x, s.colDir.y, s.colDir.z}).c_str());
+    }
     d.putAndInsertString(DCM_PixelSpacing, vec({s.pixelSpacing.y, s.pixelSpacing.x}).c_str());
     d.putAndInsertString(DCM_SliceThickness, "1");
     d.putAndInsertString(DCM_RescaleSlope, ds(s.slope).c_str());
@@ -107,8 +109,10 @@ std::string writeImage(const std::string& path, const SyntheticSeries& s, int im
     DcmFileFormat file;
     DcmDataset& d = *file.getDataset();
     fillHeader(d, s, instanceNumber);
-    d.putAndInsertString(DCM_ImagePositionPatient,
-                         vec({position.x, position.y, position.z}).c_str());
+    if (s.withGeometry) {
+        d.putAndInsertString(DCM_ImagePositionPatient,
+                             vec({position.x, position.y, position.z}).c_str());
+    }
     const std::size_t n = std::size_t(s.columns) * s.rows;
     const unsigned storedMask = (1u << s.bitsStored) - 1u;
     const unsigned dirty = s.dirtyHighBits ? ~storedMask : 0u;

@@ -41,6 +41,8 @@ struct SyntheticSeries {
     std::function<int(int i, int j, int image)> stored = [](int i, int j, int image) {
         return (i * 7 + j * 13 + image * 101) % 4000;
     };
+    // Without ImagePositionPatient and ImageOrientationPatient (e.g. secondary captures).
+    bool withGeometry = true;
     // Bits above BitsStored filled with ones (as some scanners store overlays there).
     bool dirtyHighBits = false;
 };
