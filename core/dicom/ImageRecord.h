@@ -9,7 +9,7 @@ namespace lucent {
 
 // The header facts of one 2D image (a file, or one frame of a multi-frame
 // object) that grouping, sorting and decoding need. Private to lucent_io.
-struct ImageRecord {
+struct ImageRecord : SeriesInfo {
     std::string file;
     int frame = 0;
     int frameCount = 1;
@@ -17,13 +17,6 @@ struct ImageRecord {
 
     std::string sopClassUid;
     std::string sopInstanceUid;
-    std::string seriesUid;
-    std::string studyUid;
-    std::string modality;
-    std::string description;
-    std::string patientName;
-    std::string patientId;
-    std::string studyDate;
     std::string imageType; // ImageType, or FrameType for enhanced frames
     bool localizer = false;
     int seriesNumber = 0;

@@ -158,12 +158,7 @@ Volume loadDicomSeries(const SeriesEntry& e, const LoadControl& control) {
         volume = std::move(stack);
     }
     volume = narrowIfExact(std::move(volume), e);
-    volume.modality = e.modality;
-    volume.seriesUid = e.seriesUid;
-    volume.description = e.description;
-    volume.patientName = e.patientName;
-    volume.patientId = e.patientId;
-    volume.studyDate = e.studyDate;
+    static_cast<SeriesInfo&>(volume) = e;
     volume.warnings = e.warnings;
     return volume;
 }

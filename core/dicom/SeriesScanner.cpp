@@ -68,13 +68,7 @@ VoxelType chooseVoxelType(const std::vector<const ImageRecord*>& images) {
 SeriesEntry makeEntry(const Group& group, SeriesKind kind, std::vector<SkippedFile>& skipped) {
     const ImageRecord& f = group.first();
     SeriesEntry e;
-    e.seriesUid = f.seriesUid;
-    e.studyUid = f.studyUid;
-    e.modality = f.modality;
-    e.description = f.description;
-    e.patientName = f.patientName;
-    e.patientId = f.patientId;
-    e.studyDate = f.studyDate;
+    static_cast<SeriesInfo&>(e) = f;
     e.kind = kind;
     e.format = SourceFormat::Dicom;
     e.pixels = f.pixels;

@@ -38,15 +38,8 @@ struct PixelLayout {
 
 // Something a path holds that can be loaded as a volume. The geometry is the
 // one the loaded volume will have (after any regularisation the warnings describe).
-struct SeriesEntry {
-    std::string id;        // unique in its catalog: the series UID, or UID#n for further parts
-    std::string seriesUid; // DICOM Series Instance UID; the file path for other formats
-    std::string studyUid;
-    std::string modality;
-    std::string description;
-    std::string patientName;
-    std::string patientId;
-    std::string studyDate;
+struct SeriesEntry : SeriesInfo {
+    std::string id; // unique in its catalog: the series UID, or UID#n for further parts
     SeriesKind kind = SeriesKind::Volume;
     SourceFormat format = SourceFormat::Dicom;
     VolumeGeometry geometry;

@@ -9,6 +9,8 @@
 
 #include <glm/glm.hpp>
 
+#include "core/volume/SeriesInfo.h"
+
 namespace lucent {
 
 enum class VoxelType { Int16, UInt16, Float32 };
@@ -35,7 +37,7 @@ struct VolumeGeometry {
 // A scalar volume: voxels in one typed buffer, i fastest, then j, then k.
 // CT voxels hold Hounsfield units (rescale applied). Move-only: a volume can
 // be gigabytes and must never be copied by accident.
-class Volume {
+class Volume : public SeriesInfo { // what the volume is, for people and the overlays
 public:
     Volume() = default;
     Volume(const VolumeGeometry& geometry, VoxelType type);
@@ -68,13 +70,6 @@ public:
     // Smallest and largest voxel value (computed on demand, not cached).
     std::pair<double, double> valueRange() const;
 
-    // What the volume is, for people and for the overlays.
-    std::string modality;
-    std::string seriesUid;
-    std::string description;
-    std::string patientName;
-    std::string patientId;
-    std::string studyDate;
     // What was done to build it and what the user should know (tilt, gaps, ...).
     std::vector<std::string> warnings;
 

@@ -1,0 +1,19 @@
+#pragma once
+
+#include <string>
+
+namespace lucent {
+
+// What a series is, for people, overlays and the study browser: the same facts
+// for a header, a catalog entry and a loaded volume.
+struct SeriesInfo {
+    std::string seriesUid; // DICOM Series Instance UID; the file path for other formats
+    std::string studyUid;
+    std::string modality; // "CT", "MR", ...
+    std::string description;
+    std::string patientName;
+    std::string patientId;
+    std::string studyDate;
+};
+
+} // namespace lucent
