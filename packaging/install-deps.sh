@@ -14,6 +14,8 @@ packages=(
   libegl-mesa0 libgl1-mesa-dri mesa-utils xvfb xauth
   # the demo study (real head CT, opened with no download)
   invesalius-examples
+  # the test PACS: Orthanc with DICOMweb, started by the pacs tests on loopback
+  orthanc orthanc-dicomweb
 )
 
 missing=()

@@ -14,5 +14,6 @@ int runInfo(const QStringList& args);
 int runConvert(const QStringList& args);
 int runCompare(const QStringList& args);
 int runRender(const QStringList& args);
+int runPacs(const QStringList& args); // exit 4: the PACS or the network failed
 
 } // namespace lucent::cli

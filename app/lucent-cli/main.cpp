@@ -14,7 +14,8 @@ const char* kUsageText =
     "  compare A.png B.png                  print psnr_db=<x> ssim=<y> for two images\n"
     "PATH: a DICOM folder (searched recursively), a DICOM file, a DICOMDIR,\n"
     "      or a .mhd/.mha, .nii/.nii.gz or InVesalius .inv3 volume.\n"
-    "Exit status: 0 ok, 2 usage, 3 nothing loadable or bad input.\n";
+    "  pacs echo|find --pacs AET@HOST:PORT ...  DICOM networking (C-ECHO, C-FIND)\n"
+    "Exit status: 0 ok, 2 usage, 3 nothing loadable or bad input, 4 PACS or network failure.\n";
 
 } // namespace
 
@@ -42,6 +43,9 @@ int main(int argc, char** argv) {
     }
     if (command == "convert") {
         return lucent::cli::runConvert(args);
+    }
+    if (command == "pacs") {
+        return lucent::cli::runPacs(args);
     }
     if (command == "render") {
         return lucent::cli::runRender(args);

@@ -56,11 +56,13 @@ void fillHeader(DcmDataset& d, const SyntheticSeries& s, int instanceNumber) {
     d.putAndInsertString(DCM_SeriesInstanceUID, s.seriesUid.c_str());
     d.putAndInsertString(DCM_Modality, s.modality.c_str());
     d.putAndInsertString(DCM_SeriesDescription, s.description.c_str());
-    d.putAndInsertString(DCM_PatientName, "Test^Synthetic");
-    d.putAndInsertString(DCM_PatientID, "SYN001");
-    d.putAndInsertString(DCM_StudyDate, "20260101");
+    d.putAndInsertString(DCM_PatientName, s.patientName.c_str());
+    d.putAndInsertString(DCM_PatientID, s.patientId.c_str());
+    d.putAndInsertString(DCM_StudyDate, s.studyDate.c_str());
+    d.putAndInsertString(DCM_StudyTime, "120000");
+    d.putAndInsertString(DCM_AccessionNumber, s.accessionNumber.c_str());
     d.putAndInsertString(DCM_ImageType, s.imageType.c_str());
-    d.putAndInsertString(DCM_SeriesNumber, "3");
+    d.putAndInsertString(DCM_SeriesNumber, std::to_string(s.seriesNumber).c_str());
     d.putAndInsertString(DCM_InstanceNumber, std::to_string(instanceNumber).c_str());
     if (s.withGeometry) {
         d.putAndInsertString(

@@ -26,6 +26,11 @@ struct SyntheticSeries {
     std::string modality = "CT";
     std::string imageType = "ORIGINAL\\PRIMARY\\AXIAL";
     std::string description = "synthetic";
+    std::string patientName = "Test^Synthetic";
+    std::string patientId = "SYN001";
+    std::string studyDate = "20260101";
+    std::string accessionNumber;
+    int seriesNumber = 3;
     int columns = 8;
     int rows = 6;
     glm::dvec3 rowDir{1, 0, 0};

@@ -1,0 +1,206 @@
+// lucent-cli pacs echo|find ...: DICOM networking from the command line.
+#include <QCommandLineParser>
+#include <QElapsedTimer>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QTextStream>
+
+#include "CliCommand.h"
+#include "core/pacs/DimseQuery.h"
+
+namespace lucent::cli {
+namespace {
+
+constexpr int kPacsFailure = 4;
+
+void addNodeOptions(QCommandLineParser& p) {
+    p.addOptions({
+        {"pacs", "The PACS.", "AET@HOST:PORT"},
+        {"aet", "Our AE title (default LUCENT).", "OUR_AET", "LUCENT"},
+        {"timeout", "Seconds to wait for a connection or a response (default 10).", "S", "10"},
+    });
+    p.addHelpOption();
+}
+
+std::pair<PacsNode, PacsSettings> nodeFrom(const QCommandLineParser& p) {
+    if (!p.isSet("pacs")) {
+        throw std::invalid_argument("--pacs AET@HOST:PORT is required");
+    }
+    bool ok = false;
+    const int timeout = p.value("timeout").toInt(&ok);
+    if (!ok || timeout < 1 || timeout > 3600) {
+        throw std::invalid_argument("--timeout must be a number of seconds from 1 to 3600");
+    }
+    PacsSettings s;
+    s.callingAeTitle = p.value("aet").toStdString();
+    s.connectTimeoutSeconds = timeout;
+    s.responseTimeoutSeconds = std::max(timeout, 30);
+    try {
+        checkAeTitle(s.callingAeTitle, "--aet");
+        return {PacsNode::parse(p.value("pacs").toStdString()), s};
+    } catch (const PacsError& e) {
+        throw std::invalid_argument(e.what()); // a malformed option is a usage error
+    }
+}
+
+QJsonObject toJson(const QueryMatch& m) {
+    QJsonObject o{{"level", QString(queryLevelName(m.level)).toLower()},
+                  {"patient_name", QString::fromStdString(m.patientName)},
+                  {"patient_id", QString::fromStdString(m.patientId)}};
+    if (m.level == QueryLevel::Patient) {
+        o["birth_date"] = QString::fromStdString(m.patientBirthDate);
+        return o;
+    }
+    o["study_uid"] = QString::fromStdString(m.studyUid);
+    o["study_date"] = QString::fromStdString(m.studyDate);
+    o["study_description"] = QString::fromStdString(m.studyDescription);
+    o["accession"] = QString::fromStdString(m.accessionNumber);
+    o["instances"] = m.instances;
+    if (m.level == QueryLevel::Study) {
+        o["modalities"] = QString::fromStdString(m.modalitiesInStudy);
+    } else {
+        o["series_uid"] = QString::fromStdString(m.seriesUid);
+        o["series_number"] = m.seriesNumber;
+        o["series_description"] = QString::fromStdString(m.seriesDescription);
+        o["modality"] = QString::fromStdString(m.modality);
+    }
+    return o;
+}
+
+void printTable(const std::vector<QueryMatch>& matches, QTextStream& out) {
+    for (const QueryMatch& m : matches) {
+        QStringList cols{QString::fromStdString(m.patientName),
+                         QString::fromStdString(m.patientId)};
+        if (m.level != QueryLevel::Patient) {
+            cols << QString::fromStdString(m.studyDate)
+                 << QString::fromStdString(m.accessionNumber);
+        }
+        if (m.level == QueryLevel::Study) {
+            cols << QString::fromStdString(m.modalitiesInStudy)
+                 << QString::fromStdString(m.studyDescription)
+                 << QString("%1 images").arg(m.instances) << QString::fromStdString(m.studyUid);
+        } else if (m.level == QueryLevel::Series) {
+            cols << QString::fromStdString(m.modality) << QString("#%1").arg(m.seriesNumber)
+                 << QString::fromStdString(m.seriesDescription)
+                 << QString("%1 images").arg(m.instances) << QString::fromStdString(m.seriesUid);
+        }
+        out << cols.join("  ") << "\n";
+    }
+    out << matches.size() << " match(es)\n";
+}
+
+int echoCommand(const QStringList& args) {
+    QCommandLineParser p;
+    p.setApplicationDescription("Checks that a PACS answers (C-ECHO).");
+    addNodeOptions(p);
+    QTextStream err(stderr);
+    if (!p.parse(args)) {
+        err << "lucent-cli pacs echo: " << p.errorText() << "\n";
+        return kUsage;
+    }
+    if (p.isSet("help")) {
+        QTextStream(stdout) << p.helpText();
+        return kOk;
+    }
+    try {
+        const auto [node, settings] = nodeFrom(p);
+        QElapsedTimer timer;
+        timer.start();
+        echo(node, settings);
+        QTextStream(stdout) << QString::fromStdString(node.describe()) << " answered C-ECHO in "
+                            << timer.elapsed() << " ms\n";
+    } catch (const std::invalid_argument& e) {
+        err << "lucent-cli pacs echo: " << e.what() << "\n";
+        return kUsage;
+    } catch (const PacsError& e) {
+        err << "lucent-cli pacs echo: " << e.what() << "\n";
+        return kPacsFailure;
+    }
+    return kOk;
+}
+
+int findCommand(const QStringList& args) {
+    QCommandLineParser p;
+    p.setApplicationDescription("Searches a PACS (C-FIND).");
+    addNodeOptions(p);
+    p.addOptions({
+        {"level", "patient, study (default) or series.", "LEVEL", "study"},
+        {"patient-name", "Patient name, DICOM wildcards * and ? allowed.", "P"},
+        {"patient-id", "Patient ID.", "ID"},
+        {"modality", "Modality, or several separated by commas.", "M[,M]"},
+        {"date", "Study date or range: YYYYMMDD, YYYYMMDD-YYYYMMDD, YYYYMMDD-, -YYYYMMDD.",
+         "FROM-TO"},
+        {"accession", "Accession number.", "A"},
+        {"study", "Study Instance UID.", "UID"},
+        {"json", "Print a JSON list of matches."},
+    });
+    QTextStream err(stderr);
+    if (!p.parse(args)) {
+        err << "lucent-cli pacs find: " << p.errorText() << "\n";
+        return kUsage;
+    }
+    if (p.isSet("help")) {
+        QTextStream(stdout) << p.helpText();
+        return kOk;
+    }
+    try {
+        const auto [node, settings] = nodeFrom(p);
+        QueryLevel level = QueryLevel::Study;
+        QueryFilter f;
+        try {
+            level = parseQueryLevel(p.value("level").toStdString());
+            f.patientName = p.value("patient-name").toStdString();
+            f.patientId = p.value("patient-id").toStdString();
+            f.accessionNumber = p.value("accession").toStdString();
+            f.studyUid = p.value("study").toStdString();
+            f.dateRange = p.value("date").toStdString();
+            for (const QString& m : p.value("modality").split(',', Qt::SkipEmptyParts)) {
+                f.modalities.push_back(m.trimmed().toUpper().toStdString());
+            }
+            f.validate();
+        } catch (const PacsError& e) {
+            throw std::invalid_argument(e.what());
+        }
+        const std::vector<QueryMatch> matches = find(node, settings, level, f);
+        QTextStream out(stdout);
+        if (p.isSet("json")) {
+            QJsonArray list;
+            for (const QueryMatch& m : matches) {
+                list.append(toJson(m));
+            }
+            out << QJsonDocument(list).toJson(QJsonDocument::Indented);
+        } else {
+            printTable(matches, out);
+        }
+    } catch (const std::invalid_argument& e) {
+        err << "lucent-cli pacs find: " << e.what() << "\n";
+        return kUsage;
+    } catch (const PacsError& e) {
+        err << "lucent-cli pacs find: " << e.what() << "\n";
+        return kPacsFailure;
+    }
+    return kOk;
+}
+
+} // namespace
+
+int runPacs(const QStringList& args) {
+    QTextStream err(stderr);
+    if (args.size() < 2) {
+        err << "usage: lucent-cli pacs echo|find ... (--help after the verb lists its options)\n";
+        return kUsage;
+    }
+    QStringList rest = args;
+    const QString verb = rest.takeAt(1);
+    if (verb == "echo") {
+        return echoCommand(rest);
+    }
+    if (verb == "find") {
+        return findCommand(rest);
+    }
+    err << "lucent-cli pacs: unknown verb '" << verb << "' (echo, find)\n";
+    return kUsage;
+}
+
+} // namespace lucent::cli

@@ -1,0 +1,101 @@
+#include "core/pacs/DimseAssociation.h"
+
+#include <mutex>
+
+#include <dcmtk/dcmdata/dcuid.h>
+#include <dcmtk/dcmnet/diutil.h>
+#include <dcmtk/oflog/oflog.h>
+
+namespace lucent {
+namespace {
+
+bool mentions(const OFCondition& c, const char* text) {
+    return std::string(c.text()).find(text) != std::string::npos;
+}
+
+// What went wrong, in words a user can act on.
+std::string reason(const OFCondition& c, const PacsSettings& s, const PacsNode& node) {
+    if (c == DUL_ASSOCIATIONREJECTED) {
+        return "association rejected (calling AE title '" + s.callingAeTitle + "', called '" +
+               node.aeTitle + "': is Lucent registered with this PACS, and is its AE title right?)";
+    }
+    if (c == NET_EC_NoAcceptablePresentationContexts) {
+        return "the PACS accepts none of the proposed services";
+    }
+    if (c == DUL_READTIMEOUT || c == DIMSE_NODATAAVAILABLE || mentions(c, "imeout") ||
+        mentions(c, "timed out")) {
+        return "no answer within the timeout (" + std::to_string(s.connectTimeoutSeconds) +
+               " s to connect, " + std::to_string(s.responseTimeoutSeconds) + " s per response)";
+    }
+    if (mentions(c, "Connection refused")) {
+        return "connection refused (is the PACS running and listening on that port?)";
+    }
+    if (mentions(c, "Name or service not known") || mentions(c, "unknown host") ||
+        mentions(c, "No address")) {
+        return "unknown host";
+    }
+    if (c == DUL_PEERABORTEDASSOCIATION || c == DUL_NETWORKCLOSED) {
+        return "the PACS closed the connection";
+    }
+    return c.text();
+}
+
+void quietDcmtk() {
+    static std::once_flag once;
+    // Lucent reports PACS problems itself, once, with the node's name.
+    std::call_once(once, [] { OFLog::configure(OFLogger::FATAL_LOG_LEVEL); });
+}
+
+} // namespace
+
+DimseAssociation::DimseAssociation(const PacsNode& node, const PacsSettings& settings,
+                                   const std::vector<std::string>& abstractSyntaxes)
+    : node_(node), settings_(settings), scu_(std::make_unique<DcmSCU>()) {
+    quietDcmtk();
+    checkAeTitle(settings.callingAeTitle, "our AE title");
+    DcmSCU& scu = *scu_;
+    scu.setAETitle(settings.callingAeTitle.c_str());
+    scu.setPeerAETitle(node.aeTitle.c_str());
+    scu.setPeerHostName(node.host.c_str());
+    scu.setPeerPort(static_cast<Uint16>(node.port));
+    scu.setConnectionTimeout(settings.connectTimeoutSeconds);
+    scu.setACSETimeout(static_cast<Uint32>(settings.connectTimeoutSeconds));
+    scu.setDIMSEBlockingMode(DIMSE_NONBLOCKING);
+    scu.setDIMSETimeout(static_cast<Uint32>(settings.responseTimeoutSeconds));
+    OFList<OFString> syntaxes;
+    syntaxes.push_back(UID_LittleEndianExplicitTransferSyntax);
+    syntaxes.push_back(UID_LittleEndianImplicitTransferSyntax);
+    for (const std::string& sop : abstractSyntaxes) {
+        scu.addPresentationContext(sop.c_str(), syntaxes);
+    }
+    if (const OFCondition c = scu.initNetwork(); c.bad()) {
+        fail("cannot start networking", c);
+    }
+    if (const OFCondition c = scu.negotiateAssociation(); c.bad()) {
+        fail("cannot open an association", c);
+    }
+    open_ = true;
+}
+
+DimseAssociation::~DimseAssociation() {
+    if (open_ && scu_->isConnected()) {
+        scu_->releaseAssociation();
+    }
+}
+
+T_ASC_PresentationContextID DimseAssociation::context(const std::string& abstractSyntax,
+                                                      const std::string& what) {
+    const T_ASC_PresentationContextID id =
+        scu_->findPresentationContextID(abstractSyntax.c_str(), "");
+    if (id == 0) {
+        throw PacsError(node_.describe() + ": the PACS does not accept " + what);
+    }
+    return id;
+}
+
+void DimseAssociation::fail(const std::string& operation, const OFCondition& condition) const {
+    throw PacsError(node_.describe() + ": " + operation + ": " +
+                    reason(condition, settings_, node_));
+}
+
+} // namespace lucent

@@ -1,0 +1,39 @@
+#pragma once
+// One DICOM association with a PACS, opened in the constructor and released
+// in the destructor. Private to lucent_pacs: DCMTK stays out of public headers.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <dcmtk/config/osconfig.h>
+#include <dcmtk/dcmnet/scu.h>
+
+#include "core/pacs/PacsNode.h"
+
+namespace lucent {
+
+class DimseAssociation {
+public:
+    // Proposes the abstract syntaxes (SOP class UIDs) with the uncompressed
+    // little-endian transfer syntaxes. Throws PacsError naming the node.
+    DimseAssociation(const PacsNode& node, const PacsSettings& settings,
+                     const std::vector<std::string>& abstractSyntaxes);
+    ~DimseAssociation();
+    DimseAssociation(const DimseAssociation&) = delete;
+    DimseAssociation& operator=(const DimseAssociation&) = delete;
+
+    DcmSCU& scu() { return *scu_; }
+    // The accepted presentation context for a SOP class; PacsError when the PACS refused it.
+    T_ASC_PresentationContextID context(const std::string& abstractSyntax, const std::string& what);
+    // A PacsError for a failed operation on this association.
+    [[noreturn]] void fail(const std::string& operation, const OFCondition& condition) const;
+
+private:
+    PacsNode node_;
+    PacsSettings settings_;
+    std::unique_ptr<DcmSCU> scu_;
+    bool open_ = false;
+};
+
+} // namespace lucent

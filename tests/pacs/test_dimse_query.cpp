@@ -1,0 +1,292 @@
+// C-ECHO and C-FIND against a real Orthanc on loopback, and the error cases:
+// refused, rejected, silent. Label pacs.
+#include <QElapsedTimer>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QTcpServer>
+#include <QTemporaryDir>
+#include <QTest>
+
+#include <filesystem>
+#include <memory>
+
+#include "core/pacs/DimseQuery.h"
+#include "tests/support/CliRunner.h"
+#include "tests/support/OrthancServer.h"
+#include "tests/support/SyntheticDicom.h"
+
+using namespace lucent;
+
+namespace {
+
+const char* kStudyA = "1.2.826.0.1.3680043.2.1125.901";
+const char* kStudyB = "1.2.826.0.1.3680043.2.1125.902";
+const char* kStudyC = "1.2.826.0.1.3680043.2.1125.903";
+
+std::vector<std::string> uidsOf(const std::vector<QueryMatch>& m, bool series = false) {
+    std::vector<std::string> out;
+    for (const QueryMatch& q : m) {
+        out.push_back(series ? q.seriesUid : q.studyUid);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+} // namespace
+
+class TestDimseQuery : public QObject {
+    Q_OBJECT
+    std::unique_ptr<test::OrthancServer> orthanc_;
+    QTemporaryDir files_;
+    PacsNode node_;
+    PacsSettings settings_;
+    bool realCt_ = false;
+
+    void write(test::SyntheticSeries s, int images) {
+        const std::string dir = files_.filePath(QString::fromStdString(s.seriesUid)).toStdString();
+        std::filesystem::create_directories(dir);
+        std::vector<glm::dvec3> positions;
+        for (int k = 0; k < images; ++k) {
+            positions.emplace_back(0.0, 0.0, 2.0 * k);
+        }
+        test::writeSeries(dir, s, positions);
+    }
+
+private slots:
+    void initTestCase() {
+        orthanc_ = std::make_unique<test::OrthancServer>();
+        if (!orthanc_->isRunning()) {
+            QSKIP(qPrintable("no test PACS: " + orthanc_->error()));
+        }
+        node_ = PacsNode::parse(orthanc_->node().toStdString());
+        settings_.connectTimeoutSeconds = 5;
+        settings_.responseTimeoutSeconds = 10;
+
+        test::SyntheticSeries a;
+        a.patientName = "Smith^John";
+        a.patientId = "P001";
+        a.studyDate = "20240105";
+        a.accessionNumber = "ACC1";
+        a.studyUid = kStudyA;
+        a.seriesUid = "1.2.826.0.1.3680043.2.1125.9011";
+        a.seriesNumber = 1;
+        write(a, 3);
+        a.seriesUid = "1.2.826.0.1.3680043.2.1125.9012";
+        a.seriesNumber = 2;
+        write(a, 2);
+        test::SyntheticSeries b = a;
+        b.patientName = "Smith^Jane";
+        b.patientId = "P002";
+        b.studyDate = "20240320";
+        b.accessionNumber = "ACC2";
+        b.studyUid = kStudyB;
+        b.seriesUid = "1.2.826.0.1.3680043.2.1125.9021";
+        b.modality = "MR";
+        b.seriesNumber = 5;
+        write(b, 2);
+        test::SyntheticSeries c = a;
+        c.patientName = "Doe^Alice";
+        c.patientId = "P003";
+        c.studyDate = "20231111";
+        c.accessionNumber = "ACC3";
+        c.studyUid = kStudyC;
+        c.seriesUid = "1.2.826.0.1.3680043.2.1125.9031";
+        write(c, 1);
+        QStringList files;
+        for (const auto& f :
+             std::filesystem::recursive_directory_iterator(files_.path().toStdString())) {
+            if (f.is_regular_file()) {
+                files << QString::fromStdString(f.path().string());
+            }
+        }
+        const std::filesystem::path real =
+            std::filesystem::path(LUCENT_TEST_DATA_DIR) / "dcmqi_ct3slice";
+        for (const char* name : {"01.dcm", "02.dcm", "03.dcm"}) {
+            if (std::filesystem::exists(real / name)) {
+                files << QString::fromStdString((real / name).string());
+                realCt_ = true;
+            }
+        }
+        QVERIFY2(orthanc_->store(files), qPrintable(orthanc_->error()));
+    }
+    void cleanupTestCase() { orthanc_.reset(); }
+
+    void echoAnswers() { echo(node_, settings_); }
+
+    void echoWithAWrongCalledAeTitleIsRejected() {
+        PacsNode wrong = node_;
+        wrong.aeTitle = "NOTORTHANC";
+        try {
+            echo(wrong, settings_);
+            QFAIL("expected PacsError");
+        } catch (const PacsError& e) {
+            QVERIFY2(QString(e.what()).contains("association rejected") &&
+                         QString(e.what()).contains("NOTORTHANC"),
+                     e.what());
+        }
+    }
+
+    void echoToAClosedPortIsRefused() {
+        PacsNode closed = node_;
+        closed.port = test::OrthancServer::freePort();
+        QElapsedTimer t;
+        t.start();
+        try {
+            echo(closed, settings_);
+            QFAIL("expected PacsError");
+        } catch (const PacsError& e) {
+            QVERIFY2(QString(e.what()).contains("connection refused"), e.what());
+        }
+        QVERIFY(t.elapsed() < 3000);
+    }
+
+    void echoToASilentServerTimesOut() {
+        // Accepts TCP connections (the kernel does, from the backlog) and never answers.
+        QTcpServer silent;
+        QVERIFY(silent.listen(QHostAddress::LocalHost, 0));
+        PacsNode node{"SILENT", "127.0.0.1", silent.serverPort()};
+        PacsSettings quick = settings_;
+        quick.connectTimeoutSeconds = 2;
+        QElapsedTimer t;
+        t.start();
+        try {
+            echo(node, quick);
+            QFAIL("expected PacsError");
+        } catch (const PacsError& e) {
+            QVERIFY2(QString(e.what()).contains("timeout"), e.what());
+        }
+        QVERIFY2(t.elapsed() < 6000, qPrintable(QString::number(t.elapsed())));
+    }
+
+    void findStudiesByPatientNameWildcard() {
+        QueryFilter f;
+        f.patientName = "Smith*";
+        const auto m = find(node_, settings_, QueryLevel::Study, f);
+        QCOMPARE(uidsOf(m), (std::vector<std::string>{kStudyA, kStudyB}));
+        for (const QueryMatch& q : m) {
+            if (q.studyUid == kStudyA) {
+                QCOMPARE(q.patientName, std::string("Smith^John"));
+                QCOMPARE(q.instances, 5);
+                QCOMPARE(q.accessionNumber, std::string("ACC1"));
+            }
+        }
+    }
+
+    void findByPatientIdAccessionAndStudyUid() {
+        QueryFilter byId;
+        byId.patientId = "P003";
+        QCOMPARE(uidsOf(find(node_, settings_, QueryLevel::Study, byId)),
+                 (std::vector<std::string>{kStudyC}));
+        QueryFilter byAccession;
+        byAccession.accessionNumber = "ACC2";
+        QCOMPARE(uidsOf(find(node_, settings_, QueryLevel::Study, byAccession)),
+                 (std::vector<std::string>{kStudyB}));
+        QueryFilter byUid;
+        byUid.studyUid = kStudyA;
+        QCOMPARE(uidsOf(find(node_, settings_, QueryLevel::Study, byUid)),
+                 (std::vector<std::string>{kStudyA}));
+    }
+
+    void findByModalities() {
+        QueryFilter mr;
+        mr.modalities = {"MR"};
+        QCOMPARE(uidsOf(find(node_, settings_, QueryLevel::Study, mr)),
+                 (std::vector<std::string>{kStudyB}));
+        QueryFilter both;
+        both.modalities = {"CT", "MR"};
+        both.patientName = "*^*";
+        const auto m = find(node_, settings_, QueryLevel::Study, both);
+        QVERIFY(m.size() >= 3);
+        const auto uids = uidsOf(m);
+        for (const char* uid : {kStudyA, kStudyB, kStudyC}) {
+            QVERIFY(std::find(uids.begin(), uids.end(), uid) != uids.end());
+        }
+    }
+
+    void findByDateRange() {
+        QueryFilter january;
+        january.dateRange = "20240101-20240131";
+        QCOMPARE(uidsOf(find(node_, settings_, QueryLevel::Study, january)),
+                 (std::vector<std::string>{kStudyA}));
+        QueryFilter fromMarch;
+        fromMarch.dateRange = "20240301-";
+        QVERIFY(uidsOf(find(node_, settings_, QueryLevel::Study, fromMarch)) ==
+                (std::vector<std::string>{kStudyB}));
+        QueryFilter bad;
+        bad.dateRange = "2024-01-01";
+        QVERIFY_THROWS_EXCEPTION(PacsError, find(node_, settings_, QueryLevel::Study, bad));
+    }
+
+    void findSeriesOfAStudy() {
+        QueryFilter f;
+        f.studyUid = kStudyA;
+        const auto m = find(node_, settings_, QueryLevel::Series, f);
+        QCOMPARE(m.size(), std::size_t(2));
+        QCOMPARE(m[0].seriesNumber, 1);
+        QCOMPARE(m[0].instances, 3);
+        QCOMPARE(m[1].seriesNumber, 2);
+        QCOMPARE(m[1].instances, 2);
+        QCOMPARE(m[0].modality, std::string("CT"));
+        // Without a study UID the matching studies' series are listed.
+        QueryFilter jane;
+        jane.patientName = "Smith^Jane";
+        const auto s = find(node_, settings_, QueryLevel::Series, jane);
+        QCOMPARE(s.size(), std::size_t(1));
+        QCOMPARE(s[0].modality, std::string("MR"));
+        QCOMPARE(s[0].studyUid, std::string(kStudyB));
+    }
+
+    void findPatients() {
+        QueryFilter f;
+        f.patientName = "Smith*";
+        const auto m = find(node_, settings_, QueryLevel::Patient, f);
+        QCOMPARE(m.size(), std::size_t(2));
+        QCOMPARE(m[0].level, QueryLevel::Patient);
+    }
+
+    void realCtIsFound() {
+        if (!realCt_) {
+            QSKIP("real test data not found: ../shared/data/dcmqi_ct3slice");
+        }
+        QueryFilter f;
+        f.modalities = {"CT"};
+        f.patientName = "*";
+        bool found = false;
+        for (const QueryMatch& m : find(node_, settings_, QueryLevel::Study, f)) {
+            found = found || (m.instances == 3 && m.studyUid != kStudyA && m.studyUid != kStudyC);
+        }
+        QVERIFY(found);
+    }
+
+    void commandLine() {
+        const QString pacs = orthanc_->node();
+        const test::CliRun ok = test::runCli({"pacs", "echo", "--pacs", pacs});
+        QVERIFY2(ok.exitCode == 0 && ok.out.contains("answered C-ECHO"), qPrintable(ok.err));
+        const test::CliRun found =
+            test::runCli({"pacs", "find", "--pacs", pacs, "--patient-name", "Smith*", "--json"});
+        QCOMPARE(found.exitCode, 0);
+        const QJsonArray list = QJsonDocument::fromJson(found.out.toUtf8()).array();
+        QCOMPARE(list.size(), 2);
+        QCOMPARE(list[0].toObject()["level"].toString(), QString("study"));
+        const test::CliRun series =
+            test::runCli({"pacs", "find", "--pacs", pacs, "--level", "series", "--study", kStudyA});
+        QVERIFY2(series.exitCode == 0 && series.out.contains("2 match(es)"),
+                 qPrintable(series.out + series.err));
+        const QString closed = QString("ORTHANC@127.0.0.1:%1").arg(test::OrthancServer::freePort());
+        const test::CliRun refused = test::runCli({"pacs", "echo", "--pacs", closed});
+        QCOMPARE(refused.exitCode, 4);
+        QVERIFY(refused.err.contains("connection refused"));
+        QCOMPARE(test::runCli({"pacs", "echo"}).exitCode, 2);
+        QCOMPARE(test::runCli({"pacs", "echo", "--pacs", "no-at-sign"}).exitCode, 2);
+        QCOMPARE(test::runCli({"pacs", "echo", "--pacs", pacs, "--aet", "WAY_TOO_LONG_FOR_AN_AE"})
+                     .exitCode,
+                 2);
+        QCOMPARE(test::runCli({"pacs", "find", "--pacs", pacs, "--date", "last week"}).exitCode, 2);
+        QCOMPARE(test::runCli({"pacs", "find", "--pacs", pacs, "--level", "image"}).exitCode, 2);
+        QCOMPARE(test::runCli({"pacs", "fetch"}).exitCode, 2);
+    }
+};
+
+QTEST_GUILESS_MAIN(TestDimseQuery)
+#include "test_dimse_query.moc"

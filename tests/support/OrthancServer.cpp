@@ -1,0 +1,125 @@
+#include "OrthancServer.h"
+
+#include <QElapsedTimer>
+#include <QFile>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QStandardPaths>
+#include <QTcpServer>
+#include <QTcpSocket>
+#include <QThread>
+
+namespace lucent::test {
+
+int OrthancServer::freePort() {
+    QTcpServer probe;
+    probe.listen(QHostAddress::LocalHost, 0);
+    return probe.serverPort();
+}
+
+OrthancServer::OrthancServer() {
+    const QString binary = QStandardPaths::findExecutable("Orthanc", {"/usr/sbin", "/usr/bin"});
+    if (binary.isEmpty()) {
+        error_ = "Orthanc is not installed (Debian package orthanc; packaging/install-deps.sh "
+                 "installs it)";
+        return;
+    }
+    if (!dir_.isValid()) {
+        error_ = "cannot create a temporary folder for Orthanc";
+        return;
+    }
+    dicomPort_ = freePort();
+    do {
+        httpPort_ = freePort();
+    } while (httpPort_ == dicomPort_);
+    const QJsonObject config{
+        {"Name", "lucent-test"},
+        {"StorageDirectory", dir_.filePath("storage")},
+        {"IndexDirectory", dir_.filePath("storage")},
+        {"HttpPort", httpPort_},
+        {"DicomPort", dicomPort_},
+        {"DicomAet", kAeTitle},
+        {"RemoteAccessAllowed", false},
+        {"AuthenticationEnabled", false},
+        {"DicomCheckCalledAet", true},
+        {"DicomAlwaysAllowEcho", true},
+        {"DicomAlwaysAllowStore", true},
+        {"DicomAlwaysAllowFind", true},
+        {"DicomAlwaysAllowGet", true},
+        {"DicomAlwaysAllowMove", true},
+        {"UnknownSopClassAccepted", true},
+        {"StorageCompression", false},
+        {"LimitFindResults", 0},
+        {"LimitFindInstances", 0},
+        {"SaveJobs", false},
+        {"Plugins", QJsonArray()},
+    };
+    QFile file(dir_.filePath("orthanc.json"));
+    if (!file.open(QIODevice::WriteOnly) || file.write(QJsonDocument(config).toJson()) < 0) {
+        error_ = "cannot write the Orthanc configuration";
+        return;
+    }
+    file.close();
+    process_ = std::make_unique<QProcess>();
+    process_->setStandardOutputFile(dir_.filePath("orthanc.log"));
+    process_->setStandardErrorFile(dir_.filePath("orthanc.log"), QIODevice::Append);
+    process_->start(binary, {file.fileName()});
+    if (!process_->waitForStarted(10000)) {
+        error_ = "Orthanc did not start: " + process_->errorString();
+        return;
+    }
+    // Ready when the DICOM port takes connections.
+    QElapsedTimer timer;
+    timer.start();
+    while (timer.elapsed() < 30000) {
+        if (process_->state() != QProcess::Running) {
+            QFile log(dir_.filePath("orthanc.log"));
+            log.open(QIODevice::ReadOnly);
+            error_ = "Orthanc exited at start: " + QString::fromUtf8(log.readAll().right(2000));
+            return;
+        }
+        QTcpSocket probe;
+        probe.connectToHost(QHostAddress::LocalHost, static_cast<quint16>(dicomPort_));
+        if (probe.waitForConnected(200)) {
+            probe.disconnectFromHost();
+            return;
+        }
+        QThread::msleep(100);
+    }
+    error_ = "Orthanc did not open its DICOM port within 30 s";
+}
+
+OrthancServer::~OrthancServer() {
+    if (process_ && process_->state() != QProcess::NotRunning) {
+        process_->terminate();
+        if (!process_->waitForFinished(10000)) {
+            process_->kill();
+            process_->waitForFinished();
+        }
+    }
+}
+
+bool OrthancServer::isRunning() const {
+    return error_.isEmpty() && process_ && process_->state() == QProcess::Running;
+}
+
+QString OrthancServer::node() const {
+    return QString("%1@127.0.0.1:%2").arg(kAeTitle).arg(dicomPort_);
+}
+
+bool OrthancServer::store(const QStringList& files) {
+    QProcess storescu;
+    storescu.start("storescu", QStringList{"-aet", "LUCENTTEST", "-aec", kAeTitle, "127.0.0.1",
+                                           QString::number(dicomPort_)} +
+                                   files);
+    if (!storescu.waitForFinished(120000) || storescu.exitStatus() != QProcess::NormalExit ||
+        storescu.exitCode() != 0) {
+        error_ =
+            "storescu failed: " + QString::fromUtf8(storescu.readAllStandardError().right(2000));
+        return false;
+    }
+    return true;
+}
+
+} // namespace lucent::test
