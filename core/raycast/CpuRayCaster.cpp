@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <map>
 #include <stdexcept>
+#include <string_view>
 #include <tuple>
 
 #include "core/raycast/BSplinePrefilter.h"
 #include "core/raycast/FastDvrKernel.h"
+#include "core/raycast/PacketDvrKernel.h"
 #include "core/raycast/RayKernel.h"
 #include "core/raycast/ViewFrame.h"
 
@@ -26,9 +29,11 @@ namespace {
 constexpr int kTableSize = 4096;
 constexpr int kPreintegrationSize = 256;
 constexpr int kTile = 16;
+constexpr int kPacket = PacketDvrKernel<std::int16_t>::kWidth;
 constexpr int kLeapCell = 8;
 
-// kernel: anything with RayOutput cast(origin, direction, unit direction).
+// kernel: anything with RayOutput cast(origin, direction, unit direction), or
+// with castPacket over up to kPacket rays (neighbours along a row of a tile).
 template <class Kernel>
 void castImage(const Kernel& kernel, const VolumeGeometry& g, const ViewFrame& frame,
                const RenderDescription& desc, ImageRGBA8& image,
@@ -42,23 +47,50 @@ void castImage(const Kernel& kernel, const VolumeGeometry& g, const ViewFrame& f
 #pragma omp parallel for schedule(dynamic) reduction(+ : total)
     for (int tile = 0; tile < tilesX * tilesY; ++tile) {
         const int x0 = (tile % tilesX) * kTile, y0 = (tile / tilesX) * kTile;
+        const int xEnd = std::min(x0 + kTile, desc.width);
         for (int y = y0; y < std::min(y0 + kTile, desc.height); ++y) {
-            for (int x = x0; x < std::min(x0 + kTile, desc.width); ++x) {
-                const glm::dvec3 w = frame.rayDirection(x, y, desc.width, desc.height);
-                const RayOutput r = kernel.cast(origin, toIndexLinear * w, w);
-                total += r.samples;
-                premultiplied[std::size_t(y) * desc.width + x] = glm::vec4(r.rgba);
-                const glm::dvec3 rgb = glm::dvec3(r.rgba) + (1.0 - r.rgba.a) * desc.background;
-                std::uint8_t* px = image.at(x, y);
-                for (int c = 0; c < 3; ++c) {
-                    px[c] = static_cast<std::uint8_t>(
-                        std::lround(std::clamp(rgb[c], 0.0, 1.0) * 255.0));
+            for (int x1 = x0; x1 < xEnd; x1 += kPacket) {
+                const int count = std::min(kPacket, xEnd - x1);
+                glm::dvec3 d[kPacket], w[kPacket];
+                RayOutput r[kPacket];
+                for (int c = 0; c < count; ++c) {
+                    w[c] = frame.rayDirection(x1 + c, y, desc.width, desc.height);
+                    d[c] = toIndexLinear * w[c];
                 }
-                px[3] = 255;
+                if constexpr (requires { kernel.castPacket(origin, d, w, count, r); }) {
+                    kernel.castPacket(origin, d, w, count, r);
+                } else {
+                    for (int c = 0; c < count; ++c) {
+                        r[c] = kernel.cast(origin, d[c], w[c]);
+                    }
+                }
+                for (int c = 0; c < count; ++c) {
+                    const int x = x1 + c;
+                    total += r[c].samples;
+                    premultiplied[std::size_t(y) * desc.width + x] = glm::vec4(r[c].rgba);
+                    const glm::dvec3 rgb =
+                        glm::dvec3(r[c].rgba) + (1.0 - r[c].rgba.a) * desc.background;
+                    std::uint8_t* px = image.at(x, y);
+                    for (int ch = 0; ch < 3; ++ch) {
+                        px[ch] = static_cast<std::uint8_t>(
+                            std::lround(std::clamp(rgb[ch], 0.0, 1.0) * 255.0));
+                    }
+                    px[3] = 255;
+                }
             }
         }
     }
     samples = total;
+}
+
+// SIMD packets where the CPU has them, unless LUCENT_NO_SIMD=1 (read once)
+// asks for the scalar kernels, e.g. to compare timings from the command line.
+bool simdAllowed() {
+    static const bool allowed = [] {
+        const char* v = std::getenv("LUCENT_NO_SIMD");
+        return packetKernelSupported() && !(v != nullptr && std::string_view(v) == "1");
+    }();
+    return allowed;
 }
 
 // Per fine cell: 2 where the brick holding the whole cell can be leapt, 1 where
@@ -299,6 +331,11 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
                     return;
                 }
                 if constexpr (std::is_same_v<Real, float>) {
+                    if (sampling.simd && simdAllowed() &&
+                        PacketDvrKernel<T>::applies(setup, g.dims)) {
+                        cast(PacketDvrKernel<T>(setup, grid));
+                        return;
+                    }
                     if (FastDvrKernel<T>::applies(setup, g.dims)) {
                         cast(FastDvrKernel<T>(setup, grid));
                         return;

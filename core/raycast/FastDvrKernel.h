@@ -29,8 +29,11 @@ inline float integerPower(float x, unsigned n) {
     return r;
 }
 
+template <class T> class PacketDvrKernel;
+
 template <class T> class FastDvrKernel {
     static constexpr int kPrefetchAhead = 16;
+    friend class PacketDvrKernel<T>; // marches eight rays with this kernel's per-sample steps
 
 public:
     // Whether the fast kernel renders `s` over a volume of `dims` exactly as

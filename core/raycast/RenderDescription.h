@@ -44,6 +44,10 @@ struct SamplingSettings {
     int brickSize = 64;
     bool emptySpaceLeaping = true;
     Precision precision = Precision::Float;
+    // The CPU ray caster marches eight rays at once with SIMD (AVX2) where the
+    // CPU has it; false forces its scalar kernels (tests compare the two). The
+    // image is the same either way.
+    bool simd = true;
 };
 
 struct RenderDescription {

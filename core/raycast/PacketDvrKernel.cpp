@@ -1,0 +1,355 @@
+// Built with -ffp-contract=off (core/raycast/CMakeLists.txt): no multiply-add
+// may be fused behind our back, so every float operation rounds as it does in
+// FastDvrKernel (built for plain x86-64, which has no FMA).
+#include "core/raycast/PacketDvrKernel.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+#include "core/raycast/PacketMath.h"
+
+namespace lucent {
+
+bool packetKernelSupported() {
+    static const bool supported = [] {
+        __builtin_cpu_init();
+        return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+    }();
+    return supported;
+}
+
+using namespace packet;
+
+namespace {
+
+// Lanes in `bits` as a vector mask.
+LUCENT_AVX2 inline __m256 laneMask(int bits) {
+    const __m256i lane = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    return _mm256_castsi256_ps(
+        _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(bits), lane), lane));
+}
+
+// The table's colour and opacity at value v, for the lanes in `bits` (the
+// others get zero): FastDvrKernel's lookup and interpolation.
+struct TableLookup {
+    const glm::vec4* table;
+    float scale, offset, max;
+    int lastEntry;
+    LUCENT_AVX2 void operator()(__m256 v, int bits, __m256 c[4]) const {
+        const __m256 x =
+            _mm256_min_ps(_mm256_max_ps(_mm256_add_ps(_mm256_mul_ps(v, _mm256_set1_ps(scale)),
+                                                      _mm256_set1_ps(offset)),
+                                        _mm256_setzero_ps()),
+                          _mm256_set1_ps(max));
+        const __m256i e = _mm256_min_epi32(_mm256_cvttps_epi32(x), _mm256_set1_epi32(lastEntry));
+        const __m256 f = _mm256_sub_ps(x, _mm256_cvtepi32_ps(e));
+        alignas(32) int entry[8];
+        alignas(32) float frac[8];
+        _mm256_store_si256(reinterpret_cast<__m256i*>(entry), e);
+        _mm256_store_ps(frac, f);
+        alignas(16) glm::vec4 rows[8]{};
+        for (int b = bits; b != 0; b &= b - 1) {
+            const int r = std::countr_zero(unsigned(b));
+            const __m128 t0 = _mm_loadu_ps(&table[entry[r]].x);
+            const __m128 t1 = _mm_loadu_ps(&table[entry[r] + 1].x);
+            _mm_store_ps(&rows[r].x,
+                         _mm_add_ps(t0, _mm_mul_ps(_mm_set1_ps(frac[r]), _mm_sub_ps(t1, t0))));
+        }
+        transpose(rows, c);
+    }
+};
+
+// FastDvrKernel::shade for eight lanes (headlight Phong, two-sided).
+struct Lighting {
+    glm::mat3 toWorld;
+    float ambient, diffuse, specular, power;
+    bool integer;
+    unsigned n;
+    LUCENT_AVX2 void operator()(const __m256 grad[3], const __m256 w[3], int bits,
+                                __m256 rgb[3]) const {
+        __m256 g[3];
+        multiply(toWorld, grad, g);
+        const __m256 len = _mm256_sqrt_ps(dot(g, g));
+        const __m256 lit = _mm256_cmp_ps(len, _mm256_set1_ps(1e-6f), _CMP_NLT_UQ);
+        const __m256 absDot = _mm256_andnot_ps(_mm256_set1_ps(-0.0f), dot(g, w)); // |g . w|
+        const __m256 ndotl = _mm256_min_ps(_mm256_div_ps(absDot, len), _mm256_set1_ps(1.0f));
+        const __m256 diffuseTerm =
+            _mm256_add_ps(_mm256_set1_ps(ambient), _mm256_mul_ps(_mm256_set1_ps(diffuse), ndotl));
+        __m256 lobe;
+        if (integer) {
+            lobe = integerPower(ndotl, n);
+        } else {
+            alignas(32) float x[8], y[8]{};
+            _mm256_store_ps(x, ndotl);
+            for (int b = bits & maskBits(lit); b != 0; b &= b - 1) {
+                const int r = std::countr_zero(unsigned(b));
+                y[r] = std::pow(x[r], power);
+            }
+            lobe = _mm256_load_ps(y);
+        }
+        const __m256 highlight = _mm256_mul_ps(_mm256_set1_ps(specular), lobe);
+        for (int c = 0; c < 3; ++c) {
+            const __m256 shaded = _mm256_add_ps(_mm256_mul_ps(rgb[c], diffuseTerm), highlight);
+            rgb[c] = _mm256_blendv_ps(rgb[c], shaded, lit);
+        }
+    }
+};
+
+} // namespace
+
+template <class T>
+LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::dvec3* d,
+                                                const glm::dvec3* w, int count,
+                                                RayOutput* out) const {
+    using Lattice = typename FastDvrKernel<T>::Lattice;
+    const FastDvrKernel<T>& k = fast_;
+    const RaySetup<float>& s = k.s_;
+    const Grid<float, T>& g = k.g_;
+    const LinearField<float, T> field{g};
+    const T* data = g.data;
+    const glm::vec4* table = s.table->data();
+    const int lastI = g.nx - 2, lastJ = g.ny - 2, lastK = g.nz - 2;
+    const glm::ivec3 cells = s.levels[1].perAxis;
+    const int shift = k.fineShift_;
+    const float stop = s.earlyTermination;
+
+    // Per ray: its lattice p(n) = entry + stride * n, in float as the scalar
+    // kernel has it and in double for leaping, and what it has gathered.
+    alignas(32) float ex[kWidth]{}, ey[kWidth]{}, ez[kWidth]{};
+    alignas(32) float sx[kWidth]{}, sy[kWidth]{}, sz[kWidth]{};
+    alignas(32) int n[kWidth]{}, nLast[kWidth]{}, checked[kWidth];
+    bool empty[kWidth]{};
+    Lattice lattice[kWidth]{};
+    alignas(32) float wx[kWidth]{}, wy[kWidth]{}, wz[kWidth]{};
+    int active = 0;
+    for (int r = 0; r < kWidth; ++r) {
+        checked[r] = -1;
+        RaySpan span;
+        if (r >= count || !raySpan(s, o, d[r], span) || span.nFirst > span.nLast) {
+            continue;
+        }
+        const glm::vec3 entry(o + d[r] * span.t0), stride(d[r] * s.dt);
+        ex[r] = entry.x, ey[r] = entry.y, ez[r] = entry.z;
+        sx[r] = stride.x, sy[r] = stride.y, sz[r] = stride.z;
+        lattice[r] = Lattice{o + d[r] * span.t0, d[r] * s.dt, glm::dvec3(0.0)};
+        for (int a = 0; a < 3; ++a) {
+            const double st = lattice[r].stride[a];
+            lattice[r].inverse[a] = std::abs(st) > 1e-15 ? 1.0 / st : 0.0;
+        }
+        n[r] = int(span.nFirst);
+        nLast[r] = int(span.nLast);
+        const glm::vec3 wr(w[r]);
+        wx[r] = wr.x, wy[r] = wr.y, wz[r] = wr.z;
+        active |= 1 << r;
+    }
+
+    // FastDvrKernel's leaping, for one ray: from n[r] on to the next sample
+    // it takes (or past its last).
+    auto advance = [&](int r) {
+        long m = n[r];
+        const long last = nLast[r];
+        for (; m <= last; ++m) {
+            const float fm = float(m);
+            const float px = ex[r] + sx[r] * fm, py = ey[r] + sy[r] * fm, pz = ez[r] + sz[r] * fm;
+            const int i = int(px), j = int(py), kk = int(pz);
+            const int cell = (i >> shift) + cells.x * ((j >> shift) + cells.y * (kk >> shift));
+            if (cell == checked[r]) {
+                if (empty[r]) {
+                    continue;
+                }
+                break;
+            }
+            checked[r] = cell;
+            const double exit = k.leapExit(i, j, kk, cell, lattice[r]);
+            empty[r] = exit >= 0.0;
+            if (!empty[r]) {
+                break;
+            }
+            m = exit > double(last) ? last : std::max(m + 1, long(exit)) - 1;
+        }
+        n[r] = int(m);
+        if (m > last) {
+            active &= ~(1 << r);
+        }
+    };
+
+    const TableLookup lookup{table, k.tableScale_, k.tableOffset_, k.tableMax_, int(k.lastEntry_)};
+    const Lighting light{k.toWorld_,
+                         float(s.light.ambient),
+                         float(s.light.diffuse),
+                         float(s.light.specular),
+                         float(s.light.specularPower),
+                         k.integerSpecular_,
+                         k.specularN_};
+    const __m256 dir[3] = {_mm256_load_ps(wx), _mm256_load_ps(wy), _mm256_load_ps(wz)};
+    __m256 acc[4] = {_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_ps(),
+                     _mm256_setzero_ps()};
+
+    const __m256 vex = _mm256_load_ps(ex), vey = _mm256_load_ps(ey), vez = _mm256_load_ps(ez);
+    const __m256 vsx = _mm256_load_ps(sx), vsy = _mm256_load_ps(sy), vsz = _mm256_load_ps(sz);
+    const __m256i lastIjk[3] = {_mm256_set1_epi32(lastI), _mm256_set1_epi32(lastJ),
+                                _mm256_set1_epi32(lastK)};
+    const __m256i rowStride = _mm256_set1_epi32(int(g.sy)),
+                  sliceStride = _mm256_set1_epi32(int(g.sz));
+    const __m256i cellsX = _mm256_set1_epi32(cells.x), cellsY = _mm256_set1_epi32(cells.y);
+    const __m128i shiftCount = _mm_cvtsi32_si128(shift);
+    const __m256 visibleLo = _mm256_set1_ps(k.visibleLo_), visibleHi = _mm256_set1_ps(k.visibleHi_);
+    const __m256 ahead = _mm256_set1_ps(float(FastDvrKernel<T>::kPrefetchAhead));
+    __m256i vn = _mm256_load_si256(reinterpret_cast<const __m256i*>(n));
+    const __m256i vLast = _mm256_load_si256(reinterpret_cast<const __m256i*>(nLast));
+    __m256i vChecked = _mm256_load_si256(reinterpret_cast<const __m256i*>(checked));
+    std::size_t samples = 0;
+
+    while (active != 0) {
+        const __m256 fn = _mm256_cvtepi32_ps(vn);
+        const __m256 qx = _mm256_add_ps(vex, _mm256_mul_ps(vsx, fn));
+        const __m256 qy = _mm256_add_ps(vey, _mm256_mul_ps(vsy, fn));
+        const __m256 qz = _mm256_add_ps(vez, _mm256_mul_ps(vsz, fn));
+        __m256i i = _mm256_cvttps_epi32(qx), j = _mm256_cvttps_epi32(qy),
+                kk = _mm256_cvttps_epi32(qz);
+        if (s.leap) {
+            const __m256i cy =
+                _mm256_add_epi32(_mm256_sra_epi32(j, shiftCount),
+                                 _mm256_mullo_epi32(cellsY, _mm256_sra_epi32(kk, shiftCount)));
+            const __m256i cell =
+                _mm256_add_epi32(_mm256_sra_epi32(i, shiftCount), _mm256_mullo_epi32(cellsX, cy));
+            const int same =
+                _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(cell, vChecked)));
+            const int changed = active & ~same;
+            if (changed != 0) {
+                // A ray entered another cell: leap it (one at a time) to the next
+                // sample it takes, then look at the packet again.
+                _mm256_store_si256(reinterpret_cast<__m256i*>(n), vn);
+                for (int bits = changed; bits != 0; bits &= bits - 1) {
+                    advance(std::countr_zero(unsigned(bits)));
+                }
+                vn = _mm256_load_si256(reinterpret_cast<const __m256i*>(n));
+                vChecked = _mm256_load_si256(reinterpret_cast<const __m256i*>(checked));
+                continue;
+            }
+        }
+        samples += std::size_t(std::popcount(unsigned(active)));
+        // Rays that are done may lie anywhere: clamping keeps their reads inside.
+        i = clampInt(i, lastIjk[0]);
+        j = clampInt(j, lastIjk[1]);
+        kk = clampInt(kk, lastIjk[2]);
+        const __m256 fx = _mm256_sub_ps(qx, _mm256_cvtepi32_ps(i));
+        const __m256 fy = _mm256_sub_ps(qy, _mm256_cvtepi32_ps(j));
+        const __m256 fz = _mm256_sub_ps(qz, _mm256_cvtepi32_ps(kk));
+        const __m256i o00 =
+            _mm256_add_epi32(i, _mm256_add_epi32(_mm256_mullo_epi32(j, rowStride),
+                                                 _mm256_mullo_epi32(kk, sliceStride)));
+        Cell cell;
+        for (int r = 0; r < 4; ++r) {
+            __m256i o = (r & 1) != 0 ? _mm256_add_epi32(o00, rowStride) : o00;
+            o = (r & 2) != 0 ? _mm256_add_epi32(o, sliceStride) : o;
+            cell.row[r] = pairAt(data, o);
+        }
+        // The same operations, in the same order, as FastDvrKernel's.
+        const __m256 c00 = lerp(cell.row[0].a, cell.row[0].b, fx);
+        const __m256 c10 = lerp(cell.row[1].a, cell.row[1].b, fx);
+        const __m256 c01 = lerp(cell.row[2].a, cell.row[2].b, fx);
+        const __m256 c11 = lerp(cell.row[3].a, cell.row[3].b, fx);
+        const __m256 v = lerp(lerp(c00, c10, fy), lerp(c01, c11, fy), fz);
+        {
+            // Ask for the reads of the outermost rays well ahead.
+            const __m256 fa = _mm256_add_ps(fn, ahead);
+            const __m256i ai = clampInt(
+                _mm256_cvttps_epi32(_mm256_add_ps(vex, _mm256_mul_ps(vsx, fa))), lastIjk[0]);
+            const __m256i aj = clampInt(
+                _mm256_cvttps_epi32(_mm256_add_ps(vey, _mm256_mul_ps(vsy, fa))), lastIjk[1]);
+            const __m256i ak = clampInt(
+                _mm256_cvttps_epi32(_mm256_add_ps(vez, _mm256_mul_ps(vsz, fa))), lastIjk[2]);
+            alignas(32) int aheadOff[kWidth];
+            _mm256_store_si256(
+                reinterpret_cast<__m256i*>(aheadOff),
+                _mm256_add_epi32(ai, _mm256_add_epi32(_mm256_mullo_epi32(aj, rowStride),
+                                                      _mm256_mullo_epi32(ak, sliceStride))));
+            for (const int r :
+                 {std::countr_zero(unsigned(active)), 31 - std::countl_zero(unsigned(active))}) {
+                const T* p = data + aheadOff[r];
+                __builtin_prefetch(p);
+                __builtin_prefetch(p + g.sy);
+                __builtin_prefetch(p + g.sz);
+                __builtin_prefetch(p + g.sz + g.sy);
+            }
+        }
+        const __m256 inRange = _mm256_and_ps(_mm256_cmp_ps(v, visibleLo, _CMP_GE_OQ),
+                                             _mm256_cmp_ps(v, visibleHi, _CMP_LE_OQ));
+        const int visible = active & _mm256_movemask_ps(inRange);
+        __m256 c[4];
+        const int contributing =
+            visible == 0
+                ? 0
+                : (lookup(v, visible, c),
+                   visible & maskBits(_mm256_cmp_ps(c[3], _mm256_setzero_ps(), _CMP_GT_OQ)));
+        if (contributing != 0) {
+            if (s.shading) {
+                const __m256i inside = _mm256_and_si256(
+                    _mm256_and_si256(
+                        _mm256_cmpgt_epi32(_mm256_min_epi32(i, _mm256_min_epi32(j, kk)),
+                                           _mm256_setzero_si256()),
+                        _mm256_cmpgt_epi32(lastIjk[0], i)),
+                    _mm256_and_si256(_mm256_cmpgt_epi32(lastIjk[1], j),
+                                     _mm256_cmpgt_epi32(lastIjk[2], kk)));
+                const int insideBits = contributing & maskBits(inside);
+                __m256 grad[3];
+                if (insideBits != 0) {
+                    // Lanes at the border read a lane's inside the volume, then
+                    // take the clamped filter's gradient below.
+                    const __m256i some = _mm256_permutevar8x32_epi32(
+                        o00, _mm256_set1_epi32(std::countr_zero(unsigned(insideBits))));
+                    const __m256i at = _mm256_castps_si256(_mm256_blendv_ps(
+                        _mm256_castsi256_ps(some), _mm256_castsi256_ps(o00), laneMask(insideBits)));
+                    gradient(data, at, cell, rowStride, sliceStride, fx, fy, fz, grad);
+                }
+                if (const int border = contributing & ~insideBits; border != 0) {
+                    alignas(32) float px[kWidth], py[kWidth], pz[kWidth], gs[3][kWidth]{};
+                    _mm256_store_ps(px, qx);
+                    _mm256_store_ps(py, qy);
+                    _mm256_store_ps(pz, qz);
+                    for (int a = 0; a < 3 && insideBits != 0; ++a) {
+                        _mm256_store_ps(gs[a], grad[a]);
+                    }
+                    for (int b = border; b != 0; b &= b - 1) {
+                        const int r = std::countr_zero(unsigned(b));
+                        const glm::vec3 gr = field.gradient(glm::vec3(px[r], py[r], pz[r]));
+                        gs[0][r] = gr.x, gs[1][r] = gr.y, gs[2][r] = gr.z;
+                    }
+                    for (int a = 0; a < 3; ++a) {
+                        grad[a] = _mm256_load_ps(gs[a]);
+                    }
+                }
+                light(grad, dir, contributing, c);
+            }
+            // Front to back, in the lanes that add something.
+            const __m256 adds = laneMask(contributing);
+            const __m256 weight = _mm256_mul_ps(_mm256_sub_ps(_mm256_set1_ps(1.0f), acc[3]), c[3]);
+            for (int ch = 0; ch < 3; ++ch) {
+                acc[ch] = _mm256_blendv_ps(
+                    acc[ch], _mm256_add_ps(acc[ch], _mm256_mul_ps(weight, c[ch])), adds);
+            }
+            acc[3] = _mm256_blendv_ps(acc[3], _mm256_add_ps(acc[3], weight), adds);
+            active &=
+                ~(contributing & maskBits(_mm256_cmp_ps(acc[3], _mm256_set1_ps(stop), _CMP_GE_OQ)));
+        }
+        vn = _mm256_add_epi32(vn, _mm256_set1_epi32(1));
+        active &= ~_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(vn, vLast)));
+    }
+
+    alignas(32) float rgba[4][kWidth];
+    for (int ch = 0; ch < 4; ++ch) {
+        _mm256_store_ps(rgba[ch], acc[ch]);
+    }
+    for (int r = 0; r < count; ++r) {
+        out[r].rgba = glm::dvec4(rgba[0][r], rgba[1][r], rgba[2][r], rgba[3][r]);
+        out[r].samples = r == 0 ? samples : 0;
+    }
+}
+
+template class PacketDvrKernel<std::int16_t>;
+template class PacketDvrKernel<std::uint16_t>;
+template class PacketDvrKernel<float>;
+
+} // namespace lucent

@@ -1,0 +1,173 @@
+#pragma once
+// AVX2 pieces of PacketDvrKernel: eight samples per vector, each lane doing
+// FastDvrKernel's float operations in FastDvrKernel's order, so that the
+// packet kernel rounds as the scalar kernel does (built with
+// -ffp-contract=off). Included by PacketDvrKernel.cpp only.
+
+#include <immintrin.h>
+
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+#define LUCENT_AVX2 __attribute__((target("avx2,fma")))
+
+namespace lucent::packet {
+
+// Per lane, the voxels data[off] and data[off + 1] as floats.
+LUCENT_AVX2 inline void loadPairs(const std::int16_t* data, __m256i off, __m256& a, __m256& b) {
+    const __m256i g = _mm256_i32gather_epi32(reinterpret_cast<const int*>(data), off, 2);
+    a = _mm256_cvtepi32_ps(_mm256_srai_epi32(_mm256_slli_epi32(g, 16), 16));
+    b = _mm256_cvtepi32_ps(_mm256_srai_epi32(g, 16));
+}
+
+LUCENT_AVX2 inline void loadPairs(const std::uint16_t* data, __m256i off, __m256& a, __m256& b) {
+    const __m256i g = _mm256_i32gather_epi32(reinterpret_cast<const int*>(data), off, 2);
+    a = _mm256_cvtepi32_ps(_mm256_and_si256(g, _mm256_set1_epi32(0xffff)));
+    b = _mm256_cvtepi32_ps(_mm256_srli_epi32(g, 16));
+}
+
+LUCENT_AVX2 inline void loadPairs(const float* data, __m256i off, __m256& a, __m256& b) {
+    a = _mm256_i32gather_ps(data, off, 4);
+    b = _mm256_i32gather_ps(data + 1, off, 4);
+}
+
+// a + f * (b - a)
+LUCENT_AVX2 inline __m256 lerp(__m256 a, __m256 b, __m256 f) {
+    return _mm256_add_ps(a, _mm256_mul_ps(f, _mm256_sub_ps(b, a)));
+}
+
+LUCENT_AVX2 inline __m256i clampInt(__m256i v, __m256i hi) {
+    return _mm256_max_epi32(_mm256_setzero_si256(), _mm256_min_epi32(v, hi));
+}
+
+LUCENT_AVX2 inline int maskBits(__m256 m) {
+    return _mm256_movemask_ps(m);
+}
+LUCENT_AVX2 inline int maskBits(__m256i m) {
+    return _mm256_movemask_ps(_mm256_castsi256_ps(m));
+}
+
+// A voxel row pair (x0, x1) per lane.
+struct Pair {
+    __m256 a, b;
+};
+
+// The trilinear cell of each lane: rows (y, z) for y, z in {0, 1}, as row[y + 2 z].
+struct Cell {
+    Pair row[4];
+};
+
+template <class T> LUCENT_AVX2 inline Pair pairAt(const T* data, __m256i off) {
+    Pair p;
+    loadPairs(data, off, p.a, p.b);
+    return p;
+}
+
+// FastDvrKernel::gradientInside's trilinear blend of eight corner differences.
+LUCENT_AVX2 inline __m256 blendCorners(const __m256 c[8], __m256 fx, __m256 fy, __m256 fz) {
+    const __m256 c0 = lerp(lerp(c[0], c[1], fx), lerp(c[2], c[3], fx), fy);
+    const __m256 c1 = lerp(lerp(c[4], c[5], fx), lerp(c[6], c[7], fx), fy);
+    return lerp(c0, c1, fz);
+}
+
+// FastDvrKernel::gradientInside for eight lanes whose cells start at off (all
+// neighbours inside the volume) and whose cell rows are `cell`.
+template <class T>
+LUCENT_AVX2 inline void gradient(const T* data, __m256i off, const Cell& cell, __m256i rowStride,
+                                 __m256i sliceStride, __m256 fx, __m256 fy, __m256 fz,
+                                 __m256 g[3]) {
+    const __m256i one = _mm256_set1_epi32(1);
+    __m256 c[8];
+    // x: value(x + 1) - value(x - 1) along the four rows.
+    for (int r = 0; r < 4; ++r) {
+        __m256i o = off;
+        if ((r & 1) != 0) {
+            o = _mm256_add_epi32(o, rowStride);
+        }
+        if ((r & 2) != 0) {
+            o = _mm256_add_epi32(o, sliceStride);
+        }
+        const Pair minus = pairAt(data, _mm256_sub_epi32(o, one));
+        const Pair plus = pairAt(data, _mm256_add_epi32(o, one));
+        c[2 * r] = _mm256_sub_ps(plus.a, minus.a);
+        c[2 * r + 1] = _mm256_sub_ps(plus.b, minus.b);
+    }
+    g[0] = blendCorners(c, fx, fy, fz);
+    // y: rows y - 1 and y + 2 beside the cell's rows, in both slices.
+    for (int z = 0; z < 2; ++z) {
+        const __m256i o = z == 0 ? off : _mm256_add_epi32(off, sliceStride);
+        const Pair below = pairAt(data, _mm256_sub_epi32(o, rowStride));
+        const Pair above =
+            pairAt(data, _mm256_add_epi32(o, _mm256_add_epi32(rowStride, rowStride)));
+        const Pair& y0 = cell.row[2 * z];
+        const Pair& y1 = cell.row[2 * z + 1];
+        c[4 * z] = _mm256_sub_ps(y1.a, below.a);
+        c[4 * z + 1] = _mm256_sub_ps(y1.b, below.b);
+        c[4 * z + 2] = _mm256_sub_ps(above.a, y0.a);
+        c[4 * z + 3] = _mm256_sub_ps(above.b, y0.b);
+    }
+    g[1] = blendCorners(c, fx, fy, fz);
+    // z: slices z - 1 and z + 2 beside the cell's slices, in both rows.
+    for (int y = 0; y < 2; ++y) {
+        const __m256i o = y == 0 ? off : _mm256_add_epi32(off, rowStride);
+        const Pair front = pairAt(data, _mm256_sub_epi32(o, sliceStride));
+        const Pair back =
+            pairAt(data, _mm256_add_epi32(o, _mm256_add_epi32(sliceStride, sliceStride)));
+        const Pair& z0 = cell.row[y];
+        const Pair& z1 = cell.row[y + 2];
+        c[2 * y] = _mm256_sub_ps(z1.a, front.a);
+        c[2 * y + 1] = _mm256_sub_ps(z1.b, front.b);
+        c[4 + 2 * y] = _mm256_sub_ps(back.a, z0.a);
+        c[4 + 2 * y + 1] = _mm256_sub_ps(back.b, z0.b);
+    }
+    g[2] = blendCorners(c, fx, fy, fz);
+    const __m256 half = _mm256_set1_ps(0.5f);
+    for (int a = 0; a < 3; ++a) {
+        g[a] = _mm256_mul_ps(g[a], half);
+    }
+}
+
+// Eight rgba rows (one per lane) as four vectors r, g, b, a.
+LUCENT_AVX2 inline void transpose(const glm::vec4 rows[8], __m256 out[4]) {
+    auto row = [&](int n) { return _mm_loadu_ps(&rows[n].x); };
+    const __m256 m0 = _mm256_set_m128(row(4), row(0)), m1 = _mm256_set_m128(row(5), row(1));
+    const __m256 m2 = _mm256_set_m128(row(6), row(2)), m3 = _mm256_set_m128(row(7), row(3));
+    const __m256 t0 = _mm256_unpacklo_ps(m0, m1), t1 = _mm256_unpackhi_ps(m0, m1);
+    const __m256 t2 = _mm256_unpacklo_ps(m2, m3), t3 = _mm256_unpackhi_ps(m2, m3);
+    out[0] = _mm256_shuffle_ps(t0, t2, 0x44);
+    out[1] = _mm256_shuffle_ps(t0, t2, 0xee);
+    out[2] = _mm256_shuffle_ps(t1, t3, 0x44);
+    out[3] = _mm256_shuffle_ps(t1, t3, 0xee);
+}
+
+// glm's m * v for the columns of a mat3 (sums left to right).
+LUCENT_AVX2 inline void multiply(const glm::mat3& m, const __m256 v[3], __m256 out[3]) {
+    for (int r = 0; r < 3; ++r) {
+        const __m256 s0 = _mm256_mul_ps(_mm256_set1_ps(m[0][r]), v[0]);
+        const __m256 s1 = _mm256_mul_ps(_mm256_set1_ps(m[1][r]), v[1]);
+        const __m256 s2 = _mm256_mul_ps(_mm256_set1_ps(m[2][r]), v[2]);
+        out[r] = _mm256_add_ps(_mm256_add_ps(s0, s1), s2);
+    }
+}
+
+// glm::dot (products summed left to right).
+LUCENT_AVX2 inline __m256 dot(const __m256 a[3], const __m256 b[3]) {
+    return _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(a[0], b[0]), _mm256_mul_ps(a[1], b[1])),
+                         _mm256_mul_ps(a[2], b[2]));
+}
+
+// integerPower for eight lanes.
+LUCENT_AVX2 inline __m256 integerPower(__m256 x, unsigned n) {
+    __m256 r = _mm256_set1_ps(1.0f);
+    while (n != 0u) {
+        if ((n & 1u) != 0u) {
+            r = _mm256_mul_ps(r, x);
+        }
+        x = _mm256_mul_ps(x, x);
+        n >>= 1u;
+    }
+    return r;
+}
+
+} // namespace lucent::packet
