@@ -7,7 +7,7 @@ packages=(
   # toolchain
   build-essential cmake ninja-build ccache pkg-config git
   # libraries
-  qt6-base-dev libqt6opengl6-dev libgl-dev
+  qt6-base-dev libqt6opengl6-dev libgl-dev libqt6sql6-sqlite
   libgdcm-dev libgdcm-tools libdcmtk-dev dcmtk libglm-dev libegl-dev libepoxy-dev
   zlib1g-dev nlohmann-json3-dev libpng-dev
   # GL without a GPU, and a display for the GUI tests

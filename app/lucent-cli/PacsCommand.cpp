@@ -7,7 +7,11 @@
 #include <QTextStream>
 
 #include "CliCommand.h"
+#include <QDir>
+#include <QStandardPaths>
+
 #include "core/pacs/DimseQuery.h"
+#include "core/pacs/SeriesRetriever.h"
 
 namespace lucent::cli {
 namespace {
@@ -183,12 +187,84 @@ int findCommand(const QStringList& args) {
     return kOk;
 }
 
+int getCommand(const QStringList& args) {
+    QCommandLineParser p;
+    p.setApplicationDescription("Retrieves a study or one series into the local study store.");
+    addNodeOptions(p);
+    p.addOptions({
+        {"study", "Study Instance UID (required).", "UID"},
+        {"series", "Series Instance UID (default: every series of the study).", "UID"},
+        {"method", "cget (default); cmove and wado come later.", "METHOD", "cget"},
+        {"store", "The study store folder.", "DIR"},
+    });
+    QTextStream err(stderr);
+    if (!p.parse(args)) {
+        err << "lucent-cli pacs get: " << p.errorText() << "\n";
+        return kUsage;
+    }
+    if (p.isSet("help")) {
+        QTextStream(stdout) << p.helpText();
+        return kOk;
+    }
+    const QString store =
+        p.isSet("store") ? p.value("store")
+                         : QStandardPaths::writableLocation(QStandardPaths::GenericDataLocation) +
+                               "/lucent/store";
+    try {
+        const auto [node, settings] = nodeFrom(p);
+        if (!p.isSet("study")) {
+            throw std::invalid_argument("--study UID is required");
+        }
+        if (p.value("method") != "cget") {
+            throw std::invalid_argument("--method " + p.value("method").toStdString() +
+                                        " is not available in this build (use cget)");
+        }
+        const std::string study = p.value("study").toStdString();
+        std::vector<std::string> series;
+        if (p.isSet("series")) {
+            series.push_back(p.value("series").toStdString());
+        } else {
+            QueryFilter f;
+            f.studyUid = study;
+            for (const QueryMatch& m : find(node, settings, QueryLevel::Series, f)) {
+                series.push_back(m.seriesUid);
+            }
+            if (series.empty()) {
+                throw PacsError(node.describe() + ": no series found for study " + study);
+            }
+        }
+        StudyStore target(QDir(store).absolutePath().toStdString());
+        QTextStream out(stdout);
+        bool allComplete = true;
+        for (const std::string& uid : series) {
+            const RetrieveResult r = retrieveSeries(node, settings, study, uid, target);
+            allComplete = allComplete && r.complete;
+            out << "series " << QString::fromStdString(uid) << ": " << r.received
+                << " instance(s) arrived, " << r.alreadyStored << " already stored, "
+                << (r.complete ? "complete" : "INCOMPLETE") << " ("
+                << (r.alreadyStored + r.received) << "/" << r.expected << "), in "
+                << QString::fromStdString(r.folder.string()) << "\n";
+        }
+        return allComplete ? kOk : kPacsFailure;
+    } catch (const std::invalid_argument& e) {
+        err << "lucent-cli pacs get: " << e.what() << "\n";
+        return kUsage;
+    } catch (const PacsError& e) {
+        err << "lucent-cli pacs get: " << e.what() << "\n";
+        return kPacsFailure;
+    } catch (const StoreError& e) {
+        err << "lucent-cli pacs get: " << e.what() << "\n";
+        return kBadInput;
+    }
+}
+
 } // namespace
 
 int runPacs(const QStringList& args) {
     QTextStream err(stderr);
     if (args.size() < 2) {
-        err << "usage: lucent-cli pacs echo|find ... (--help after the verb lists its options)\n";
+        err << "usage: lucent-cli pacs echo|find|get ... (--help after the verb lists its "
+               "options)\n";
         return kUsage;
     }
     QStringList rest = args;
@@ -199,7 +275,10 @@ int runPacs(const QStringList& args) {
     if (verb == "find") {
         return findCommand(rest);
     }
-    err << "lucent-cli pacs: unknown verb '" << verb << "' (echo, find)\n";
+    if (verb == "get") {
+        return getCommand(rest);
+    }
+    err << "lucent-cli pacs: unknown verb '" << verb << "' (echo, find, get)\n";
     return kUsage;
 }
 

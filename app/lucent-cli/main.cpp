@@ -14,7 +14,7 @@ const char* kUsageText =
     "  compare A.png B.png                  print psnr_db=<x> ssim=<y> for two images\n"
     "PATH: a DICOM folder (searched recursively), a DICOM file, a DICOMDIR,\n"
     "      or a .mhd/.mha, .nii/.nii.gz or InVesalius .inv3 volume.\n"
-    "  pacs echo|find --pacs AET@HOST:PORT ...  DICOM networking (C-ECHO, C-FIND)\n"
+    "  pacs echo|find|get --pacs AET@HOST:PORT ...  C-ECHO, C-FIND, C-GET into the study store\n"
     "Exit status: 0 ok, 2 usage, 3 nothing loadable or bad input, 4 PACS or network failure.\n";
 
 } // namespace

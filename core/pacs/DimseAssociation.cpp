@@ -49,8 +49,11 @@ void quietDcmtk() {
 } // namespace
 
 DimseAssociation::DimseAssociation(const PacsNode& node, const PacsSettings& settings,
-                                   const std::vector<std::string>& abstractSyntaxes)
-    : node_(node), settings_(settings), scu_(std::make_unique<DcmSCU>()) {
+                                   const std::vector<std::string>& abstractSyntaxes,
+                                   std::unique_ptr<DcmSCU> customScu,
+                                   const std::vector<std::string>& storageClasses)
+    : node_(node), settings_(settings),
+      scu_(customScu ? std::move(customScu) : std::make_unique<DcmSCU>()) {
     quietDcmtk();
     checkAeTitle(settings.callingAeTitle, "our AE title");
     DcmSCU& scu = *scu_;
@@ -67,6 +70,9 @@ DimseAssociation::DimseAssociation(const PacsNode& node, const PacsSettings& set
     syntaxes.push_back(UID_LittleEndianImplicitTransferSyntax);
     for (const std::string& sop : abstractSyntaxes) {
         scu.addPresentationContext(sop.c_str(), syntaxes);
+    }
+    for (const std::string& sop : storageClasses) {
+        scu.addPresentationContext(sop.c_str(), syntaxes, ASC_SC_ROLE_SCP);
     }
     if (const OFCondition c = scu.initNetwork(); c.bad()) {
         fail("cannot start networking", c);

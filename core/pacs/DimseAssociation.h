@@ -16,9 +16,13 @@ namespace lucent {
 class DimseAssociation {
 public:
     // Proposes the abstract syntaxes (SOP class UIDs) with the uncompressed
-    // little-endian transfer syntaxes. Throws PacsError naming the node.
+    // little-endian transfer syntaxes, and the storage classes in the SCP role
+    // (C-GET sends the instances back on this association). scu may be a
+    // subclass that handles incoming instances. Throws PacsError naming the node.
     DimseAssociation(const PacsNode& node, const PacsSettings& settings,
-                     const std::vector<std::string>& abstractSyntaxes);
+                     const std::vector<std::string>& abstractSyntaxes,
+                     std::unique_ptr<DcmSCU> scu = nullptr,
+                     const std::vector<std::string>& storageClasses = {});
     ~DimseAssociation();
     DimseAssociation(const DimseAssociation&) = delete;
     DimseAssociation& operator=(const DimseAssociation&) = delete;

@@ -11,7 +11,9 @@
 #include <filesystem>
 #include <memory>
 
+#include "core/io/Catalog.h"
 #include "core/pacs/DimseQuery.h"
+#include "core/pacs/SeriesRetriever.h"
 #include "tests/support/CliRunner.h"
 #include "tests/support/OrthancServer.h"
 #include "tests/support/SyntheticDicom.h"
@@ -259,6 +261,53 @@ private slots:
         QVERIFY(found);
     }
 
+    void retrieveFetchesOnlyWhatIsMissing() {
+        QTemporaryDir dir;
+        StudyStore store(dir.path().toStdString());
+        const std::string series = "1.2.826.0.1.3680043.2.1125.9011";
+        int progress = 0;
+        RetrieveControl control;
+        control.onProgress = [&](int done, int) { progress = done; };
+        const RetrieveResult first =
+            retrieveSeries(node_, settings_, kStudyA, series, store, control);
+        QCOMPARE(first.expected, 3);
+        QCOMPARE(first.received, 3);
+        QCOMPARE(first.alreadyStored, 0);
+        QVERIFY(first.complete);
+        QCOMPARE(progress, 3);
+        // What arrived is whole DICOM that loads as the series it was.
+        const Volume v = loadPath(first.folder);
+        QCOMPARE(v.dims(), glm::ivec3(8, 6, 3));
+        QCOMPARE(v.seriesUid, series);
+
+        const RetrieveResult again = retrieveSeries(node_, settings_, kStudyA, series, store);
+        QCOMPARE(again.received, 0);
+        QCOMPARE(again.alreadyStored, 3);
+        QVERIFY(again.complete);
+
+        // An instance lost from the store is the only one fetched next time.
+        const std::string lost = *store.instancesOf(series).begin();
+        store.remove(lost);
+        QVERIFY(!store.isComplete(series));
+        const RetrieveResult repaired = retrieveSeries(node_, settings_, kStudyA, series, store);
+        QCOMPARE(repaired.received, 1);
+        QCOMPARE(repaired.alreadyStored, 2);
+        QVERIFY(repaired.complete && store.contains(lost));
+    }
+
+    void retrievingAnUnknownSeriesSaysSo() {
+        QTemporaryDir dir;
+        StudyStore store(dir.path().toStdString());
+        try {
+            retrieveSeries(node_, settings_, kStudyA, "1.2.3.999", store);
+            QFAIL("expected PacsError");
+        } catch (const PacsError& e) {
+            QVERIFY2(QString(e.what()).contains("1.2.3.999") &&
+                         QString(e.what()).contains("no instances"),
+                     e.what());
+        }
+    }
+
     void commandLine() {
         const QString pacs = orthanc_->node();
         const test::CliRun ok = test::runCli({"pacs", "echo", "--pacs", pacs});
@@ -285,6 +334,21 @@ private slots:
         QCOMPARE(test::runCli({"pacs", "find", "--pacs", pacs, "--date", "last week"}).exitCode, 2);
         QCOMPARE(test::runCli({"pacs", "find", "--pacs", pacs, "--level", "image"}).exitCode, 2);
         QCOMPARE(test::runCli({"pacs", "fetch"}).exitCode, 2);
+        QTemporaryDir store;
+        const test::CliRun get = test::runCli(
+            {"pacs", "get", "--pacs", pacs, "--study", kStudyA, "--store", store.path()});
+        QVERIFY2(get.exitCode == 0, qPrintable(get.err));
+        QVERIFY2(get.out.contains("3 instance(s) arrived") &&
+                     get.out.contains("2 instance(s) arrived") && get.out.count("complete") == 2,
+                 qPrintable(get.out));
+        const test::CliRun info = test::runCli({"info", store.path()});
+        QVERIFY2(info.exitCode == 0 && info.out.contains("8x6x3") && info.out.contains("8x6x2"),
+                 qPrintable(info.out));
+        QCOMPARE(test::runCli({"pacs", "get", "--pacs", pacs}).exitCode, 2);
+        QCOMPARE(
+            test::runCli({"pacs", "get", "--pacs", pacs, "--study", kStudyA, "--method", "wado"})
+                .exitCode,
+            2);
     }
 };
 

@@ -1,0 +1,219 @@
+#include "core/pacs/SeriesRetriever.h"
+
+#include <dcmtk/dcmdata/dcdeftag.h>
+#include <dcmtk/dcmdata/dcfilefo.h>
+#include <dcmtk/dcmdata/dcuid.h>
+
+#include "core/pacs/DimseAssociation.h"
+
+namespace lucent {
+namespace {
+
+constexpr Uint16 kSuccess = 0x0000;
+constexpr Uint16 kPending = 0xFF00;
+constexpr Uint16 kPendingWarning = 0xFF01;
+constexpr Uint16 kOutOfResources = 0xA700;
+
+std::string text(DcmItem& d, const DcmTagKey& tag) {
+    OFString value;
+    d.findAndGetOFStringArray(tag, value);
+    return value.c_str();
+}
+
+// Receives the instances a C-GET sends back: each is written whole to a
+// temporary name in the store and then moved in.
+class StoringScu : public DcmSCU {
+public:
+    StoringScu(StudyStore& store, const RetrieveControl& control, int toFetch)
+        : store_(store), control_(control), toFetch_(toFetch) {}
+
+    int received = 0;
+    int duplicates = 0;
+    int failed = 0;
+    std::string storeError;
+
+protected:
+    OFCondition handleSTORERequest(const T_ASC_PresentationContextID, DcmDataset* incoming,
+                                   OFBool& continueSession, Uint16& status) override {
+        const std::unique_ptr<DcmDataset> dataset(incoming); // ours to delete
+        continueSession = OFTrue;
+        status = kSuccess;
+        if (control_.stop.stop_requested()) {
+            continueSession = OFFalse;
+            status = kOutOfResources;
+            return EC_Normal;
+        }
+        InstanceRecord r;
+        r.sopInstanceUid = text(*dataset, DCM_SOPInstanceUID);
+        r.series.seriesUid = text(*dataset, DCM_SeriesInstanceUID);
+        r.series.studyUid = text(*dataset, DCM_StudyInstanceUID);
+        r.series.modality = text(*dataset, DCM_Modality);
+        r.series.description = text(*dataset, DCM_SeriesDescription);
+        r.series.patientName = text(*dataset, DCM_PatientName);
+        r.series.patientId = text(*dataset, DCM_PatientID);
+        r.series.studyDate = text(*dataset, DCM_StudyDate);
+        Sint32 number = 0;
+        dataset->findAndGetSint32(DCM_SeriesNumber, number);
+        r.seriesNumber = number;
+        try {
+            const std::filesystem::path temp = store_.temporaryFile();
+            DcmFileFormat file(dataset.get());
+            const E_TransferSyntax xfer = dataset->getOriginalXfer();
+            const OFCondition c =
+                file.saveFile(temp.c_str(), xfer == EXS_Unknown ? EXS_LittleEndianExplicit : xfer);
+            if (c.bad()) {
+                std::error_code ec;
+                std::filesystem::remove(temp, ec);
+                throw StoreError(temp.string() + ": cannot write a received instance (" + c.text() +
+                                 ")");
+            }
+            (store_.add(temp, r) ? received : duplicates) += 1;
+        } catch (const StoreError& e) {
+            ++failed;
+            storeError = e.what();
+            status = kOutOfResources;
+        }
+        if (control_.onProgress) {
+            control_.onProgress(received + duplicates + failed, toFetch_);
+        }
+        return EC_Normal;
+    }
+
+private:
+    StudyStore& store_;
+    const RetrieveControl& control_;
+    int toFetch_;
+};
+
+struct Responses {
+    OFList<QRResponse*> list;
+    ~Responses() {
+        for (QRResponse* r : list) {
+            delete r;
+        }
+    }
+};
+
+struct RetrieveResponses {
+    OFList<RetrieveResponse*> list;
+    ~RetrieveResponses() {
+        for (RetrieveResponse* r : list) {
+            delete r;
+        }
+    }
+};
+
+struct SeriesListing {
+    SeriesInfo info;
+    int seriesNumber = 0;
+    std::vector<std::string> instances;
+};
+
+SeriesListing listInstances(const PacsNode& node, const PacsSettings& settings,
+                            const std::string& studyUid, const std::string& seriesUid) {
+    DimseAssociation a(node, settings, {UID_FINDStudyRootQueryRetrieveInformationModel});
+    const T_ASC_PresentationContextID pc =
+        a.context(UID_FINDStudyRootQueryRetrieveInformationModel, "C-FIND queries");
+    DcmDataset q;
+    q.putAndInsertString(DCM_QueryRetrieveLevel, "IMAGE");
+    q.putAndInsertString(DCM_StudyInstanceUID, studyUid.c_str());
+    q.putAndInsertString(DCM_SeriesInstanceUID, seriesUid.c_str());
+    q.putAndInsertString(DCM_SOPInstanceUID, "");
+    for (const DcmTagKey& key : {DCM_PatientName, DCM_PatientID, DCM_StudyDate, DCM_Modality,
+                                 DCM_SeriesDescription, DCM_SeriesNumber}) {
+        q.putAndInsertString(key, "");
+    }
+    Responses r;
+    if (const OFCondition c = a.scu().sendFINDRequest(pc, &q, &r.list); c.bad()) {
+        a.fail("C-FIND of the series' instances failed", c);
+    }
+    SeriesListing out;
+    out.info.studyUid = studyUid;
+    out.info.seriesUid = seriesUid;
+    for (QRResponse* resp : r.list) {
+        if ((resp->m_status == kPending || resp->m_status == kPendingWarning) &&
+            resp->m_dataset != nullptr) {
+            DcmDataset& d = *resp->m_dataset;
+            out.instances.push_back(text(d, DCM_SOPInstanceUID));
+            out.info.patientName = text(d, DCM_PatientName);
+            out.info.patientId = text(d, DCM_PatientID);
+            out.info.studyDate = text(d, DCM_StudyDate);
+            out.info.modality = text(d, DCM_Modality);
+            out.info.description = text(d, DCM_SeriesDescription);
+            out.seriesNumber = std::atoi(text(d, DCM_SeriesNumber).c_str());
+        }
+    }
+    return out;
+}
+
+} // namespace
+
+RetrieveResult retrieveSeries(const PacsNode& node, const PacsSettings& settings,
+                              const std::string& studyUid, const std::string& seriesUid,
+                              StudyStore& store, const RetrieveControl& control) {
+    const SeriesListing listing = listInstances(node, settings, studyUid, seriesUid);
+    if (listing.instances.empty()) {
+        throw PacsError(node.describe() + ": series " + seriesUid + " of study " + studyUid +
+                        " has no instances there");
+    }
+    RetrieveResult result;
+    result.seriesUid = seriesUid;
+    result.expected = static_cast<int>(listing.instances.size());
+    result.folder = store.seriesFolder(studyUid, seriesUid);
+    store.setExpected(listing.info, listing.seriesNumber, result.expected);
+    const std::set<std::string> stored = store.instancesOf(seriesUid);
+    std::vector<std::string> missing;
+    for (const std::string& sop : listing.instances) {
+        if (stored.count(sop) == 0) {
+            missing.push_back(sop);
+        }
+    }
+    result.alreadyStored = result.expected - static_cast<int>(missing.size());
+
+    if (!missing.empty()) {
+        std::vector<std::string> storage;
+        for (int i = 0; i < numberOfDcmLongSCUStorageSOPClassUIDs; ++i) {
+            storage.emplace_back(dcmLongSCUStorageSOPClassUIDs[i]);
+        }
+        auto scu = std::make_unique<StoringScu>(store, control, static_cast<int>(missing.size()));
+        StoringScu* receiver = scu.get();
+        DimseAssociation a(node, settings, {UID_GETStudyRootQueryRetrieveInformationModel},
+                           std::move(scu), storage);
+        const T_ASC_PresentationContextID pc =
+            a.context(UID_GETStudyRootQueryRetrieveInformationModel, "C-GET");
+        DcmDataset q;
+        q.putAndInsertString(DCM_StudyInstanceUID, studyUid.c_str());
+        q.putAndInsertString(DCM_SeriesInstanceUID, seriesUid.c_str());
+        if (missing.size() == listing.instances.size()) {
+            q.putAndInsertString(DCM_QueryRetrieveLevel, "SERIES");
+        } else {
+            // Only what the store lacks, as a list of UIDs (list matching on a unique key).
+            std::string list;
+            for (const std::string& sop : missing) {
+                list += (list.empty() ? "" : "\\") + sop;
+            }
+            q.putAndInsertString(DCM_QueryRetrieveLevel, "IMAGE");
+            q.putAndInsertString(DCM_SOPInstanceUID, list.c_str());
+        }
+        RetrieveResponses responses;
+        const OFCondition c = a.scu().sendCGETRequest(pc, &q, &responses.list);
+        result.received = receiver->received;
+        result.alreadyStored += receiver->duplicates;
+        result.failed = receiver->failed;
+        if (control.stop.stop_requested()) {
+            a.scu().abortAssociation();
+            throw PacsError(node.describe() + ": retrieval of series " + seriesUid +
+                            " cancelled after " + std::to_string(result.received) + " instance(s)");
+        }
+        if (!receiver->storeError.empty()) {
+            throw StoreError(receiver->storeError);
+        }
+        if (c.bad()) {
+            a.fail("C-GET failed after " + std::to_string(result.received) + " instance(s)", c);
+        }
+    }
+    result.complete = store.isComplete(seriesUid);
+    return result;
+}
+
+} // namespace lucent

@@ -1,0 +1,35 @@
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <stop_token>
+#include <string>
+
+#include "core/pacs/PacsNode.h"
+#include "core/store/StudyStore.h"
+
+namespace lucent {
+
+struct RetrieveResult {
+    std::string seriesUid;
+    int expected = 0;      // instances the PACS lists for the series
+    int received = 0;      // arrived now and stored
+    int alreadyStored = 0; // in the store before, not asked for again
+    int failed = 0;        // arrived but could not be stored
+    bool complete = false;
+    std::filesystem::path folder;
+};
+
+struct RetrieveControl {
+    std::function<void(int done, int total)> onProgress; // instances handled / to fetch
+    std::stop_token stop;                                // cancel: the association is aborted
+};
+
+// Retrieves a series by C-GET into the store, asking only for the instances the
+// store lacks. Throws PacsError (network, PACS) or StoreError (disk, index);
+// what arrived before a failure stays stored and the series stays incomplete.
+RetrieveResult retrieveSeries(const PacsNode& node, const PacsSettings& settings,
+                              const std::string& studyUid, const std::string& seriesUid,
+                              StudyStore& store, const RetrieveControl& control = {});
+
+} // namespace lucent

@@ -1,0 +1,204 @@
+#include "core/store/StudyStore.h"
+
+#include <atomic>
+#include <cctype>
+#include <system_error>
+
+#include <QSqlDatabase>
+#include <QSqlError>
+#include <QSqlQuery>
+#include <QString>
+#include <QVariant>
+
+#include <unistd.h>
+
+namespace lucent {
+namespace {
+
+namespace fs = std::filesystem;
+
+QString q(const std::string& s) {
+    return QString::fromStdString(s);
+}
+
+// A UID is digits and dots; anything else must not reach a path.
+std::string safeComponent(const std::string& uid) {
+    std::string out;
+    for (const char c : uid) {
+        out += (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-') ? c : '_';
+    }
+    return out.empty() ? std::string("unknown") : out;
+}
+
+QSqlQuery prepared(const std::string& connection, const char* sql) {
+    QSqlQuery query(QSqlDatabase::database(q(connection)));
+    if (!query.prepare(sql)) {
+        throw StoreError(std::string("study index: ") + query.lastError().text().toStdString());
+    }
+    return query;
+}
+
+void run(QSqlQuery& query, const fs::path& root) {
+    if (!query.exec()) {
+        throw StoreError(root.string() +
+                         "/index.sqlite: " + query.lastError().text().toStdString());
+    }
+}
+
+} // namespace
+
+StudyStore::StudyStore(const fs::path& root) : root_(root) {
+    static std::atomic<int> instances{0};
+    connection_ = "lucent-store-" + std::to_string(::getpid()) + "-" + std::to_string(++instances);
+    std::error_code ec;
+    fs::create_directories(root_ / "files", ec);
+    fs::create_directories(root_ / "tmp", ec);
+    if (ec || !fs::is_directory(root_ / "files")) {
+        throw StoreError(root_.string() + ": cannot create the store folder (" + ec.message() +
+                         ")");
+    }
+    // Leftovers of writes that never finished: never indexed, never in files/.
+    for (const auto& e : fs::directory_iterator(root_ / "tmp", ec)) {
+        fs::remove(e.path(), ec);
+    }
+    QSqlDatabase db = QSqlDatabase::addDatabase("QSQLITE", q(connection_));
+    db.setDatabaseName(q((root_ / "index.sqlite").string()));
+    if (!db.open()) {
+        throw StoreError(root_.string() + "/index.sqlite: " + db.lastError().text().toStdString() +
+                         " (is the Qt SQLite driver, libqt6sql6-sqlite, installed?)");
+    }
+    exec("PRAGMA journal_mode=WAL");
+    exec("CREATE TABLE IF NOT EXISTS series (series_uid TEXT PRIMARY KEY, study_uid TEXT, "
+         "patient_id TEXT, patient_name TEXT, study_date TEXT, series_description TEXT, modality "
+         "TEXT, "
+         "series_number INTEGER, expected INTEGER DEFAULT 0)");
+    exec(
+        "CREATE TABLE IF NOT EXISTS instances (sop_uid TEXT PRIMARY KEY, series_uid TEXT NOT NULL, "
+        "path TEXT NOT NULL)");
+    exec("CREATE INDEX IF NOT EXISTS instances_by_series ON instances(series_uid)");
+}
+
+StudyStore::~StudyStore() {
+    {
+        QSqlDatabase db = QSqlDatabase::database(q(connection_), false);
+        db.close();
+    }
+    QSqlDatabase::removeDatabase(q(connection_));
+}
+
+void StudyStore::exec(const std::string& sql) const {
+    QSqlQuery query(QSqlDatabase::database(q(connection_)));
+    if (!query.exec(q(sql))) {
+        throw StoreError(root_.string() +
+                         "/index.sqlite: " + query.lastError().text().toStdString());
+    }
+}
+
+fs::path StudyStore::temporaryFile() {
+    return root_ / "tmp" /
+           ("incoming-" + std::to_string(::getpid()) + "-" + std::to_string(++counter_) + ".dcm");
+}
+
+bool StudyStore::contains(const std::string& sop) const {
+    QSqlQuery query = prepared(connection_, "SELECT 1 FROM instances WHERE sop_uid = ?");
+    query.addBindValue(q(sop));
+    run(query, root_);
+    return query.next();
+}
+
+std::set<std::string> StudyStore::instancesOf(const std::string& seriesUid) const {
+    QSqlQuery query = prepared(connection_, "SELECT sop_uid FROM instances WHERE series_uid = ?");
+    query.addBindValue(q(seriesUid));
+    run(query, root_);
+    std::set<std::string> out;
+    while (query.next()) {
+        out.insert(query.value(0).toString().toStdString());
+    }
+    return out;
+}
+
+fs::path StudyStore::seriesFolder(const std::string& studyUid, const std::string& seriesUid) const {
+    return root_ / "files" / safeComponent(studyUid) / safeComponent(seriesUid);
+}
+
+bool StudyStore::add(const fs::path& file, const InstanceRecord& r) {
+    std::error_code ec;
+    if (r.sopInstanceUid.empty() || r.series.seriesUid.empty() || r.series.studyUid.empty()) {
+        fs::remove(file, ec);
+        throw StoreError(file.string() +
+                         ": an instance without study, series or SOP instance UID is not stored");
+    }
+    if (contains(r.sopInstanceUid)) {
+        fs::remove(file, ec);
+        return false;
+    }
+    const fs::path folder = seriesFolder(r.series.studyUid, r.series.seriesUid);
+    fs::create_directories(folder, ec);
+    const fs::path target = folder / (safeComponent(r.sopInstanceUid) + ".dcm");
+    fs::rename(file, target, ec); // same file system: atomic
+    if (ec) {
+        fs::remove(file, ec);
+        throw StoreError(target.string() + ": cannot move the received file into the store");
+    }
+    QSqlQuery series =
+        prepared(connection_,
+                 "INSERT INTO series (series_uid, study_uid, patient_id, patient_name, study_date, "
+                 "series_description, modality, series_number) VALUES (?,?,?,?,?,?,?,?) "
+                 "ON CONFLICT(series_uid) DO NOTHING");
+    for (const std::string* v :
+         {&r.series.seriesUid, &r.series.studyUid, &r.series.patientId, &r.series.patientName,
+          &r.series.studyDate, &r.series.description, &r.series.modality}) {
+        series.addBindValue(q(*v));
+    }
+    series.addBindValue(r.seriesNumber);
+    run(series, root_);
+    QSqlQuery instance =
+        prepared(connection_, "INSERT INTO instances (sop_uid, series_uid, path) VALUES (?,?,?)");
+    instance.addBindValue(q(r.sopInstanceUid));
+    instance.addBindValue(q(r.series.seriesUid));
+    instance.addBindValue(q(fs::relative(target, root_).string()));
+    run(instance, root_);
+    return true;
+}
+
+void StudyStore::remove(const std::string& sop) {
+    QSqlQuery path = prepared(connection_, "SELECT path FROM instances WHERE sop_uid = ?");
+    path.addBindValue(q(sop));
+    run(path, root_);
+    if (path.next()) {
+        std::error_code ec;
+        fs::remove(root_ / path.value(0).toString().toStdString(), ec);
+    }
+    QSqlQuery del = prepared(connection_, "DELETE FROM instances WHERE sop_uid = ?");
+    del.addBindValue(q(sop));
+    run(del, root_);
+}
+
+void StudyStore::setExpected(const SeriesInfo& s, int seriesNumber, int instances) {
+    QSqlQuery query = prepared(
+        connection_,
+        "INSERT INTO series (series_uid, study_uid, patient_id, patient_name, study_date, "
+        "series_description, modality, series_number, expected) VALUES (?,?,?,?,?,?,?,?,?) "
+        "ON CONFLICT(series_uid) DO UPDATE SET expected = excluded.expected");
+    for (const std::string* v : {&s.seriesUid, &s.studyUid, &s.patientId, &s.patientName,
+                                 &s.studyDate, &s.description, &s.modality}) {
+        query.addBindValue(q(*v));
+    }
+    query.addBindValue(seriesNumber);
+    query.addBindValue(instances);
+    run(query, root_);
+}
+
+int StudyStore::expected(const std::string& seriesUid) const {
+    QSqlQuery query = prepared(connection_, "SELECT expected FROM series WHERE series_uid = ?");
+    query.addBindValue(q(seriesUid));
+    run(query, root_);
+    return query.next() ? query.value(0).toInt() : 0;
+}
+
+bool StudyStore::isComplete(const std::string& seriesUid) const {
+    const int want = expected(seriesUid);
+    return want > 0 && static_cast<int>(instancesOf(seriesUid).size()) >= want;
+}
+
+} // namespace lucent

@@ -1,0 +1,65 @@
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <set>
+#include <stdexcept>
+#include <string>
+
+#include "core/volume/SeriesInfo.h"
+
+namespace lucent {
+
+class StoreError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+// What the store keeps about one instance besides its file.
+struct InstanceRecord {
+    SeriesInfo series;
+    int seriesNumber = 0;
+    std::string sopInstanceUid;
+};
+
+// The local study store: DICOM files under a folder
+// (files/<study>/<series>/<instance>.dcm) indexed in SQLite (index.sqlite).
+// A file enters the store only whole: it is written elsewhere in the store's
+// tmp/ folder and renamed into place, then indexed. No instance is stored
+// twice. Each series remembers how many instances the PACS said it has, so an
+// interrupted retrieval shows as incomplete and a new one fetches only the rest.
+class StudyStore {
+public:
+    // Opens or creates the store; removes leftovers of interrupted writes. Throws StoreError.
+    explicit StudyStore(const std::filesystem::path& root);
+    ~StudyStore();
+    StudyStore(const StudyStore&) = delete;
+    StudyStore& operator=(const StudyStore&) = delete;
+
+    const std::filesystem::path& root() const { return root_; }
+    // A new, unused file name in tmp/ for writing an incoming instance.
+    std::filesystem::path temporaryFile();
+
+    bool contains(const std::string& sopInstanceUid) const;
+    std::set<std::string> instancesOf(const std::string& seriesUid) const;
+    // Moves the complete file into place and indexes it. Returns false (and
+    // removes the file) when the instance is already stored.
+    bool add(const std::filesystem::path& completeFile, const InstanceRecord& record);
+    // Removes an instance's file and row (no-op when absent).
+    void remove(const std::string& sopInstanceUid);
+
+    void setExpected(const SeriesInfo& series, int seriesNumber, int instances);
+    int expected(const std::string& seriesUid) const;
+    bool isComplete(const std::string& seriesUid) const;
+    std::filesystem::path seriesFolder(const std::string& studyUid,
+                                       const std::string& seriesUid) const;
+
+private:
+    void exec(const std::string& sql) const;
+
+    std::filesystem::path root_;
+    std::string connection_;
+    std::uint64_t counter_ = 0;
+};
+
+} // namespace lucent

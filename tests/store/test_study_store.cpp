@@ -1,0 +1,109 @@
+// The local study store: whole files only, no instance twice, completeness.
+#include <QTemporaryDir>
+#include <QTest>
+
+#include <filesystem>
+#include <fstream>
+
+#include "core/store/StudyStore.h"
+
+using namespace lucent;
+namespace fs = std::filesystem;
+
+namespace {
+
+InstanceRecord record(const std::string& sop, const std::string& series = "1.2.3.4") {
+    InstanceRecord r;
+    r.series.studyUid = "1.2.3";
+    r.series.seriesUid = series;
+    r.series.modality = "CT";
+    r.series.patientName = "Test^Store";
+    r.seriesNumber = 2;
+    r.sopInstanceUid = sop;
+    return r;
+}
+
+fs::path incoming(StudyStore& store, const std::string& content) {
+    const fs::path p = store.temporaryFile();
+    std::ofstream(p, std::ios::binary) << content;
+    return p;
+}
+
+} // namespace
+
+class TestStudyStore : public QObject {
+    Q_OBJECT
+private slots:
+    void addsEachInstanceOnce() {
+        QTemporaryDir dir;
+        StudyStore store(dir.path().toStdString());
+        QVERIFY(store.add(incoming(store, "first"), record("1.2.3.4.1")));
+        const fs::path second = incoming(store, "again");
+        QVERIFY(!store.add(second, record("1.2.3.4.1")));
+        QVERIFY(!fs::exists(second)); // the duplicate's file is not kept anywhere
+        QVERIFY(store.contains("1.2.3.4.1"));
+        QVERIFY(!store.contains("1.2.3.4.2"));
+        const fs::path stored = store.seriesFolder("1.2.3", "1.2.3.4") / "1.2.3.4.1.dcm";
+        std::ifstream in(stored);
+        std::string content;
+        in >> content;
+        QCOMPARE(content, std::string("first"));
+        QVERIFY(fs::is_empty(dir.path().toStdString() + "/tmp"));
+    }
+
+    void completenessFollowsTheExpectedCount() {
+        QTemporaryDir dir;
+        StudyStore store(dir.path().toStdString());
+        store.setExpected(record("").series, 2, 3);
+        QCOMPARE(store.expected("1.2.3.4"), 3);
+        QVERIFY(!store.isComplete("1.2.3.4"));
+        for (const char* sop : {"1.2.3.4.1", "1.2.3.4.2", "1.2.3.4.3"}) {
+            QVERIFY(store.add(incoming(store, sop), record(sop)));
+        }
+        QVERIFY(store.isComplete("1.2.3.4"));
+        store.remove("1.2.3.4.2");
+        QVERIFY(!store.isComplete("1.2.3.4"));
+        QCOMPARE(store.instancesOf("1.2.3.4"), (std::set<std::string>{"1.2.3.4.1", "1.2.3.4.3"}));
+        QVERIFY(!fs::exists(store.seriesFolder("1.2.3", "1.2.3.4") / "1.2.3.4.2.dcm"));
+    }
+
+    void reopeningKeepsTheIndexAndDropsUnfinishedWrites() {
+        QTemporaryDir dir;
+        fs::path leftover;
+        {
+            StudyStore store(dir.path().toStdString());
+            QVERIFY(store.add(incoming(store, "x"), record("1.2.3.4.9")));
+            leftover = incoming(store, "half written");
+        }
+        StudyStore reopened(dir.path().toStdString());
+        QVERIFY(reopened.contains("1.2.3.4.9"));
+        QVERIFY(!fs::exists(leftover));
+    }
+
+    void twoStoresOpenAtOnce() {
+        QTemporaryDir a, b;
+        StudyStore one(a.path().toStdString());
+        StudyStore two(b.path().toStdString());
+        QVERIFY(one.add(incoming(one, "1"), record("1.2.3.4.1")));
+        QVERIFY(!two.contains("1.2.3.4.1"));
+    }
+
+    void badInputIsRefused() {
+        QTemporaryDir dir;
+        const std::string file = dir.filePath("plain-file").toStdString();
+        std::ofstream(file) << "not a folder";
+        QVERIFY_THROWS_EXCEPTION(StoreError, StudyStore(file + "/store"));
+        StudyStore store(dir.filePath("store").toStdString());
+        InstanceRecord noUid = record("");
+        const fs::path p = incoming(store, "x");
+        QVERIFY_THROWS_EXCEPTION(StoreError, store.add(p, noUid));
+        QVERIFY(!fs::exists(p));
+        // A UID with path characters stays inside the store.
+        InstanceRecord hostile = record("../../escape");
+        QVERIFY(store.add(incoming(store, "y"), hostile));
+        QVERIFY(!fs::exists(dir.filePath("escape.dcm").toStdString()));
+    }
+};
+
+QTEST_APPLESS_MAIN(TestStudyStore)
+#include "test_study_store.moc"
