@@ -308,6 +308,62 @@ private slots:
         }
     }
 
+    void pacsKilledMidRetrievalLeavesNothingHalfWritten() {
+        // A series of 40 images; Orthanc is killed after the 10th has arrived.
+        test::SyntheticSeries s;
+        s.patientName = "Kill^Test";
+        s.patientId = "P009";
+        s.studyUid = "1.2.826.0.1.3680043.2.1125.909";
+        s.seriesUid = "1.2.826.0.1.3680043.2.1125.9091";
+        const std::string dir = files_.filePath("killed").toStdString();
+        std::filesystem::create_directories(dir);
+        std::vector<glm::dvec3> positions;
+        for (int k = 0; k < 40; ++k) {
+            positions.emplace_back(0.0, 0.0, 1.0 * k);
+        }
+        QStringList files;
+        for (const std::string& f : test::writeSeries(dir, s, positions)) {
+            files << QString::fromStdString(f);
+        }
+        QVERIFY2(orthanc_->store(files), qPrintable(orthanc_->error()));
+
+        QTemporaryDir storeDir;
+        StudyStore store(storeDir.path().toStdString());
+        RetrieveControl killer;
+        killer.onProgress = [&](int done, int) {
+            if (done == 10) {
+                orthanc_->kill();
+            }
+        };
+        QVERIFY_THROWS_EXCEPTION(
+            PacsError, retrieveSeries(node_, settings_, s.studyUid, s.seriesUid, store, killer));
+        const auto stored = store.instancesOf(s.seriesUid);
+        QVERIFY2(stored.size() >= 10 && stored.size() < 40,
+                 qPrintable(QString::number(stored.size())));
+        QVERIFY(!store.isComplete(s.seriesUid));
+        QCOMPARE(store.expected(s.seriesUid), 40);
+        // Nothing half-written: tmp/ is empty and every file in the series folder is indexed and
+        // whole.
+        QVERIFY(std::filesystem::is_empty(storeDir.filePath("tmp").toStdString()));
+        std::size_t onDisk = 0;
+        for (const auto& f :
+             std::filesystem::directory_iterator(store.seriesFolder(s.studyUid, s.seriesUid))) {
+            ++onDisk;
+            QVERIFY(stored.count(f.path().stem().string()) == 1);
+        }
+        QCOMPARE(onDisk, stored.size());
+        QCOMPARE(loadPath(store.seriesFolder(s.studyUid, s.seriesUid)).dims().z,
+                 int(stored.size()));
+
+        // The PACS comes back: only the rest is fetched.
+        QVERIFY2(orthanc_->restart(), qPrintable(orthanc_->error()));
+        const RetrieveResult rest =
+            retrieveSeries(node_, settings_, s.studyUid, s.seriesUid, store);
+        QCOMPARE(rest.received, 40 - int(stored.size()));
+        QCOMPARE(rest.alreadyStored, int(stored.size()));
+        QVERIFY(rest.complete);
+    }
+
     void commandLine() {
         const QString pacs = orthanc_->node();
         const test::CliRun ok = test::runCli({"pacs", "echo", "--pacs", pacs});

@@ -19,8 +19,8 @@ int OrthancServer::freePort() {
 }
 
 OrthancServer::OrthancServer() {
-    const QString binary = QStandardPaths::findExecutable("Orthanc", {"/usr/sbin", "/usr/bin"});
-    if (binary.isEmpty()) {
+    binary_ = QStandardPaths::findExecutable("Orthanc", {"/usr/sbin", "/usr/bin"});
+    if (binary_.isEmpty()) {
         error_ = "Orthanc is not installed (Debian package orthanc; packaging/install-deps.sh "
                  "installs it)";
         return;
@@ -61,13 +61,18 @@ OrthancServer::OrthancServer() {
         return;
     }
     file.close();
+    start();
+}
+
+bool OrthancServer::start() {
+    error_.clear();
     process_ = std::make_unique<QProcess>();
     process_->setStandardOutputFile(dir_.filePath("orthanc.log"));
     process_->setStandardErrorFile(dir_.filePath("orthanc.log"), QIODevice::Append);
-    process_->start(binary, {file.fileName()});
+    process_->start(binary_, {dir_.filePath("orthanc.json")});
     if (!process_->waitForStarted(10000)) {
         error_ = "Orthanc did not start: " + process_->errorString();
-        return;
+        return false;
     }
     // Ready when the DICOM port takes connections.
     QElapsedTimer timer;
@@ -77,17 +82,30 @@ OrthancServer::OrthancServer() {
             QFile log(dir_.filePath("orthanc.log"));
             log.open(QIODevice::ReadOnly);
             error_ = "Orthanc exited at start: " + QString::fromUtf8(log.readAll().right(2000));
-            return;
+            return false;
         }
         QTcpSocket probe;
         probe.connectToHost(QHostAddress::LocalHost, static_cast<quint16>(dicomPort_));
         if (probe.waitForConnected(200)) {
             probe.disconnectFromHost();
-            return;
+            return true;
         }
         QThread::msleep(100);
     }
     error_ = "Orthanc did not open its DICOM port within 30 s";
+    return false;
+}
+
+void OrthancServer::kill() {
+    if (process_ && process_->state() != QProcess::NotRunning) {
+        process_->kill();
+        process_->waitForFinished(10000);
+    }
+}
+
+bool OrthancServer::restart() {
+    kill();
+    return start();
 }
 
 OrthancServer::~OrthancServer() {

@@ -30,10 +30,18 @@ public:
     // Sends files with DCMTK's storescu (C-STORE); false with error() set on failure.
     bool store(const QStringList& files);
 
+    // Kills Orthanc at once (SIGKILL), as a crash would.
+    void kill();
+    // Starts it again on the same ports and storage; false with error() set on failure.
+    bool restart();
+
     // A loopback port nobody listens on right now.
     static int freePort();
 
 private:
+    bool start();
+
+    QString binary_;
     QTemporaryDir dir_;
     std::unique_ptr<QProcess> process_;
     int dicomPort_ = 0;
