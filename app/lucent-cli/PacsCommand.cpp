@@ -10,6 +10,7 @@
 #include <QDir>
 #include <QStandardPaths>
 
+#include "core/pacs/DicomWebClient.h"
 #include "core/pacs/DimseQuery.h"
 #include "core/pacs/SeriesRetriever.h"
 
@@ -46,6 +47,17 @@ std::pair<PacsNode, PacsSettings> nodeFrom(const QCommandLineParser& p) {
     } catch (const PacsError& e) {
         throw std::invalid_argument(e.what()); // a malformed option is a usage error
     }
+}
+
+DicomWebService serviceFrom(const QCommandLineParser& p) {
+    const QString url = p.value("wado");
+    if (!url.startsWith("http://") && !url.startsWith("https://")) {
+        throw std::invalid_argument("--wado must be an http:// or https:// DICOMweb base URL");
+    }
+    DicomWebService s;
+    s.baseUrl = url.endsWith('/') ? url.chopped(1).toStdString() : url.toStdString();
+    s.timeoutSeconds = std::max(p.value("timeout").toInt(), 1);
+    return s;
 }
 
 QJsonObject toJson(const QueryMatch& m) {
@@ -137,6 +149,7 @@ int findCommand(const QStringList& args) {
          "FROM-TO"},
         {"accession", "Accession number.", "A"},
         {"study", "Study Instance UID.", "UID"},
+        {"wado", "Search this DICOMweb service (QIDO-RS) instead of --pacs.", "URL"},
         {"json", "Print a JSON list of matches."},
     });
     QTextStream err(stderr);
@@ -149,7 +162,6 @@ int findCommand(const QStringList& args) {
         return kOk;
     }
     try {
-        const auto [node, settings] = nodeFrom(p);
         QueryLevel level = QueryLevel::Study;
         QueryFilter f;
         try {
@@ -166,7 +178,11 @@ int findCommand(const QStringList& args) {
         } catch (const PacsError& e) {
             throw std::invalid_argument(e.what());
         }
-        const std::vector<QueryMatch> matches = find(node, settings, level, f);
+        const std::vector<QueryMatch> matches =
+            p.isSet("wado") ? qidoSearch(serviceFrom(p), level, f) : [&] {
+                const auto [node, settings] = nodeFrom(p);
+                return find(node, settings, level, f);
+            }();
         QTextStream out(stdout);
         if (p.isSet("json")) {
             QJsonArray list;
@@ -194,7 +210,9 @@ int getCommand(const QStringList& args) {
     p.addOptions({
         {"study", "Study Instance UID (required).", "UID"},
         {"series", "Series Instance UID (default: every series of the study).", "UID"},
-        {"method", "cget (default); cmove and wado come later.", "METHOD", "cget"},
+        {"method", "cget (default) or wado (with --wado URL); cmove comes later.", "METHOD",
+         "cget"},
+        {"wado", "DICOMweb base URL for --method wado.", "URL"},
         {"store", "The study store folder.", "DIR"},
     });
     QTextStream err(stderr);
@@ -211,13 +229,17 @@ int getCommand(const QStringList& args) {
                          : QStandardPaths::writableLocation(QStandardPaths::GenericDataLocation) +
                                "/lucent/store";
     try {
-        const auto [node, settings] = nodeFrom(p);
         if (!p.isSet("study")) {
             throw std::invalid_argument("--study UID is required");
         }
-        if (p.value("method") != "cget") {
-            throw std::invalid_argument("--method " + p.value("method").toStdString() +
-                                        " is not available in this build (use cget)");
+        const QString method = p.value("method");
+        if (method != "cget" && method != "wado") {
+            throw std::invalid_argument("--method " + method.toStdString() +
+                                        " is not available in this build (cget or wado)");
+        }
+        const bool wado = method == "wado";
+        if (wado && !p.isSet("wado")) {
+            throw std::invalid_argument("--method wado needs --wado URL");
         }
         const std::string study = p.value("study").toStdString();
         std::vector<std::string> series;
@@ -226,18 +248,27 @@ int getCommand(const QStringList& args) {
         } else {
             QueryFilter f;
             f.studyUid = study;
-            for (const QueryMatch& m : find(node, settings, QueryLevel::Series, f)) {
+            const std::vector<QueryMatch> found =
+                wado ? qidoSearch(serviceFrom(p), QueryLevel::Series, f) : [&] {
+                    const auto [node, settings] = nodeFrom(p);
+                    return find(node, settings, QueryLevel::Series, f);
+                }();
+            for (const QueryMatch& m : found) {
                 series.push_back(m.seriesUid);
             }
             if (series.empty()) {
-                throw PacsError(node.describe() + ": no series found for study " + study);
+                throw PacsError("no series found for study " + study);
             }
         }
         StudyStore target(QDir(store).absolutePath().toStdString());
         QTextStream out(stdout);
         bool allComplete = true;
         for (const std::string& uid : series) {
-            const RetrieveResult r = retrieveSeries(node, settings, study, uid, target);
+            const RetrieveResult r =
+                wado ? wadoRetrieveSeries(serviceFrom(p), study, uid, target) : [&] {
+                    const auto [node, settings] = nodeFrom(p);
+                    return retrieveSeries(node, settings, study, uid, target);
+                }();
             allComplete = allComplete && r.complete;
             out << "series " << QString::fromStdString(uid) << ": " << r.received
                 << " instance(s) arrived, " << r.alreadyStored << " already stored, "

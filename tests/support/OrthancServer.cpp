@@ -53,7 +53,8 @@ OrthancServer::OrthancServer() {
         {"LimitFindResults", 0},
         {"LimitFindInstances", 0},
         {"SaveJobs", false},
-        {"Plugins", QJsonArray()},
+        {"Plugins", QJsonArray{"/usr/share/orthanc/plugins/libOrthancDicomWeb.so"}},
+        {"DicomWeb", QJsonObject{{"Enable", true}, {"Root", "/dicom-web/"}}},
     };
     QFile file(dir_.filePath("orthanc.json"));
     if (!file.open(QIODevice::WriteOnly) || file.write(QJsonDocument(config).toJson()) < 0) {
@@ -124,6 +125,10 @@ bool OrthancServer::isRunning() const {
 
 QString OrthancServer::node() const {
     return QString("%1@127.0.0.1:%2").arg(kAeTitle).arg(dicomPort_);
+}
+
+QString OrthancServer::dicomWebUrl() const {
+    return QString("http://127.0.0.1:%1/dicom-web").arg(httpPort_);
 }
 
 bool OrthancServer::store(const QStringList& files) {

@@ -25,7 +25,8 @@ public:
     const QString& error() const { return error_; }
     int dicomPort() const { return dicomPort_; }
     int httpPort() const { return httpPort_; }
-    QString node() const; // ORTHANC@127.0.0.1:PORT
+    QString node() const;        // ORTHANC@127.0.0.1:PORT
+    QString dicomWebUrl() const; // http://127.0.0.1:PORT/dicom-web
 
     // Sends files with DCMTK's storescu (C-STORE); false with error() set on failure.
     bool store(const QStringList& files);
