@@ -10,6 +10,7 @@
 
 #include "core/raycast/BSplinePrefilter.h"
 #include "core/raycast/FastDvrKernel.h"
+#include "core/raycast/LeapReach.h"
 #include "core/raycast/PacketDvrKernel.h"
 #include "core/raycast/RayKernel.h"
 #include "core/raycast/ViewFrame.h"
@@ -274,6 +275,8 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
     const std::vector<std::uint8_t> cellLeap =
         leapCodes(grid, coarse.skippable, cells, fine.skippable);
     sf.cellLeap = &cellLeap;
+    const std::vector<std::uint8_t> cellReach = leapReach(cellLeap, cells.bricksPerAxis());
+    sf.cellReach = &cellReach;
 
     // Values outside the transfer function's non-zero opacity need no lookup.
     const auto& op = tf.opacity;

@@ -71,9 +71,13 @@ private:
     struct Lattice {
         glm::dvec3 entry, stride, inverse; // p(n) = entry + stride * n
     };
-    // In lattice units, where the ray leaves the leapable cell or brick
-    // holding voxel (i, j, k), or -1 when neither can be leapt.
+    // In lattice units, where the ray leaves the leapable cells or brick
+    // around voxel (i, j, k), or -1 when its cell cannot be leapt.
     double leapExit(int i, int j, int k, int fine, const Lattice& l) const;
+    // In lattice units, where the ray leaves cells lo .. hi (inclusive) of
+    // `level`; no limit along axes where they reach the end of the grid.
+    double boxExit(glm::ivec3 lo, glm::ivec3 hi, const typename RaySetup<float>::LeapLevel& level,
+                   const Lattice& l) const;
 
     const RaySetup<float>& s_;
     Grid<float, T> g_;
@@ -122,23 +126,35 @@ glm::vec3 FastDvrKernel<T>::shade(const glm::vec3& base, const glm::vec3& grad,
 }
 
 template <class T>
+double FastDvrKernel<T>::boxExit(glm::ivec3 lo, glm::ivec3 hi,
+                                 const typename RaySetup<float>::LeapLevel& level,
+                                 const Lattice& l) const {
+    double exit = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a) {
+        if (l.stride[a] > 1e-15 && hi[a] < level.perAxis[a] - 1) {
+            exit = std::min(exit, (double((hi[a] + 1) * level.size) - l.entry[a]) * l.inverse[a]);
+        } else if (l.stride[a] < -1e-15 && lo[a] > 0) {
+            exit = std::min(exit, (double(lo[a] * level.size) - l.entry[a]) * l.inverse[a]);
+        }
+    }
+    return exit;
+}
+
+template <class T>
 double FastDvrKernel<T>::leapExit(int i, int j, int k, int fine, const Lattice& l) const {
     const std::uint8_t code = (*s_.cellLeap)[std::size_t(fine)];
     if (code == 0) {
         return -1.0;
     }
-    const auto& level = s_.levels[code == 2 ? 0 : 1];
-    const glm::ivec3 idx = code == 2 ? glm::min(glm::ivec3(i, j, k) / level.size, level.perAxis - 1)
-                                     : glm::ivec3(i, j, k) >> fineShift_;
-    // In lattice units: the sample index at which the ray leaves the cell.
-    double exit = std::numeric_limits<double>::infinity();
-    for (int a = 0; a < 3; ++a) {
-        const double lo = double(idx[a] * level.size);
-        if (l.stride[a] > 1e-15 && idx[a] < level.perAxis[a] - 1) {
-            exit = std::min(exit, (lo + double(level.size) - l.entry[a]) * l.inverse[a]);
-        } else if (l.stride[a] < -1e-15 && idx[a] > 0) {
-            exit = std::min(exit, (lo - l.entry[a]) * l.inverse[a]);
-        }
+    // The cube of leapable cells around this one, or the brick where it
+    // reaches further: the ray stays in either until it leaves it.
+    const int reach = s_.cellReach != nullptr ? (*s_.cellReach)[std::size_t(fine)] : 0;
+    const glm::ivec3 cell = glm::ivec3(i, j, k) >> fineShift_;
+    double exit = boxExit(cell - reach, cell + reach, s_.levels[1], l);
+    if (code == 2) {
+        const auto& brick = s_.levels[0];
+        const glm::ivec3 b = glm::min(glm::ivec3(i, j, k) / brick.size, brick.perAxis - 1);
+        exit = std::max(exit, boxExit(b, b, brick, l));
     }
     return exit;
 }

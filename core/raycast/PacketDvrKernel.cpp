@@ -190,6 +190,7 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
     const __m256 vsx = _mm256_load_ps(sx), vsy = _mm256_load_ps(sy), vsz = _mm256_load_ps(sz);
     const __m256i lastIjk[3] = {_mm256_set1_epi32(lastI), _mm256_set1_epi32(lastJ),
                                 _mm256_set1_epi32(lastK)};
+    const auto rowStep = std::ptrdiff_t(g.sy), sliceStep = std::ptrdiff_t(g.sz);
     const __m256i rowStride = _mm256_set1_epi32(int(g.sy)),
                   sliceStride = _mm256_set1_epi32(int(g.sz));
     const __m256i cellsX = _mm256_set1_epi32(cells.x), cellsY = _mm256_set1_epi32(cells.y);
@@ -216,17 +217,32 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
                 _mm256_add_epi32(_mm256_sra_epi32(i, shiftCount), _mm256_mullo_epi32(cellsX, cy));
             const int same =
                 _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(cell, vChecked)));
-            const int changed = active & ~same;
-            if (changed != 0) {
-                // A ray entered another cell: leap it (one at a time) to the next
-                // sample it takes, then look at the packet again.
-                _mm256_store_si256(reinterpret_cast<__m256i*>(n), vn);
+            if (const int changed = active & ~same; changed != 0) {
+                // Rays that entered a cell that cannot be leapt sample it; the
+                // others leap (one at a time) to the next sample they take,
+                // then the packet is looked at again.
+                alignas(32) int entered[kWidth];
+                storeInts(entered, cell);
+                int leaping = 0;
                 for (int bits = changed; bits != 0; bits &= bits - 1) {
-                    advance(std::countr_zero(unsigned(bits)));
+                    const int r = std::countr_zero(unsigned(bits));
+                    if ((*s.cellLeap)[std::size_t(entered[r])] == 0) {
+                        checked[r] = entered[r];
+                        empty[r] = false;
+                    } else {
+                        leaping |= 1 << r;
+                    }
                 }
-                vn = _mm256_load_si256(reinterpret_cast<const __m256i*>(n));
-                vChecked = _mm256_load_si256(reinterpret_cast<const __m256i*>(checked));
-                continue;
+                if (leaping != 0) {
+                    storeInts(n, vn);
+                    for (int bits = leaping; bits != 0; bits &= bits - 1) {
+                        advance(std::countr_zero(unsigned(bits)));
+                    }
+                    vn = loadInts(n);
+                    vChecked = loadInts(checked);
+                    continue;
+                }
+                vChecked = loadInts(checked);
             }
         }
         samples += std::size_t(std::popcount(unsigned(active)));
@@ -240,11 +256,16 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
         const __m256i o00 =
             _mm256_add_epi32(i, _mm256_add_epi32(_mm256_mullo_epi32(j, rowStride),
                                                  _mm256_mullo_epi32(kk, sliceStride)));
+        alignas(32) int offset[kWidth];
+        storeInts(offset, o00);
+        const T* base[kWidth];
+        for (int r = 0; r < kWidth; ++r) {
+            base[r] = data + offset[r];
+        }
         Cell cell;
         for (int r = 0; r < 4; ++r) {
-            __m256i o = (r & 1) != 0 ? _mm256_add_epi32(o00, rowStride) : o00;
-            o = (r & 2) != 0 ? _mm256_add_epi32(o, sliceStride) : o;
-            cell.row[r] = pairAt(data, o);
+            cell.row[r] =
+                pairAt(base, ((r & 1) != 0 ? rowStep : 0) + ((r & 2) != 0 ? sliceStep : 0));
         }
         // The same operations, in the same order, as FastDvrKernel's.
         const __m256 c00 = lerp(cell.row[0].a, cell.row[0].b, fx);
@@ -298,11 +319,12 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
                 if (insideBits != 0) {
                     // Lanes at the border read a lane's inside the volume, then
                     // take the clamped filter's gradient below.
-                    const __m256i some = _mm256_permutevar8x32_epi32(
-                        o00, _mm256_set1_epi32(std::countr_zero(unsigned(insideBits))));
-                    const __m256i at = _mm256_castps_si256(_mm256_blendv_ps(
-                        _mm256_castsi256_ps(some), _mm256_castsi256_ps(o00), laneMask(insideBits)));
-                    gradient(data, at, cell, rowStride, sliceStride, fx, fy, fz, grad);
+                    const T* at[kWidth];
+                    const T* some = base[std::countr_zero(unsigned(insideBits))];
+                    for (int r = 0; r < kWidth; ++r) {
+                        at[r] = (insideBits >> r & 1) != 0 ? base[r] : some;
+                    }
+                    gradient(at, cell, rowStep, sliceStep, fx, fy, fz, grad);
                 }
                 if (const int border = contributing & ~insideBits; border != 0) {
                     alignas(32) float px[kWidth], py[kWidth], pz[kWidth], gs[3][kWidth]{};

@@ -14,22 +14,33 @@
 
 namespace lucent::packet {
 
-// Per lane, the voxels data[off] and data[off + 1] as floats.
-LUCENT_AVX2 inline void loadPairs(const std::int16_t* data, __m256i off, __m256& a, __m256& b) {
-    const __m256i g = _mm256_i32gather_epi32(reinterpret_cast<const int*>(data), off, 2);
+// Per lane, the voxels at[n][0] and at[n][1] as floats. Eight plain loads:
+// faster than a gather instruction on the CPUs we measured (AMD Zen 4).
+LUCENT_AVX2 inline void loadPairs(const std::int16_t* const at[8], __m256& a, __m256& b) {
+    int v[8];
+    for (int n = 0; n < 8; ++n) {
+        __builtin_memcpy(&v[n], at[n], sizeof(int));
+    }
+    const __m256i g = _mm256_setr_epi32(v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7]);
     a = _mm256_cvtepi32_ps(_mm256_srai_epi32(_mm256_slli_epi32(g, 16), 16));
     b = _mm256_cvtepi32_ps(_mm256_srai_epi32(g, 16));
 }
 
-LUCENT_AVX2 inline void loadPairs(const std::uint16_t* data, __m256i off, __m256& a, __m256& b) {
-    const __m256i g = _mm256_i32gather_epi32(reinterpret_cast<const int*>(data), off, 2);
+LUCENT_AVX2 inline void loadPairs(const std::uint16_t* const at[8], __m256& a, __m256& b) {
+    int v[8];
+    for (int n = 0; n < 8; ++n) {
+        __builtin_memcpy(&v[n], at[n], sizeof(int));
+    }
+    const __m256i g = _mm256_setr_epi32(v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7]);
     a = _mm256_cvtepi32_ps(_mm256_and_si256(g, _mm256_set1_epi32(0xffff)));
     b = _mm256_cvtepi32_ps(_mm256_srli_epi32(g, 16));
 }
 
-LUCENT_AVX2 inline void loadPairs(const float* data, __m256i off, __m256& a, __m256& b) {
-    a = _mm256_i32gather_ps(data, off, 4);
-    b = _mm256_i32gather_ps(data + 1, off, 4);
+LUCENT_AVX2 inline void loadPairs(const float* const at[8], __m256& a, __m256& b) {
+    a = _mm256_setr_ps(at[0][0], at[1][0], at[2][0], at[3][0], at[4][0], at[5][0], at[6][0],
+                       at[7][0]);
+    b = _mm256_setr_ps(at[0][1], at[1][1], at[2][1], at[3][1], at[4][1], at[5][1], at[6][1],
+                       at[7][1]);
 }
 
 // a + f * (b - a)
@@ -39,6 +50,13 @@ LUCENT_AVX2 inline __m256 lerp(__m256 a, __m256 b, __m256 f) {
 
 LUCENT_AVX2 inline __m256i clampInt(__m256i v, __m256i hi) {
     return _mm256_max_epi32(_mm256_setzero_si256(), _mm256_min_epi32(v, hi));
+}
+
+LUCENT_AVX2 inline __m256i loadInts(const int* p) {
+    return _mm256_load_si256(reinterpret_cast<const __m256i*>(p));
+}
+LUCENT_AVX2 inline void storeInts(int* p, __m256i v) {
+    _mm256_store_si256(reinterpret_cast<__m256i*>(p), v);
 }
 
 LUCENT_AVX2 inline int maskBits(__m256 m) {
@@ -58,9 +76,14 @@ struct Cell {
     Pair row[4];
 };
 
-template <class T> LUCENT_AVX2 inline Pair pairAt(const T* data, __m256i off) {
+// Per lane, the voxel pair `delta` voxels on from the lane's base.
+template <class T> LUCENT_AVX2 inline Pair pairAt(const T* const base[8], std::ptrdiff_t delta) {
+    const T* at[8];
+    for (int n = 0; n < 8; ++n) {
+        at[n] = base[n] + delta;
+    }
     Pair p;
-    loadPairs(data, off, p.a, p.b);
+    loadPairs(at, p.a, p.b);
     return p;
 }
 
@@ -71,35 +94,26 @@ LUCENT_AVX2 inline __m256 blendCorners(const __m256 c[8], __m256 fx, __m256 fy, 
     return lerp(c0, c1, fz);
 }
 
-// FastDvrKernel::gradientInside for eight lanes whose cells start at off (all
-// neighbours inside the volume) and whose cell rows are `cell`.
+// FastDvrKernel::gradientInside for eight lanes whose cells start at base[n]
+// (all neighbours inside the volume) and whose cell rows are `cell`.
 template <class T>
-LUCENT_AVX2 inline void gradient(const T* data, __m256i off, const Cell& cell, __m256i rowStride,
-                                 __m256i sliceStride, __m256 fx, __m256 fy, __m256 fz,
-                                 __m256 g[3]) {
-    const __m256i one = _mm256_set1_epi32(1);
+LUCENT_AVX2 inline void gradient(const T* const base[8], const Cell& cell, std::ptrdiff_t sy,
+                                 std::ptrdiff_t sz, __m256 fx, __m256 fy, __m256 fz, __m256 g[3]) {
     __m256 c[8];
     // x: value(x + 1) - value(x - 1) along the four rows.
     for (int r = 0; r < 4; ++r) {
-        __m256i o = off;
-        if ((r & 1) != 0) {
-            o = _mm256_add_epi32(o, rowStride);
-        }
-        if ((r & 2) != 0) {
-            o = _mm256_add_epi32(o, sliceStride);
-        }
-        const Pair minus = pairAt(data, _mm256_sub_epi32(o, one));
-        const Pair plus = pairAt(data, _mm256_add_epi32(o, one));
+        const std::ptrdiff_t o = ((r & 1) != 0 ? sy : 0) + ((r & 2) != 0 ? sz : 0);
+        const Pair minus = pairAt(base, o - 1);
+        const Pair plus = pairAt(base, o + 1);
         c[2 * r] = _mm256_sub_ps(plus.a, minus.a);
         c[2 * r + 1] = _mm256_sub_ps(plus.b, minus.b);
     }
     g[0] = blendCorners(c, fx, fy, fz);
     // y: rows y - 1 and y + 2 beside the cell's rows, in both slices.
     for (int z = 0; z < 2; ++z) {
-        const __m256i o = z == 0 ? off : _mm256_add_epi32(off, sliceStride);
-        const Pair below = pairAt(data, _mm256_sub_epi32(o, rowStride));
-        const Pair above =
-            pairAt(data, _mm256_add_epi32(o, _mm256_add_epi32(rowStride, rowStride)));
+        const std::ptrdiff_t o = z == 0 ? 0 : sz;
+        const Pair below = pairAt(base, o - sy);
+        const Pair above = pairAt(base, o + 2 * sy);
         const Pair& y0 = cell.row[2 * z];
         const Pair& y1 = cell.row[2 * z + 1];
         c[4 * z] = _mm256_sub_ps(y1.a, below.a);
@@ -110,10 +124,9 @@ LUCENT_AVX2 inline void gradient(const T* data, __m256i off, const Cell& cell, _
     g[1] = blendCorners(c, fx, fy, fz);
     // z: slices z - 1 and z + 2 beside the cell's slices, in both rows.
     for (int y = 0; y < 2; ++y) {
-        const __m256i o = y == 0 ? off : _mm256_add_epi32(off, rowStride);
-        const Pair front = pairAt(data, _mm256_sub_epi32(o, sliceStride));
-        const Pair back =
-            pairAt(data, _mm256_add_epi32(o, _mm256_add_epi32(sliceStride, sliceStride)));
+        const std::ptrdiff_t o = y == 0 ? 0 : sy;
+        const Pair front = pairAt(base, o - sz);
+        const Pair back = pairAt(base, o + 2 * sz);
         const Pair& z0 = cell.row[y];
         const Pair& z1 = cell.row[y + 2];
         c[2 * y] = _mm256_sub_ps(z1.a, front.a);

@@ -55,6 +55,10 @@ template <class Real> struct RaySetup {
     // Per cell of levels[1]: 2 where its whole brick can be leapt, 1 where the
     // cell can, 0 where neither (the fast kernel's one lookup per cell).
     const std::vector<std::uint8_t>* cellLeap = nullptr;
+    // Per cell of levels[1] that can be leapt: r such that all cells within r
+    // cells of it, in every direction, can be leapt too (see LeapReach.h); the
+    // fast kernels leap over that whole cube. Null: r = 0.
+    const std::vector<std::uint8_t>* cellReach = nullptr;
 };
 
 struct RayOutput {
