@@ -23,6 +23,10 @@ struct CpuRayCaster::Cache {
     std::vector<double> coefficientsD;
     std::pair<double, double> coefficientRange{0.0, 0.0};
     std::map<std::tuple<int, bool, int>, BrickGrid> grids; // (size, over coefficients, overlap)
+    // leapReach of the last leap codes (and cell grid): frames that only move
+    // the camera reuse it.
+    std::vector<std::uint8_t> reachCodes, reach;
+    glm::ivec3 reachCells{0};
 };
 
 namespace {
@@ -286,8 +290,12 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
     const std::vector<std::uint8_t> cellLeap =
         leapCodes(grid, coarse.skippable, cells, fine.skippable);
     sf.cellLeap = &cellLeap;
-    const std::vector<std::uint8_t> cellReach = leapReach(cellLeap, cells.bricksPerAxis());
-    sf.cellReach = &cellReach;
+    if (cache.reachCodes != cellLeap || cache.reachCells != cells.bricksPerAxis()) {
+        cache.reach = leapReach(cellLeap, cells.bricksPerAxis());
+        cache.reachCodes = cellLeap;
+        cache.reachCells = cells.bricksPerAxis();
+    }
+    sf.cellReach = &cache.reach;
 
     // Values outside the transfer function's non-zero opacity need no lookup.
     const auto& op = tf.opacity;

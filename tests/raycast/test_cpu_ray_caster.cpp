@@ -9,6 +9,7 @@
 #include "core/image/ImageMetrics.h"
 #include "core/io/Catalog.h"
 #include "core/raycast/CpuRayCaster.h"
+#include "core/raycast/LeapReach.h"
 #include "core/raycast/ViewFrame.h"
 
 using namespace lucent;
@@ -353,6 +354,41 @@ private slots:
                                                            .arg(leap)
                                                            .arg(worst)));
                     QCOMPARE(packet.stats.samples, scalar.stats.samples);
+                }
+            }
+        }
+    }
+
+    void leapReachIsTheChessboardDistanceToWhatCannotBeLeapt() {
+        std::mt19937 rng(7);
+        for (int trial = 0; trial < 20; ++trial) {
+            const glm::ivec3 n(1 + int(rng() % 9), 1 + int(rng() % 9), 1 + int(rng() % 9));
+            std::vector<std::uint8_t> leapable(std::size_t(n.x) * n.y * n.z);
+            for (std::uint8_t& v : leapable) {
+                v = rng() % 10 < 8 ? 1 : 0;
+            }
+            const std::vector<std::uint8_t> reach = leapReach(leapable, n);
+            std::size_t c = 0;
+            for (int z = 0; z < n.z; ++z) {
+                for (int y = 0; y < n.y; ++y) {
+                    for (int x = 0; x < n.x; ++x, ++c) {
+                        // Brute force: the nearest cell that cannot be leapt, less one.
+                        int nearest = 255;
+                        std::size_t o = 0;
+                        for (int k = 0; k < n.z; ++k) {
+                            for (int j = 0; j < n.y; ++j) {
+                                for (int i = 0; i < n.x; ++i, ++o) {
+                                    if (leapable[o] == 0) {
+                                        nearest = std::min(
+                                            nearest, std::max({std::abs(i - x), std::abs(j - y),
+                                                               std::abs(k - z)}));
+                                    }
+                                }
+                            }
+                        }
+                        const int expected = leapable[c] == 0 ? 0 : std::min(nearest - 1, 254);
+                        QCOMPARE(int(reach[c]), expected);
+                    }
                 }
             }
         }
