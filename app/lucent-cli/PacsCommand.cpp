@@ -10,9 +10,12 @@
 #include <QDir>
 #include <QStandardPaths>
 
+#include <memory>
+
 #include "core/pacs/DicomWebClient.h"
 #include "core/pacs/DimseQuery.h"
 #include "core/pacs/SeriesRetriever.h"
+#include "core/pacs/StorageScp.h"
 
 namespace lucent::cli {
 namespace {
@@ -210,8 +213,12 @@ int getCommand(const QStringList& args) {
     p.addOptions({
         {"study", "Study Instance UID (required).", "UID"},
         {"series", "Series Instance UID (default: every series of the study).", "UID"},
-        {"method", "cget (default) or wado (with --wado URL); cmove comes later.", "METHOD",
-         "cget"},
+        {"method",
+         "cget (default), cmove (Lucent's storage SCP receives) or wado (with --wado URL).",
+         "METHOD", "cget"},
+        {"port",
+         "Port of Lucent's storage SCP for --method cmove (default 11112); its AE title is --aet.",
+         "N", "11112"},
         {"wado", "DICOMweb base URL for --method wado.", "URL"},
         {"store", "The study store folder.", "DIR"},
     });
@@ -233,9 +240,14 @@ int getCommand(const QStringList& args) {
             throw std::invalid_argument("--study UID is required");
         }
         const QString method = p.value("method");
-        if (method != "cget" && method != "wado") {
+        if (method != "cget" && method != "wado" && method != "cmove") {
             throw std::invalid_argument("--method " + method.toStdString() +
-                                        " is not available in this build (cget or wado)");
+                                        " is not one of cget, cmove, wado");
+        }
+        bool portOk = false;
+        const int scpPort = p.value("port").toInt(&portOk);
+        if (!portOk || scpPort < 1 || scpPort > 65535) {
+            throw std::invalid_argument("--port must be a port number from 1 to 65535");
         }
         const bool wado = method == "wado";
         if (wado && !p.isSet("wado")) {
@@ -261,6 +273,12 @@ int getCommand(const QStringList& args) {
             }
         }
         StudyStore target(QDir(store).absolutePath().toStdString());
+        // C-MOVE: the PACS sends to Lucent's own storage SCP, on the same store.
+        std::unique_ptr<StorageScp> scp;
+        if (method == "cmove") {
+            scp = std::make_unique<StorageScp>(
+                target.root(), StorageScpSettings{p.value("aet").toStdString(), scpPort});
+        }
         QTextStream out(stdout);
         bool allComplete = true;
         for (const std::string& uid : series) {

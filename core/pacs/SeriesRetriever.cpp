@@ -1,10 +1,10 @@
 #include "core/pacs/SeriesRetriever.h"
 
 #include <dcmtk/dcmdata/dcdeftag.h>
-#include <dcmtk/dcmdata/dcfilefo.h>
 #include <dcmtk/dcmdata/dcuid.h>
 
 #include "core/pacs/DimseAssociation.h"
+#include "core/pacs/IncomingInstance.h"
 
 namespace lucent {
 namespace {
@@ -43,31 +43,8 @@ protected:
             status = kOutOfResources;
             return EC_Normal;
         }
-        InstanceRecord r;
-        r.sopInstanceUid = text(*dataset, DCM_SOPInstanceUID);
-        r.series.seriesUid = text(*dataset, DCM_SeriesInstanceUID);
-        r.series.studyUid = text(*dataset, DCM_StudyInstanceUID);
-        r.series.modality = text(*dataset, DCM_Modality);
-        r.series.description = text(*dataset, DCM_SeriesDescription);
-        r.series.patientName = text(*dataset, DCM_PatientName);
-        r.series.patientId = text(*dataset, DCM_PatientID);
-        r.series.studyDate = text(*dataset, DCM_StudyDate);
-        Sint32 number = 0;
-        dataset->findAndGetSint32(DCM_SeriesNumber, number);
-        r.seriesNumber = number;
         try {
-            const std::filesystem::path temp = store_.temporaryFile();
-            DcmFileFormat file(dataset.get());
-            const E_TransferSyntax xfer = dataset->getOriginalXfer();
-            const OFCondition c =
-                file.saveFile(temp.c_str(), xfer == EXS_Unknown ? EXS_LittleEndianExplicit : xfer);
-            if (c.bad()) {
-                std::error_code ec;
-                std::filesystem::remove(temp, ec);
-                throw StoreError(temp.string() + ": cannot write a received instance (" + c.text() +
-                                 ")");
-            }
-            (store_.add(temp, r) ? received : duplicates) += 1;
+            (storeIncoming(*dataset, store_) ? received : duplicates) += 1;
         } catch (const StoreError& e) {
             ++failed;
             storeError = e.what();
@@ -146,6 +123,23 @@ SeriesListing listInstances(const PacsNode& node, const PacsSettings& settings,
     return out;
 }
 
+// The C-GET/C-MOVE query for what is missing: the series, or a UID list.
+void missingQuery(DcmDataset& q, const std::string& studyUid, const std::string& seriesUid,
+                  const std::vector<std::string>& missing, std::size_t all) {
+    q.putAndInsertString(DCM_StudyInstanceUID, studyUid.c_str());
+    q.putAndInsertString(DCM_SeriesInstanceUID, seriesUid.c_str());
+    if (missing.size() == all) {
+        q.putAndInsertString(DCM_QueryRetrieveLevel, "SERIES");
+        return;
+    }
+    std::string list;
+    for (const std::string& sop : missing) {
+        list += (list.empty() ? "" : "\\") + sop;
+    }
+    q.putAndInsertString(DCM_QueryRetrieveLevel, "IMAGE");
+    q.putAndInsertString(DCM_SOPInstanceUID, list.c_str());
+}
+
 } // namespace
 
 RetrieveResult retrieveSeries(const PacsNode& node, const PacsSettings& settings,
@@ -182,19 +176,7 @@ RetrieveResult retrieveSeries(const PacsNode& node, const PacsSettings& settings
         const T_ASC_PresentationContextID pc =
             a.context(UID_GETStudyRootQueryRetrieveInformationModel, "C-GET");
         DcmDataset q;
-        q.putAndInsertString(DCM_StudyInstanceUID, studyUid.c_str());
-        q.putAndInsertString(DCM_SeriesInstanceUID, seriesUid.c_str());
-        if (missing.size() == listing.instances.size()) {
-            q.putAndInsertString(DCM_QueryRetrieveLevel, "SERIES");
-        } else {
-            // Only what the store lacks, as a list of UIDs (list matching on a unique key).
-            std::string list;
-            for (const std::string& sop : missing) {
-                list += (list.empty() ? "" : "\\") + sop;
-            }
-            q.putAndInsertString(DCM_QueryRetrieveLevel, "IMAGE");
-            q.putAndInsertString(DCM_SOPInstanceUID, list.c_str());
-        }
+        missingQuery(q, studyUid, seriesUid, missing, listing.instances.size());
         RetrieveResponses responses;
         const OFCondition c = a.scu().sendCGETRequest(pc, &q, &responses.list);
         result.received = receiver->received;
@@ -212,6 +194,77 @@ RetrieveResult retrieveSeries(const PacsNode& node, const PacsSettings& settings
             a.fail("C-GET failed after " + std::to_string(result.received) + " instance(s)", c);
         }
     }
+    result.complete = store.isComplete(seriesUid);
+    return result;
+}
+
+RetrieveResult moveSeries(const PacsNode& node, const PacsSettings& settings,
+                          const std::string& destinationAe, const std::string& studyUid,
+                          const std::string& seriesUid, StudyStore& store) {
+    checkAeTitle(destinationAe, "move destination");
+    const SeriesListing listing = listInstances(node, settings, studyUid, seriesUid);
+    if (listing.instances.empty()) {
+        throw PacsError(node.describe() + ": series " + seriesUid + " of study " + studyUid +
+                        " has no instances there");
+    }
+    RetrieveResult result;
+    result.seriesUid = seriesUid;
+    result.expected = static_cast<int>(listing.instances.size());
+    result.folder = store.seriesFolder(studyUid, seriesUid);
+    store.setExpected(listing.info, listing.seriesNumber, result.expected);
+    const std::set<std::string> before = store.instancesOf(seriesUid);
+    std::vector<std::string> missing;
+    for (const std::string& sop : listing.instances) {
+        if (before.count(sop) == 0) {
+            missing.push_back(sop);
+        }
+    }
+    result.alreadyStored = result.expected - static_cast<int>(missing.size());
+    if (!missing.empty()) {
+        DimseAssociation a(node, settings, {UID_MOVEStudyRootQueryRetrieveInformationModel});
+        const T_ASC_PresentationContextID pc =
+            a.context(UID_MOVEStudyRootQueryRetrieveInformationModel, "C-MOVE");
+        DcmDataset q;
+        missingQuery(q, studyUid, seriesUid, missing, listing.instances.size());
+        RetrieveResponses responses;
+        if (const OFCondition c =
+                a.scu().sendMOVERequest(pc, destinationAe.c_str(), &q, &responses.list);
+            c.bad()) {
+            a.fail("C-MOVE failed", c);
+        }
+        const Uint16 status = responses.list.empty() ? 0xC000 : responses.list.back()->m_status;
+        std::string comment;
+        if (!responses.list.empty() && responses.list.back()->m_statusDetail != nullptr) {
+            comment = text(*responses.list.back()->m_statusDetail, DCM_ErrorComment);
+        }
+        if (status == 0xA801) {
+            throw PacsError(node.describe() + ": the PACS does not know the move destination '" +
+                            destinationAe +
+                            "' (register Lucent's AE title, host and storage port with the PACS)");
+        }
+        if (status != kSuccess &&
+            status != 0xB000) { // 0xB000: finished with failures, counted below
+            char hex[8];
+            std::snprintf(hex, sizeof hex, "%04X", status);
+            const bool nothingSent =
+                responses.list.empty() || responses.list.back()->m_numberOfCompletedSubops == 0;
+            // Some PACS (Orthanc) answer an unknown destination with a generic failure.
+            throw PacsError(
+                node.describe() + ": the PACS refused to send to '" + destinationAe +
+                "' (C-MOVE status 0x" + hex + (comment.empty() ? std::string() : ", " + comment) +
+                ")" +
+                (nothingSent
+                     ? std::string(": is '") + destinationAe +
+                           "' registered with the PACS as a move destination, with Lucent's "
+                           "host and storage port?"
+                     : std::string()));
+        }
+        if (!responses.list.empty()) {
+            result.failed = responses.list.back()->m_numberOfFailedSubops;
+        }
+    }
+    result.received =
+        static_cast<int>(store.instancesOf(seriesUid).size()) - static_cast<int>(before.size());
     result.complete = store.isComplete(seriesUid);
     return result;
 }

@@ -32,4 +32,11 @@ RetrieveResult retrieveSeries(const PacsNode& node, const PacsSettings& settings
                               const std::string& studyUid, const std::string& seriesUid,
                               StudyStore& store, const RetrieveControl& control = {});
 
+// Retrieves a series by C-MOVE: the PACS sends the instances the store lacks
+// to destinationAe, a storage SCP it knows (Lucent's StorageScp on the same
+// store). Throws PacsError, e.g. when the PACS does not know the destination.
+RetrieveResult moveSeries(const PacsNode& node, const PacsSettings& settings,
+                          const std::string& destinationAe, const std::string& studyUid,
+                          const std::string& seriesUid, StudyStore& store);
+
 } // namespace lucent

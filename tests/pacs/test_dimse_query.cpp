@@ -4,6 +4,7 @@
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
+#include <QProcess>
 #include <QTcpServer>
 #include <QTemporaryDir>
 #include <QTest>
@@ -14,6 +15,7 @@
 #include "core/io/Catalog.h"
 #include "core/pacs/DimseQuery.h"
 #include "core/pacs/SeriesRetriever.h"
+#include "core/pacs/StorageScp.h"
 #include "tests/support/CliRunner.h"
 #include "tests/support/OrthancServer.h"
 #include "tests/support/SyntheticDicom.h"
@@ -44,6 +46,7 @@ class TestDimseQuery : public QObject {
     PacsNode node_;
     PacsSettings settings_;
     bool realCt_ = false;
+    int scpPort_ = 0;
 
     void write(test::SyntheticSeries s, int images) {
         const std::string dir = files_.filePath(QString::fromStdString(s.seriesUid)).toStdString();
@@ -57,7 +60,9 @@ class TestDimseQuery : public QObject {
 
 private slots:
     void initTestCase() {
-        orthanc_ = std::make_unique<test::OrthancServer>();
+        scpPort_ = test::OrthancServer::freePort();
+        orthanc_ = std::make_unique<test::OrthancServer>(
+            scpPort_); // LUCENT on scpPort_ is a move destination
         if (!orthanc_->isRunning()) {
             QSKIP(qPrintable("no test PACS: " + orthanc_->error()));
         }
@@ -295,6 +300,51 @@ private slots:
         QVERIFY(repaired.complete && store.contains(lost));
     }
 
+    void moveIntoTheStoreThroughLucentsStorageScp() {
+        QTemporaryDir dir;
+        const std::filesystem::path root = dir.path().toStdString();
+        StorageScp scp(root, {"LUCENT", scpPort_});
+        StudyStore store(root);
+        const std::string series = "1.2.826.0.1.3680043.2.1125.9012";
+        const RetrieveResult r = moveSeries(node_, settings_, "LUCENT", kStudyA, series, store);
+        QCOMPARE(r.expected, 2);
+        QCOMPARE(r.received, 2);
+        QVERIFY(r.complete);
+        QCOMPARE(scp.received(), 2);
+        QCOMPARE(loadPath(r.folder).dims(), glm::ivec3(8, 6, 2));
+        const RetrieveResult again = moveSeries(node_, settings_, "LUCENT", kStudyA, series, store);
+        QCOMPARE(again.received, 0);
+        QCOMPARE(again.alreadyStored, 2);
+        QCOMPARE(scp.received(), 2); // nothing was sent twice
+        // Lucent's SCP answers C-ECHO and takes pushes (C-STORE) too.
+        echo(PacsNode{"LUCENT", "127.0.0.1", scpPort_}, settings_);
+        QProcess push;
+        push.start("storescu", {"-aec", "LUCENT", "127.0.0.1", QString::number(scpPort_),
+                                files_.filePath("1.2.826.0.1.3680043.2.1125.9031/img0.dcm")});
+        QVERIFY(push.waitForFinished(30000) && push.exitCode() == 0);
+        QVERIFY(
+            store.contains(store.instancesOf("1.2.826.0.1.3680043.2.1125.9031").empty()
+                               ? std::string("-")
+                               : *store.instancesOf("1.2.826.0.1.3680043.2.1125.9031").begin()));
+        QCOMPARE(scp.received(), 3);
+    }
+
+    void moveToAnUnknownDestinationSaysSo() {
+        QTemporaryDir dir;
+        StudyStore store(dir.path().toStdString());
+        try {
+            moveSeries(node_, settings_, "NOBODY", kStudyA, "1.2.826.0.1.3680043.2.1125.9012",
+                       store);
+            QFAIL("expected PacsError");
+        } catch (const PacsError& e) {
+            // 0xA801 says "destination unknown"; Orthanc sends a generic failure: either way the
+            // message names it.
+            QVERIFY2(QString(e.what()).contains("'NOBODY'") &&
+                         QString(e.what()).contains("move destination"),
+                     e.what());
+        }
+    }
+
     void retrievingAnUnknownSeriesSaysSo() {
         QTemporaryDir dir;
         StudyStore store(dir.path().toStdString());
@@ -400,6 +450,12 @@ private slots:
         const test::CliRun info = test::runCli({"info", store.path()});
         QVERIFY2(info.exitCode == 0 && info.out.contains("8x6x3") && info.out.contains("8x6x2"),
                  qPrintable(info.out));
+        QTemporaryDir moved;
+        const test::CliRun move = test::runCli(
+            {"pacs", "get", "--pacs", pacs, "--study", kStudyA, "--method", "cmove", "--aet",
+             "LUCENT", "--port", QString::number(scpPort_), "--store", moved.path()});
+        QVERIFY2(move.exitCode == 0 && move.out.count("complete") == 2,
+                 qPrintable(move.out + move.err));
         QCOMPARE(test::runCli({"pacs", "get", "--pacs", pacs}).exitCode, 2);
         QCOMPARE(
             test::runCli({"pacs", "get", "--pacs", pacs, "--study", kStudyA, "--method", "wado"})

@@ -18,7 +18,7 @@ int OrthancServer::freePort() {
     return probe.serverPort();
 }
 
-OrthancServer::OrthancServer() {
+OrthancServer::OrthancServer(int moveDestinationPort) {
     binary_ = QStandardPaths::findExecutable("Orthanc", {"/usr/sbin", "/usr/bin"});
     if (binary_.isEmpty()) {
         error_ = "Orthanc is not installed (Debian package orthanc; packaging/install-deps.sh "
@@ -33,7 +33,12 @@ OrthancServer::OrthancServer() {
     do {
         httpPort_ = freePort();
     } while (httpPort_ == dicomPort_);
+    QJsonObject modalities;
+    if (moveDestinationPort != 0) {
+        modalities["lucent"] = QJsonArray{"LUCENT", "127.0.0.1", moveDestinationPort};
+    }
     const QJsonObject config{
+        {"DicomModalities", modalities},
         {"Name", "lucent-test"},
         {"StorageDirectory", dir_.filePath("storage")},
         {"IndexDirectory", dir_.filePath("storage")},

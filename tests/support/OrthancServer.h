@@ -16,7 +16,9 @@ public:
 
     // Starts Orthanc and waits until it accepts associations. isRunning() says
     // whether that worked; error() says why not (e.g. Orthanc not installed).
-    OrthancServer();
+    // moveDestinationPort: when not 0, the AE title LUCENT at 127.0.0.1 on that
+    // port is registered as a modality (the destination of C-MOVE requests).
+    explicit OrthancServer(int moveDestinationPort = 0);
     ~OrthancServer();
     OrthancServer(const OrthancServer&) = delete;
     OrthancServer& operator=(const OrthancServer&) = delete;
