@@ -73,11 +73,12 @@ private:
     };
     // In lattice units, where the ray leaves the leapable cells or brick
     // around voxel (i, j, k), or -1 when its cell cannot be leapt.
-    double leapExit(int i, int j, int k, int fine, const Lattice& l) const;
+    [[gnu::always_inline]] double leapExit(int i, int j, int k, int fine, const Lattice& l) const;
     // In lattice units, where the ray leaves cells lo .. hi (inclusive) of
     // `level`; no limit along axes where they reach the end of the grid.
-    double boxExit(glm::ivec3 lo, glm::ivec3 hi, const typename RaySetup<float>::LeapLevel& level,
-                   const Lattice& l) const;
+    [[gnu::always_inline]] double boxExit(glm::ivec3 lo, glm::ivec3 hi,
+                                          const typename RaySetup<float>::LeapLevel& level,
+                                          const Lattice& l) const;
 
     const RaySetup<float>& s_;
     Grid<float, T> g_;
@@ -126,9 +127,9 @@ glm::vec3 FastDvrKernel<T>::shade(const glm::vec3& base, const glm::vec3& grad,
 }
 
 template <class T>
-double FastDvrKernel<T>::boxExit(glm::ivec3 lo, glm::ivec3 hi,
-                                 const typename RaySetup<float>::LeapLevel& level,
-                                 const Lattice& l) const {
+inline double FastDvrKernel<T>::boxExit(glm::ivec3 lo, glm::ivec3 hi,
+                                        const typename RaySetup<float>::LeapLevel& level,
+                                        const Lattice& l) const {
     double exit = std::numeric_limits<double>::infinity();
     for (int a = 0; a < 3; ++a) {
         if (l.stride[a] > 1e-15 && hi[a] < level.perAxis[a] - 1) {
@@ -141,7 +142,7 @@ double FastDvrKernel<T>::boxExit(glm::ivec3 lo, glm::ivec3 hi,
 }
 
 template <class T>
-double FastDvrKernel<T>::leapExit(int i, int j, int k, int fine, const Lattice& l) const {
+inline double FastDvrKernel<T>::leapExit(int i, int j, int k, int fine, const Lattice& l) const {
     const std::uint8_t code = (*s_.cellLeap)[std::size_t(fine)];
     if (code == 0) {
         return -1.0;
