@@ -88,8 +88,9 @@ void castImage(const Kernel& kernel, const VolumeGeometry& g, const ViewFrame& f
                         glm::dvec3(r[c].rgba) + (1.0 - r[c].rgba.a) * desc.background;
                     std::uint8_t* px = image.at(x, y);
                     for (int ch = 0; ch < 3; ++ch) {
-                        px[ch] = static_cast<std::uint8_t>(
-                            std::lround(std::clamp(rgb[ch], 0.0, 1.0) * 255.0));
+                        // Rounds as lround does for values >= 0, without a libm call.
+                        px[ch] =
+                            static_cast<std::uint8_t>(std::clamp(rgb[ch], 0.0, 1.0) * 255.0 + 0.5);
                     }
                     px[3] = 255;
                 }
@@ -117,6 +118,7 @@ std::vector<std::uint8_t> leapCodes(const BrickGrid& bricks,
                                     const std::vector<std::uint8_t>& cellSkip) {
     std::vector<std::uint8_t> codes(cells.count(), 0);
     const int b = bricks.brickSize();
+#pragma omp parallel for schedule(static)
     for (std::size_t n = 0; n < cells.count(); ++n) {
         const Brick& c = cells.bricks()[n];
         const glm::ivec3 lo = c.first / b, hi = (c.last - 1) / b;
@@ -265,6 +267,7 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
     auto levelData = [&](const BrickGrid& level) {
         LevelData out{std::vector<std::uint8_t>(level.count(), 0),
                       std::vector<glm::vec2>(level.count())};
+#pragma omp parallel for schedule(static)
         for (std::size_t i = 0; i < level.count(); ++i) {
             const Brick& b = level.bricks()[i];
             out.skippable[i] = visible(b.minValue, b.maxValue) ? 0 : 1;
