@@ -196,7 +196,6 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
     const __m256i cellsX = _mm256_set1_epi32(cells.x), cellsY = _mm256_set1_epi32(cells.y);
     const __m128i shiftCount = _mm_cvtsi32_si128(shift);
     const __m256 visibleLo = _mm256_set1_ps(k.visibleLo_), visibleHi = _mm256_set1_ps(k.visibleHi_);
-    const __m256 ahead = _mm256_set1_ps(float(FastDvrKernel<T>::kPrefetchAhead));
     __m256i vn = _mm256_load_si256(reinterpret_cast<const __m256i*>(n));
     const __m256i vLast = _mm256_load_si256(reinterpret_cast<const __m256i*>(nLast));
     __m256i vChecked = _mm256_load_si256(reinterpret_cast<const __m256i*>(checked));
@@ -273,29 +272,6 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
         const __m256 c01 = lerp(cell.row[2].a, cell.row[2].b, fx);
         const __m256 c11 = lerp(cell.row[3].a, cell.row[3].b, fx);
         const __m256 v = lerp(lerp(c00, c10, fy), lerp(c01, c11, fy), fz);
-        {
-            // Ask for the reads of the outermost rays well ahead.
-            const __m256 fa = _mm256_add_ps(fn, ahead);
-            const __m256i ai = clampInt(
-                _mm256_cvttps_epi32(_mm256_add_ps(vex, _mm256_mul_ps(vsx, fa))), lastIjk[0]);
-            const __m256i aj = clampInt(
-                _mm256_cvttps_epi32(_mm256_add_ps(vey, _mm256_mul_ps(vsy, fa))), lastIjk[1]);
-            const __m256i ak = clampInt(
-                _mm256_cvttps_epi32(_mm256_add_ps(vez, _mm256_mul_ps(vsz, fa))), lastIjk[2]);
-            alignas(32) int aheadOff[kWidth];
-            _mm256_store_si256(
-                reinterpret_cast<__m256i*>(aheadOff),
-                _mm256_add_epi32(ai, _mm256_add_epi32(_mm256_mullo_epi32(aj, rowStride),
-                                                      _mm256_mullo_epi32(ak, sliceStride))));
-            for (const int r :
-                 {std::countr_zero(unsigned(active)), 31 - std::countl_zero(unsigned(active))}) {
-                const T* p = data + aheadOff[r];
-                __builtin_prefetch(p);
-                __builtin_prefetch(p + g.sy);
-                __builtin_prefetch(p + g.sz);
-                __builtin_prefetch(p + g.sz + g.sy);
-            }
-        }
         const __m256 inRange = _mm256_and_ps(_mm256_cmp_ps(v, visibleLo, _CMP_GE_OQ),
                                              _mm256_cmp_ps(v, visibleHi, _CMP_LE_OQ));
         const int visible = active & _mm256_movemask_ps(inRange);
