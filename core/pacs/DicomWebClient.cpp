@@ -203,15 +203,7 @@ std::vector<QueryMatch> qidoSearch(const DicomWebService& s, QueryLevel level,
             }
         }
     }
-    std::vector<QueryMatch> out;
-    for (auto& [key, m] : unique) {
-        out.push_back(std::move(m));
-    }
-    std::stable_sort(out.begin(), out.end(), [](const QueryMatch& x, const QueryMatch& y) {
-        return std::tie(x.studyDate, x.studyUid, x.seriesNumber) <
-               std::tie(y.studyDate, y.studyUid, y.seriesNumber);
-    });
-    return out;
+    return orderedMatches(std::move(unique));
 }
 
 RetrieveResult wadoRetrieveSeries(const DicomWebService& s, const std::string& studyUid,

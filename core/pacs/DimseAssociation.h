@@ -13,6 +13,19 @@
 
 namespace lucent {
 
+// Owns the responses DcmSCU hands back as raw pointers.
+template <class Response> struct OwnedResponses {
+    OFList<Response*> list;
+    OwnedResponses() = default;
+    OwnedResponses(const OwnedResponses&) = delete;
+    OwnedResponses& operator=(const OwnedResponses&) = delete;
+    ~OwnedResponses() {
+        for (Response* r : list) {
+            delete r;
+        }
+    }
+};
+
 class DimseAssociation {
 public:
     // Proposes the abstract syntaxes (SOP class UIDs) with the uncompressed

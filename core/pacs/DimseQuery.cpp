@@ -30,16 +30,6 @@ int number(DcmDataset& d, const DcmTagKey& tag) {
     }
 }
 
-// Owns the responses DcmSCU hands back as raw pointers.
-struct Responses {
-    OFList<QRResponse*> list;
-    ~Responses() {
-        for (QRResponse* r : list) {
-            delete r;
-        }
-    }
-};
-
 std::vector<QueryMatch> findOnce(DimseAssociation& a, QueryLevel level, const QueryFilter& f,
                                  const std::string& modality) {
     const bool patientRoot = level == QueryLevel::Patient;
@@ -69,7 +59,7 @@ std::vector<QueryMatch> findOnce(DimseAssociation& a, QueryLevel level, const Qu
         q.putAndInsertString(DCM_SeriesDescription, "");
         q.putAndInsertString(DCM_NumberOfSeriesRelatedInstances, "");
     }
-    Responses r;
+    OwnedResponses<QRResponse> r;
     if (const OFCondition c = a.scu().sendFINDRequest(pc, &q, &r.list); c.bad()) {
         a.fail("C-FIND failed", c);
     }
@@ -219,6 +209,10 @@ std::vector<QueryMatch> find(const PacsNode& node, const PacsSettings& settings,
             add(findOnce(a, level, filter, m));
         }
     }
+    return orderedMatches(std::move(unique));
+}
+
+std::vector<QueryMatch> orderedMatches(std::map<std::string, QueryMatch> unique) {
     std::vector<QueryMatch> out;
     for (auto& [key, m] : unique) {
         out.push_back(std::move(m));

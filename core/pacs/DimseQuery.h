@@ -1,5 +1,6 @@
 #pragma once
 
+#include <map>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -52,5 +53,8 @@ void echo(const PacsNode& node, const PacsSettings& settings);
 // de-duplicated by UID and sorted by date, then UID.
 std::vector<QueryMatch> find(const PacsNode& node, const PacsSettings& settings, QueryLevel level,
                              const QueryFilter& filter);
+
+// Matches keyed by UID, as a list sorted by study date, study UID, series number.
+std::vector<QueryMatch> orderedMatches(std::map<std::string, QueryMatch> unique);
 
 } // namespace lucent

@@ -62,24 +62,6 @@ private:
     int toFetch_;
 };
 
-struct Responses {
-    OFList<QRResponse*> list;
-    ~Responses() {
-        for (QRResponse* r : list) {
-            delete r;
-        }
-    }
-};
-
-struct RetrieveResponses {
-    OFList<RetrieveResponse*> list;
-    ~RetrieveResponses() {
-        for (RetrieveResponse* r : list) {
-            delete r;
-        }
-    }
-};
-
 struct SeriesListing {
     SeriesInfo info;
     int seriesNumber = 0;
@@ -100,7 +82,7 @@ SeriesListing listInstances(const PacsNode& node, const PacsSettings& settings,
                                  DCM_SeriesDescription, DCM_SeriesNumber}) {
         q.putAndInsertString(key, "");
     }
-    Responses r;
+    OwnedResponses<QRResponse> r;
     if (const OFCondition c = a.scu().sendFINDRequest(pc, &q, &r.list); c.bad()) {
         a.fail("C-FIND of the series' instances failed", c);
     }
@@ -140,29 +122,46 @@ void missingQuery(DcmDataset& q, const std::string& studyUid, const std::string&
     q.putAndInsertString(DCM_SOPInstanceUID, list.c_str());
 }
 
+// What the PACS has of a series, what the store lacks, and the result so far.
+struct RetrievalPlan {
+    SeriesListing listing;
+    std::vector<std::string> missing;
+    RetrieveResult result;
+};
+
+RetrievalPlan planRetrieval(const PacsNode& node, const PacsSettings& settings,
+                            const std::string& studyUid, const std::string& seriesUid,
+                            StudyStore& store) {
+    RetrievalPlan plan;
+    plan.listing = listInstances(node, settings, studyUid, seriesUid);
+    if (plan.listing.instances.empty()) {
+        throw PacsError(node.describe() + ": series " + seriesUid + " of study " + studyUid +
+                        " has no instances there");
+    }
+    RetrieveResult& r = plan.result;
+    r.seriesUid = seriesUid;
+    r.expected = static_cast<int>(plan.listing.instances.size());
+    r.folder = store.seriesFolder(studyUid, seriesUid);
+    store.setExpected(plan.listing.info, plan.listing.seriesNumber, r.expected);
+    const std::set<std::string> stored = store.instancesOf(seriesUid);
+    for (const std::string& sop : plan.listing.instances) {
+        if (stored.count(sop) == 0) {
+            plan.missing.push_back(sop);
+        }
+    }
+    r.alreadyStored = r.expected - static_cast<int>(plan.missing.size());
+    return plan;
+}
+
 } // namespace
 
 RetrieveResult retrieveSeries(const PacsNode& node, const PacsSettings& settings,
                               const std::string& studyUid, const std::string& seriesUid,
                               StudyStore& store, const RetrieveControl& control) {
-    const SeriesListing listing = listInstances(node, settings, studyUid, seriesUid);
-    if (listing.instances.empty()) {
-        throw PacsError(node.describe() + ": series " + seriesUid + " of study " + studyUid +
-                        " has no instances there");
-    }
-    RetrieveResult result;
-    result.seriesUid = seriesUid;
-    result.expected = static_cast<int>(listing.instances.size());
-    result.folder = store.seriesFolder(studyUid, seriesUid);
-    store.setExpected(listing.info, listing.seriesNumber, result.expected);
-    const std::set<std::string> stored = store.instancesOf(seriesUid);
-    std::vector<std::string> missing;
-    for (const std::string& sop : listing.instances) {
-        if (stored.count(sop) == 0) {
-            missing.push_back(sop);
-        }
-    }
-    result.alreadyStored = result.expected - static_cast<int>(missing.size());
+    const RetrievalPlan plan = planRetrieval(node, settings, studyUid, seriesUid, store);
+    const SeriesListing& listing = plan.listing;
+    const std::vector<std::string>& missing = plan.missing;
+    RetrieveResult result = plan.result;
 
     if (!missing.empty()) {
         std::vector<std::string> storage;
@@ -177,7 +176,7 @@ RetrieveResult retrieveSeries(const PacsNode& node, const PacsSettings& settings
             a.context(UID_GETStudyRootQueryRetrieveInformationModel, "C-GET");
         DcmDataset q;
         missingQuery(q, studyUid, seriesUid, missing, listing.instances.size());
-        RetrieveResponses responses;
+        OwnedResponses<RetrieveResponse> responses;
         const OFCondition c = a.scu().sendCGETRequest(pc, &q, &responses.list);
         result.received = receiver->received;
         result.alreadyStored += receiver->duplicates;
@@ -202,31 +201,18 @@ RetrieveResult moveSeries(const PacsNode& node, const PacsSettings& settings,
                           const std::string& destinationAe, const std::string& studyUid,
                           const std::string& seriesUid, StudyStore& store) {
     checkAeTitle(destinationAe, "move destination");
-    const SeriesListing listing = listInstances(node, settings, studyUid, seriesUid);
-    if (listing.instances.empty()) {
-        throw PacsError(node.describe() + ": series " + seriesUid + " of study " + studyUid +
-                        " has no instances there");
-    }
-    RetrieveResult result;
-    result.seriesUid = seriesUid;
-    result.expected = static_cast<int>(listing.instances.size());
-    result.folder = store.seriesFolder(studyUid, seriesUid);
-    store.setExpected(listing.info, listing.seriesNumber, result.expected);
-    const std::set<std::string> before = store.instancesOf(seriesUid);
-    std::vector<std::string> missing;
-    for (const std::string& sop : listing.instances) {
-        if (before.count(sop) == 0) {
-            missing.push_back(sop);
-        }
-    }
-    result.alreadyStored = result.expected - static_cast<int>(missing.size());
+    const RetrievalPlan plan = planRetrieval(node, settings, studyUid, seriesUid, store);
+    const SeriesListing& listing = plan.listing;
+    const std::vector<std::string>& missing = plan.missing;
+    RetrieveResult result = plan.result;
+    const std::size_t before = store.instancesOf(seriesUid).size();
     if (!missing.empty()) {
         DimseAssociation a(node, settings, {UID_MOVEStudyRootQueryRetrieveInformationModel});
         const T_ASC_PresentationContextID pc =
             a.context(UID_MOVEStudyRootQueryRetrieveInformationModel, "C-MOVE");
         DcmDataset q;
         missingQuery(q, studyUid, seriesUid, missing, listing.instances.size());
-        RetrieveResponses responses;
+        OwnedResponses<RetrieveResponse> responses;
         if (const OFCondition c =
                 a.scu().sendMOVERequest(pc, destinationAe.c_str(), &q, &responses.list);
             c.bad()) {
@@ -263,8 +249,7 @@ RetrieveResult moveSeries(const PacsNode& node, const PacsSettings& settings,
             result.failed = responses.list.back()->m_numberOfFailedSubops;
         }
     }
-    result.received =
-        static_cast<int>(store.instancesOf(seriesUid).size()) - static_cast<int>(before.size());
+    result.received = static_cast<int>(store.instancesOf(seriesUid).size() - before);
     result.complete = store.isComplete(seriesUid);
     return result;
 }
