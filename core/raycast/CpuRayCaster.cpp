@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string_view>
 #include <tuple>
@@ -23,10 +24,25 @@ struct CpuRayCaster::Cache {
     std::vector<double> coefficientsD;
     std::pair<double, double> coefficientRange{0.0, 0.0};
     std::map<std::tuple<int, bool, int>, BrickGrid> grids; // (size, over coefficients, overlap)
-    // leapReach of the last leap codes (and cell grid): frames that only move
-    // the camera reuse it.
-    std::vector<std::uint8_t> reachCodes, reach;
-    glm::ivec3 reachCells{0};
+    // What the last render derived from the transfer function, the sampling
+    // and the leaping levels (tables, leap decisions, leap reach): frames that
+    // only move the camera reuse it. Valid while `key` equals the render's.
+    struct ClassificationKey {
+        TransferFunction tf;
+        RenderMode mode = RenderMode::Dvr;
+        double isoValue = 0.0, tLo = 0.0, tHi = 0.0, step = 0.0;
+        bool exact = false, preintegrate = false, cubic = false;
+        int brickSize = 0, cellSize = 0, cellOverlap = 0;
+        bool operator==(const ClassificationKey&) const = default;
+    };
+    struct LevelData {
+        std::vector<std::uint8_t> skippable;
+        std::vector<glm::vec2> range;
+    };
+    std::optional<ClassificationKey> key;
+    std::vector<glm::vec4> rawTable, table;
+    LevelData coarse, fine;
+    std::vector<std::uint8_t> cellLeap, reach;
 };
 
 namespace {
@@ -223,14 +239,26 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
     if (!(tHi > tLo)) {
         tHi = tLo + 1.0;
     }
-    std::vector<glm::vec4> rawTable, table;
+    Cache::ClassificationKey key{
+        desc.transferFunction, desc.mode,       desc.isoValue,   tLo,   tHi,
+        sampling.step,         exact,           sf.preintegrate, cubic, grid.brickSize(),
+        cells.brickSize(),     cells.overlap(),
+    };
+    const bool reuse = cache.key == key;
+    if (!reuse) {
+        cache.key.reset(); // until everything below is rebuilt
+    }
+    std::vector<glm::vec4>& rawTable = cache.rawTable;
+    std::vector<glm::vec4>& table = cache.table;
     if (!exact) {
-        rawTable = bakeTable(desc.transferFunction, tLo, tHi, kTableSize).rgba;
-        table = rawTable;
-        for (glm::vec4& e : table) {
-            e.a = e.a <= 0.0f
-                      ? 0.0f
-                      : float(1.0 - std::pow(1.0 - std::min(double(e.a), 1.0), sampling.step));
+        if (!reuse) {
+            rawTable = bakeTable(desc.transferFunction, tLo, tHi, kTableSize).rgba;
+            table = rawTable;
+            for (glm::vec4& e : table) {
+                e.a = e.a <= 0.0f
+                          ? 0.0f
+                          : float(1.0 - std::pow(1.0 - std::min(double(e.a), 1.0), sampling.step));
+            }
         }
         sf.rawTable = &rawTable;
         sf.table = &table;
@@ -260,10 +288,7 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
         }
         return tf.maxOpacity(a - widen, b + widen) > 0.0;
     };
-    struct LevelData {
-        std::vector<std::uint8_t> skippable;
-        std::vector<glm::vec2> range;
-    };
+    using LevelData = Cache::LevelData;
     auto levelData = [&](const BrickGrid& level) {
         LevelData out{std::vector<std::uint8_t>(level.count(), 0),
                       std::vector<glm::vec2>(level.count())};
@@ -279,7 +304,11 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
         }
         return out;
     };
-    const LevelData coarse = levelData(grid), fine = levelData(cells);
+    if (!reuse) {
+        cache.coarse = levelData(grid);
+        cache.fine = levelData(cells);
+    }
+    const LevelData &coarse = cache.coarse, &fine = cache.fine;
     auto setLevels = [&](auto& s) {
         s.leap = sampling.emptySpaceLeaping;
         using Real = decltype(s.earlyTermination);
@@ -290,14 +319,12 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
     };
     setLevels(sf);
     setLevels(sd);
-    const std::vector<std::uint8_t> cellLeap =
-        leapCodes(grid, coarse.skippable, cells, fine.skippable);
-    sf.cellLeap = &cellLeap;
-    if (cache.reachCodes != cellLeap || cache.reachCells != cells.bricksPerAxis()) {
-        cache.reach = leapReach(cellLeap, cells.bricksPerAxis());
-        cache.reachCodes = cellLeap;
-        cache.reachCells = cells.bricksPerAxis();
+    if (!reuse) {
+        cache.cellLeap = leapCodes(grid, coarse.skippable, cells, fine.skippable);
+        cache.reach = leapReach(cache.cellLeap, cells.bricksPerAxis());
+        cache.key = std::move(key);
     }
+    sf.cellLeap = &cache.cellLeap;
     sf.cellReach = &cache.reach;
 
     // Values outside the transfer function's non-zero opacity need no lookup.

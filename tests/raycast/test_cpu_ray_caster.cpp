@@ -520,6 +520,41 @@ private slots:
         QVERIFY(caster.render(d).premultiplied == whole.premultiplied);
     }
 
+    // The caster keeps tables and leap decisions between frames: a change of
+    // transfer function, step, mode or brick size must not render from stale ones.
+    void changesBetweenFramesMatchAFreshCaster() {
+        const Volume v = makeVolume({40, 37, 35}, blobs);
+        CpuRayCaster kept(v);
+        TransferFunction narrow = rampTf(true);
+        narrow.opacity = {{120.0, 0.0}, {160.0, 0.5}};
+        std::vector<RenderDescription> frames;
+        for (const TransferFunction& tf : {rampTf(true), narrow, rampTf(false), rampTf(true)}) {
+            RenderDescription d = describe(v, tf, 41);
+            d.sampling.step = 0.5;
+            frames.push_back(d);
+        }
+        frames.push_back(frames[0]);
+        frames.back().sampling.step = 0.25;
+        frames.push_back(frames[0]);
+        frames.back().sampling.brickSize = 16;
+        frames.push_back(frames[1]);
+        frames.back().mode = RenderMode::Isosurface;
+        frames.back().isoValue = 100.0;
+        frames.push_back(frames[1]);
+        frames.back().isoValue = 150.0;
+        frames.back().mode = RenderMode::Isosurface;
+        frames.push_back(frames[0]);
+        for (std::size_t n = 0; n < frames.size(); ++n) {
+            RenderDescription& d = frames[n];
+            d.camera.azimuth = 10.0 * double(n);
+            const RenderResult a = kept.render(d);
+            const RenderResult b = CpuRayCaster(v).render(d);
+            QVERIFY2(a.premultiplied == b.premultiplied, qPrintable(QString::number(n)));
+            QCOMPARE(a.stats.samples, b.stats.samples);
+            QCOMPARE(a.stats.bricksUsed, b.stats.bricksUsed);
+        }
+    }
+
     void badSettingsAreRejected() {
         const Volume v = makeVolume({4, 4, 4}, [](int, int, int) { return 0.0; });
         CpuRayCaster caster(v);
