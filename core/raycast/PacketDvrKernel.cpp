@@ -30,13 +30,15 @@ LUCENT_AVX2 inline __m256 laneMask(int bits) {
         _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(bits), lane), lane));
 }
 
-// The table's colour and opacity at value v, for the lanes in `bits` (the
-// others get zero): FastDvrKernel's lookup and interpolation.
+// The table's colour and opacity at value v: FastDvrKernel's lookup and
+// interpolation. Every lane gets a lookup (x is clamped into the table, NaN
+// included): eight loads are cheaper than a branch per lane and zeroing the
+// others; callers use only the lanes they asked about.
 struct TableLookup {
     const glm::vec4* table;
     float scale, offset, max;
     int lastEntry;
-    LUCENT_AVX2 void operator()(__m256 v, int bits, __m256 c[4]) const {
+    LUCENT_AVX2 void operator()(__m256 v, __m256 c[4]) const {
         const __m256 x =
             _mm256_min_ps(_mm256_max_ps(_mm256_add_ps(_mm256_mul_ps(v, _mm256_set1_ps(scale)),
                                                       _mm256_set1_ps(offset)),
@@ -48,9 +50,8 @@ struct TableLookup {
         alignas(32) float frac[8];
         _mm256_store_si256(reinterpret_cast<__m256i*>(entry), e);
         _mm256_store_ps(frac, f);
-        alignas(16) glm::vec4 rows[8]{};
-        for (int b = bits; b != 0; b &= b - 1) {
-            const int r = std::countr_zero(unsigned(b));
+        alignas(16) glm::vec4 rows[8];
+        for (int r = 0; r < 8; ++r) {
             const __m128 t0 = _mm_loadu_ps(&table[entry[r]].x);
             const __m128 t1 = _mm_loadu_ps(&table[entry[r] + 1].x);
             _mm_store_ps(&rows[r].x,
@@ -279,7 +280,7 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
         const int contributing =
             visible == 0
                 ? 0
-                : (lookup(v, visible, c),
+                : (lookup(v, c),
                    visible & maskBits(_mm256_cmp_ps(c[3], _mm256_setzero_ps(), _CMP_GT_OQ)));
         if (contributing != 0) {
             if (s.shading) {
