@@ -97,6 +97,45 @@ struct Lighting {
     }
 };
 
+// Lanes 0-3 (h = 0) or 4-7 (h = 1) of v.
+LUCENT_AVX2 inline __m128i halfOf(int h, __m256i v) {
+    return h == 0 ? _mm256_castsi256_si128(v) : _mm256_extracti128_si256(v, 1);
+}
+
+// The eight rays' lattices in double, per axis: FastDvrKernel::Lattice.
+struct LeapLattice {
+    alignas(32) double entry[3][8]{}, stride[3][8]{}, inverse[3][8]{};
+};
+
+// FastDvrKernel::boxExit for eight lanes, cells lo .. hi of a level of cells
+// of `size` voxels, perAxis of them: the same double operations per lane.
+// Lanes 0-3 in exit[0], 4-7 in exit[1].
+LUCENT_AVX2 inline void boxExits(const __m256i lo[3], const __m256i hi[3], int size,
+                                 glm::ivec3 perAxis, const LeapLattice& l, __m256d exit[2]) {
+    exit[0] = exit[1] = _mm256_set1_pd(std::numeric_limits<double>::infinity());
+    const __m256i one = _mm256_set1_epi32(1), vSize = _mm256_set1_epi32(size);
+    for (int a = 0; a < 3; ++a) {
+        const __m256i up = _mm256_mullo_epi32(_mm256_add_epi32(hi[a], one), vSize);
+        const __m256i down = _mm256_mullo_epi32(lo[a], vSize);
+        const __m256i upOk = _mm256_cmpgt_epi32(_mm256_set1_epi32(perAxis[a] - 1), hi[a]);
+        const __m256i downOk = _mm256_cmpgt_epi32(lo[a], _mm256_setzero_si256());
+        for (int h = 0; h < 2; ++h) {
+            const __m256d st = _mm256_load_pd(&l.stride[a][4 * h]);
+            const __m256d pos = _mm256_cmp_pd(st, _mm256_set1_pd(1e-15), _CMP_GT_OQ);
+            const __m256d neg = _mm256_cmp_pd(st, _mm256_set1_pd(-1e-15), _CMP_LT_OQ);
+            const __m256d valid = _mm256_or_pd(
+                _mm256_and_pd(pos, _mm256_castsi256_pd(_mm256_cvtepi32_epi64(halfOf(h, upOk)))),
+                _mm256_and_pd(neg, _mm256_castsi256_pd(_mm256_cvtepi32_epi64(halfOf(h, downOk)))));
+            const __m256d bound = _mm256_blendv_pd(_mm256_cvtepi32_pd(halfOf(h, down)),
+                                                   _mm256_cvtepi32_pd(halfOf(h, up)), pos);
+            const __m256d t =
+                _mm256_mul_pd(_mm256_sub_pd(bound, _mm256_load_pd(&l.entry[a][4 * h])),
+                              _mm256_load_pd(&l.inverse[a][4 * h]));
+            exit[h] = _mm256_blendv_pd(exit[h], _mm256_min_pd(t, exit[h]), valid);
+        }
+    }
+}
+
 } // namespace
 
 template <class T>
@@ -120,8 +159,7 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
     alignas(32) float ex[kWidth]{}, ey[kWidth]{}, ez[kWidth]{};
     alignas(32) float sx[kWidth]{}, sy[kWidth]{}, sz[kWidth]{};
     alignas(32) int n[kWidth]{}, nLast[kWidth]{}, checked[kWidth];
-    bool empty[kWidth]{};
-    Lattice lattice[kWidth]{};
+    LeapLattice lattice;
     alignas(32) float wx[kWidth]{}, wy[kWidth]{}, wz[kWidth]{};
     int active = 0;
     for (int r = 0; r < kWidth; ++r) {
@@ -133,10 +171,12 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
         const glm::vec3 entry(o + d[r] * span.t0), stride(d[r] * s.dt);
         ex[r] = entry.x, ey[r] = entry.y, ez[r] = entry.z;
         sx[r] = stride.x, sy[r] = stride.y, sz[r] = stride.z;
-        lattice[r] = Lattice{o + d[r] * span.t0, d[r] * s.dt, glm::dvec3(0.0)};
+        const Lattice l{o + d[r] * span.t0, d[r] * s.dt, glm::dvec3(0.0)};
         for (int a = 0; a < 3; ++a) {
-            const double st = lattice[r].stride[a];
-            lattice[r].inverse[a] = std::abs(st) > 1e-15 ? 1.0 / st : 0.0;
+            const double st = l.stride[a];
+            lattice.entry[a][r] = l.entry[a];
+            lattice.stride[a][r] = st;
+            lattice.inverse[a][r] = std::abs(st) > 1e-15 ? 1.0 / st : 0.0;
         }
         n[r] = int(span.nFirst);
         nLast[r] = int(span.nLast);
@@ -144,36 +184,6 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
         wx[r] = wr.x, wy[r] = wr.y, wz[r] = wr.z;
         active |= 1 << r;
     }
-
-    // FastDvrKernel's leaping, for one ray: from n[r] on to the next sample
-    // it takes (or past its last).
-    auto advance = [&](int r) {
-        long m = n[r];
-        const long last = nLast[r];
-        for (; m <= last; ++m) {
-            const float fm = float(m);
-            const float px = ex[r] + sx[r] * fm, py = ey[r] + sy[r] * fm, pz = ez[r] + sz[r] * fm;
-            const int i = int(px), j = int(py), kk = int(pz);
-            const int cell = (i >> shift) + cells.x * ((j >> shift) + cells.y * (kk >> shift));
-            if (cell == checked[r]) {
-                if (empty[r]) {
-                    continue;
-                }
-                break;
-            }
-            checked[r] = cell;
-            const double exit = k.leapExit(i, j, kk, cell, lattice[r]);
-            empty[r] = exit >= 0.0;
-            if (!empty[r]) {
-                break;
-            }
-            m = exit > double(last) ? last : std::max(m + 1, long(exit)) - 1;
-        }
-        n[r] = int(m);
-        if (m > last) {
-            active &= ~(1 << r);
-        }
-    };
 
     const TableLookup lookup{table, k.tableScale_, k.tableOffset_, k.tableMax_, int(k.lastEntry_)};
     const Lighting light{k.toWorld_,
@@ -200,6 +210,7 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
     __m256i vn = _mm256_load_si256(reinterpret_cast<const __m256i*>(n));
     const __m256i vLast = _mm256_load_si256(reinterpret_cast<const __m256i*>(nLast));
     __m256i vChecked = _mm256_load_si256(reinterpret_cast<const __m256i*>(checked));
+    int emptyBits = 0; // lanes whose checked cell can be leapt
     std::size_t samples = 0;
 
     while (active != 0) {
@@ -217,32 +228,106 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
                 _mm256_add_epi32(_mm256_sra_epi32(i, shiftCount), _mm256_mullo_epi32(cellsX, cy));
             const int same =
                 _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(cell, vChecked)));
-            if (const int changed = active & ~same; changed != 0) {
-                // Rays that entered a cell that cannot be leapt sample it; the
-                // others leap (one at a time) to the next sample they take,
-                // then the packet is looked at again.
-                alignas(32) int entered[kWidth];
+            // FastDvrKernel's leaping, for all lanes at once. A lane that
+            // entered a cell that cannot be leapt samples it; one that entered
+            // a leapable cell goes on to the last sample not beyond the exit of
+            // the cube (or brick) of leapable cells around it, plus one; one
+            // still in the leapable cell it checked goes on by one sample. Then
+            // the packet is looked at again, until every lane samples or is done.
+            const int changed = active & ~same;
+            const int stepping = active & same & emptyBits;
+            if ((changed | stepping) != 0) {
+                alignas(32) int entered[kWidth], reach[kWidth]{};
                 storeInts(entered, cell);
-                int leaping = 0;
+                int leaping = 0, wholeBrick = 0;
                 for (int bits = changed; bits != 0; bits &= bits - 1) {
                     const int r = std::countr_zero(unsigned(bits));
-                    if ((*s.cellLeap)[std::size_t(entered[r])] == 0) {
-                        checked[r] = entered[r];
-                        empty[r] = false;
-                    } else {
+                    const std::uint8_t code = (*s.cellLeap)[std::size_t(entered[r])];
+                    if (code != 0) {
                         leaping |= 1 << r;
+                        wholeBrick |= code == 2 ? 1 << r : 0;
+                        reach[r] =
+                            s.cellReach != nullptr ? (*s.cellReach)[std::size_t(entered[r])] : 0;
                     }
                 }
-                if (leaping != 0) {
-                    storeInts(n, vn);
-                    for (int bits = leaping; bits != 0; bits &= bits - 1) {
-                        advance(std::countr_zero(unsigned(bits)));
+                vChecked =
+                    _mm256_blendv_epi8(vChecked, cell, _mm256_castps_si256(laneMask(changed)));
+                emptyBits = (emptyBits & ~changed) | leaping;
+                if ((leaping | stepping) != 0) {
+                    const __m256i one = _mm256_set1_epi32(1);
+                    __m256i next = vn;
+                    if (stepping != 0) {
+                        next = _mm256_blendv_epi8(next, _mm256_add_epi32(vn, one),
+                                                  _mm256_castps_si256(laneMask(stepping)));
                     }
-                    vn = loadInts(n);
-                    vChecked = loadInts(checked);
+                    if (leaping != 0) {
+                        const __m256i ijk[3] = {i, j, kk};
+                        const __m256i vReach = loadInts(reach);
+                        __m256i lo[3], hi[3];
+                        for (int a = 0; a < 3; ++a) {
+                            const __m256i c = _mm256_sra_epi32(ijk[a], shiftCount);
+                            lo[a] = _mm256_sub_epi32(c, vReach);
+                            hi[a] = _mm256_add_epi32(c, vReach);
+                        }
+                        __m256d exit[2];
+                        boxExits(lo, hi, s.levels[1].size, cells, lattice, exit);
+                        if (wholeBrick != 0) {
+                            const auto& brick = s.levels[0];
+                            alignas(32) int at[3][kWidth], b[3][kWidth]{};
+                            storeInts(at[0], i);
+                            storeInts(at[1], j);
+                            storeInts(at[2], kk);
+                            for (int bits = wholeBrick; bits != 0; bits &= bits - 1) {
+                                const int r = std::countr_zero(unsigned(bits));
+                                for (int a = 0; a < 3; ++a) {
+                                    b[a][r] = std::min(at[a][r] / brick.size, brick.perAxis[a] - 1);
+                                }
+                            }
+                            __m256i vb[3];
+                            for (int a = 0; a < 3; ++a) {
+                                vb[a] = loadInts(b[a]);
+                            }
+                            __m256d brickExit[2];
+                            boxExits(vb, vb, brick.size, brick.perAxis, lattice, brickExit);
+                            for (int h = 0; h < 2; ++h) {
+                                const int bitsH = (wholeBrick >> (4 * h)) & 15;
+                                const __m256d whole = _mm256_castsi256_pd(_mm256_cmpeq_epi64(
+                                    _mm256_and_si256(_mm256_set1_epi64x(bitsH),
+                                                     _mm256_setr_epi64x(1, 2, 4, 8)),
+                                    _mm256_setr_epi64x(1, 2, 4, 8)));
+                                exit[h] = _mm256_blendv_pd(
+                                    exit[h], _mm256_max_pd(exit[h], brickExit[h]), whole);
+                            }
+                        }
+                        // A negative exit (rounding) means the cell is sampled after
+                        // all; exit > last: past the last sample; else the lane goes
+                        // on at max(n + 1, long(exit)).
+                        __m128i whole[2];
+                        int beyond = 0, ahead = 0;
+                        for (int h = 0; h < 2; ++h) {
+                            ahead |= _mm256_movemask_pd(
+                                         _mm256_cmp_pd(exit[h], _mm256_setzero_pd(), _CMP_GE_OQ))
+                                     << (4 * h);
+                            const __m128i lastH = halfOf(h, vLast);
+                            beyond |= _mm256_movemask_pd(_mm256_cmp_pd(
+                                          exit[h], _mm256_cvtepi32_pd(lastH), _CMP_GT_OQ))
+                                      << (4 * h);
+                            whole[h] =
+                                _mm256_cvttpd_epi32(_mm256_min_pd(exit[h], _mm256_set1_pd(2e9)));
+                        }
+                        const __m256i resume = _mm256_blendv_epi8(
+                            _mm256_max_epi32(_mm256_add_epi32(vn, one),
+                                             _mm256_set_m128i(whole[1], whole[0])),
+                            _mm256_add_epi32(vLast, one), _mm256_castps_si256(laneMask(beyond)));
+                        emptyBits &= ~(leaping & ~ahead);
+                        next = _mm256_blendv_epi8(next, resume,
+                                                  _mm256_castps_si256(laneMask(leaping & ahead)));
+                    }
+                    vn = next;
+                    active &=
+                        ~_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(vn, vLast)));
                     continue;
                 }
-                vChecked = loadInts(checked);
             }
         }
         samples += std::size_t(std::popcount(unsigned(active)));
