@@ -85,8 +85,16 @@ void castImage(const Kernel& kernel, const VolumeGeometry& g, const ViewFrame& f
                 }
                 glm::dvec3 d[kPacket], w[kPacket];
                 RayOutput r[kPacket];
+                // ViewFrame::rayDirection, its column and row terms computed once.
+                double sx[kPacketColumns], sy[kPacketRows];
+                for (int c = 0; c < kPacketColumns; ++c) {
+                    sx[c] = frame.screenX(x1 + c, desc.width);
+                }
+                for (int c = 0; c < kPacketRows; ++c) {
+                    sy[c] = frame.screenY(y1 + c, desc.height);
+                }
                 for (int c = 0; c < count; ++c) {
-                    w[c] = frame.rayDirection(pixel[c].x, pixel[c].y, desc.width, desc.height);
+                    w[c] = frame.direction(sx[pixel[c].x - x1], sy[pixel[c].y - y1]);
                     d[c] = toIndexLinear * w[c];
                 }
                 if constexpr (requires { kernel.castPacket(origin, d, w, count, r); }) {

@@ -90,7 +90,11 @@ bool raySpan(const RaySetup<Real>& s, const glm::dvec3& o, const glm::dvec3& d, 
         const double ta = (s.boxLo[a] - o[a]) / d[a], tb = (s.boxHi[a] - o[a]) / d[a];
         t0 = std::max(t0, std::min(ta, tb));
         t1 = std::min(t1, std::max(ta, tb));
-        const double ca = (s.clipLo[a] - o[a]) / d[a], cb = (s.clipHi[a] - o[a]) / d[a];
+        // Most renders clip nothing: the clip planes are the box's, and so are
+        // their distances (the same divisions, not done twice).
+        const bool unclipped = s.clipLo[a] == s.boxLo[a] && s.clipHi[a] == s.boxHi[a];
+        const double ca = unclipped ? ta : (s.clipLo[a] - o[a]) / d[a];
+        const double cb = unclipped ? tb : (s.clipHi[a] - o[a]) / d[a];
         c0 = std::max(c0, std::min(ca, cb));
         c1 = std::min(c1, std::max(ca, cb));
     }

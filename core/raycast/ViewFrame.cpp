@@ -41,10 +41,4 @@ ViewFrame makeViewFrame(const VolumeGeometry& geometry, const Camera& camera, in
     return f;
 }
 
-glm::dvec3 ViewFrame::rayDirection(double x, double y, int width, int height) const {
-    const double sx = (2.0 * (x + 0.5) / width - 1.0) * tanHalfFov * aspect;
-    const double sy = (1.0 - 2.0 * (y + 0.5) / height) * tanHalfFov;
-    return glm::normalize(forward + right * sx + up * sy);
-}
-
 } // namespace lucent

@@ -16,7 +16,19 @@ struct ViewFrame {
     double aspect = 1.0;
 
     // Unit direction of the ray through the centre of pixel (x, y); y = 0 is the top row.
-    glm::dvec3 rayDirection(double x, double y, int width, int height) const;
+    glm::dvec3 rayDirection(double x, double y, int width, int height) const {
+        return direction(screenX(x, width), screenY(y, height));
+    }
+    // rayDirection in steps, for callers that share a column's or row's term.
+    double screenX(double x, int width) const {
+        return (2.0 * (x + 0.5) / width - 1.0) * tanHalfFov * aspect;
+    }
+    double screenY(double y, int height) const {
+        return (1.0 - 2.0 * (y + 0.5) / height) * tanHalfFov;
+    }
+    glm::dvec3 direction(double sx, double sy) const {
+        return glm::normalize(forward + right * sx + up * sy);
+    }
 };
 
 ViewFrame makeViewFrame(const VolumeGeometry& geometry, const Camera& camera, int width,
