@@ -211,6 +211,14 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
     const __m256i vLast = _mm256_load_si256(reinterpret_cast<const __m256i*>(nLast));
     __m256i vChecked = _mm256_load_si256(reinterpret_cast<const __m256i*>(checked));
     int emptyBits = 0; // lanes whose checked cell can be leapt
+    // The cell rows last loaded (for the lanes' cells at `cellAt`), and the
+    // gradient corner differences last computed (valid in the lanes
+    // `cornersValid`, whose cells were at `cornersAt`): a sample in the same
+    // cell as before reads the same voxels, so they are reused as they are.
+    Cell cell;
+    __m256i cellAt = _mm256_set1_epi32(-1), cornersAt = cellAt;
+    int cornersValid = 0;
+    __m256 corners[24];
     std::size_t samples = 0;
 
     while (active != 0) {
@@ -347,10 +355,13 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
         for (int r = 0; r < kWidth; ++r) {
             base[r] = data + offset[r];
         }
-        Cell cell;
-        for (int r = 0; r < 4; ++r) {
-            cell.row[r] =
-                pairAt(base, ((r & 1) != 0 ? rowStep : 0) + ((r & 2) != 0 ? sliceStep : 0));
+        // Lanes that are done keep whatever rows they had: nothing reads them.
+        if ((active & ~maskBits(_mm256_cmpeq_epi32(o00, cellAt))) != 0) {
+            for (int r = 0; r < 4; ++r) {
+                cell.row[r] =
+                    pairAt(base, ((r & 1) != 0 ? rowStep : 0) + ((r & 2) != 0 ? sliceStep : 0));
+            }
+            cellAt = o00;
         }
         // The same operations, in the same order, as FastDvrKernel's.
         const __m256 c00 = lerp(cell.row[0].a, cell.row[0].b, fx);
@@ -379,14 +390,22 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
                 const int insideBits = contributing & maskBits(inside);
                 __m256 grad[3];
                 if (insideBits != 0) {
-                    // Lanes at the border read a lane's inside the volume, then
-                    // take the clamped filter's gradient below.
-                    const T* at[kWidth];
-                    const T* some = base[std::countr_zero(unsigned(insideBits))];
-                    for (int r = 0; r < kWidth; ++r) {
-                        at[r] = (insideBits >> r & 1) != 0 ? base[r] : some;
+                    const int same = cornersValid & maskBits(_mm256_cmpeq_epi32(o00, cornersAt));
+                    if ((insideBits & ~same) != 0) {
+                        // The corners of every active lane inside the volume;
+                        // lanes at the border read a lane's inside the volume,
+                        // then take the clamped filter's gradient below.
+                        const int valid = active & maskBits(inside);
+                        const T* at[kWidth];
+                        const T* some = base[std::countr_zero(unsigned(insideBits))];
+                        for (int r = 0; r < kWidth; ++r) {
+                            at[r] = (valid >> r & 1) != 0 ? base[r] : some;
+                        }
+                        gradientCorners(at, cell, rowStep, sliceStep, corners);
+                        cornersAt = o00;
+                        cornersValid = valid;
                     }
-                    gradient(at, cell, rowStep, sliceStep, fx, fy, fz, grad);
+                    blendGradient(corners, fx, fy, fz, grad);
                 }
                 if (const int border = contributing & ~insideBits; border != 0) {
                     alignas(32) float px[kWidth], py[kWidth], pz[kWidth], gs[3][kWidth]{};

@@ -129,12 +129,12 @@ LUCENT_AVX2 inline __m256 blendCorners(const __m256 c[8], __m256 fx, __m256 fy, 
     return lerp(c0, c1, fz);
 }
 
-// FastDvrKernel::gradientInside for eight lanes whose cells start at base[n]
-// (all neighbours inside the volume) and whose cell rows are `cell`.
+// The corner differences of FastDvrKernel::gradientInside for eight lanes
+// whose cells start at base[n] (all neighbours inside the volume) and whose
+// cell rows are `cell`: c[8 a .. 8 a + 7] along axis a, before the blend.
 template <class T>
-LUCENT_AVX2 inline void gradient(const T* const base[8], const Cell& cell, std::ptrdiff_t sy,
-                                 std::ptrdiff_t sz, __m256 fx, __m256 fy, __m256 fz, __m256 g[3]) {
-    __m256 c[8];
+LUCENT_AVX2 inline void gradientCorners(const T* const base[8], const Cell& cell, std::ptrdiff_t sy,
+                                        std::ptrdiff_t sz, __m256 c[24]) {
     // x: value(x + 1) - value(x - 1) along the four rows.
     for (int r = 0; r < 4; ++r) {
         const std::ptrdiff_t o = ((r & 1) != 0 ? sy : 0) + ((r & 2) != 0 ? sz : 0);
@@ -143,36 +143,40 @@ LUCENT_AVX2 inline void gradient(const T* const base[8], const Cell& cell, std::
         c[2 * r] = _mm256_sub_ps(plus.a, minus.a);
         c[2 * r + 1] = _mm256_sub_ps(plus.b, minus.b);
     }
-    g[0] = blendCorners(c, fx, fy, fz);
     // y: rows y - 1 and y + 2 beside the cell's rows, in both slices.
+    __m256* cy = c + 8;
     for (int z = 0; z < 2; ++z) {
         const std::ptrdiff_t o = z == 0 ? 0 : sz;
         const Pair below = pairAt(base, o - sy);
         const Pair above = pairAt(base, o + 2 * sy);
         const Pair& y0 = cell.row[2 * z];
         const Pair& y1 = cell.row[2 * z + 1];
-        c[4 * z] = _mm256_sub_ps(y1.a, below.a);
-        c[4 * z + 1] = _mm256_sub_ps(y1.b, below.b);
-        c[4 * z + 2] = _mm256_sub_ps(above.a, y0.a);
-        c[4 * z + 3] = _mm256_sub_ps(above.b, y0.b);
+        cy[4 * z] = _mm256_sub_ps(y1.a, below.a);
+        cy[4 * z + 1] = _mm256_sub_ps(y1.b, below.b);
+        cy[4 * z + 2] = _mm256_sub_ps(above.a, y0.a);
+        cy[4 * z + 3] = _mm256_sub_ps(above.b, y0.b);
     }
-    g[1] = blendCorners(c, fx, fy, fz);
     // z: slices z - 1 and z + 2 beside the cell's slices, in both rows.
+    __m256* cz = c + 16;
     for (int y = 0; y < 2; ++y) {
         const std::ptrdiff_t o = y == 0 ? 0 : sy;
         const Pair front = pairAt(base, o - sz);
         const Pair back = pairAt(base, o + 2 * sz);
         const Pair& z0 = cell.row[y];
         const Pair& z1 = cell.row[y + 2];
-        c[2 * y] = _mm256_sub_ps(z1.a, front.a);
-        c[2 * y + 1] = _mm256_sub_ps(z1.b, front.b);
-        c[4 + 2 * y] = _mm256_sub_ps(back.a, z0.a);
-        c[4 + 2 * y + 1] = _mm256_sub_ps(back.b, z0.b);
+        cz[2 * y] = _mm256_sub_ps(z1.a, front.a);
+        cz[2 * y + 1] = _mm256_sub_ps(z1.b, front.b);
+        cz[4 + 2 * y] = _mm256_sub_ps(back.a, z0.a);
+        cz[4 + 2 * y + 1] = _mm256_sub_ps(back.b, z0.b);
     }
-    g[2] = blendCorners(c, fx, fy, fz);
+}
+
+// FastDvrKernel::gradientInside from its corner differences (gradientCorners).
+LUCENT_AVX2 inline void blendGradient(const __m256 c[24], __m256 fx, __m256 fy, __m256 fz,
+                                      __m256 g[3]) {
     const __m256 half = _mm256_set1_ps(0.5f);
     for (int a = 0; a < 3; ++a) {
-        g[a] = _mm256_mul_ps(g[a], half);
+        g[a] = _mm256_mul_ps(blendCorners(c + 8 * a, fx, fy, fz), half);
     }
 }
 
