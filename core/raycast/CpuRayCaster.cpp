@@ -43,6 +43,7 @@ struct CpuRayCaster::Cache {
     std::vector<glm::vec4> rawTable, table;
     LevelData coarse, fine;
     std::vector<std::uint8_t> cellLeap, reach;
+    std::vector<std::int32_t> leapReach; // cellLeap | reach << 8
 };
 
 namespace {
@@ -330,10 +331,16 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
     if (!reuse) {
         cache.cellLeap = leapCodes(grid, coarse.skippable, cells, fine.skippable);
         cache.reach = leapReach(cache.cellLeap, cells.bricksPerAxis());
+        cache.leapReach.resize(cache.cellLeap.size());
+        for (std::size_t i = 0; i < cache.cellLeap.size(); ++i) {
+            cache.leapReach[i] = std::int32_t(cache.cellLeap[i]) | std::int32_t(cache.reach[i])
+                                                                       << 8;
+        }
         cache.key = std::move(key);
     }
     sf.cellLeap = &cache.cellLeap;
     sf.cellReach = &cache.reach;
+    sf.cellLeapReach = &cache.leapReach;
 
     // Values outside the transfer function's non-zero opacity need no lookup.
     const auto& op = tf.opacity;

@@ -245,18 +245,35 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
             const int changed = active & ~same;
             const int stepping = active & same & emptyBits;
             if ((changed | stepping) != 0) {
-                alignas(32) int entered[kWidth], reach[kWidth]{};
-                storeInts(entered, cell);
                 int leaping = 0, wholeBrick = 0;
-                for (int bits = changed; bits != 0; bits &= bits - 1) {
-                    const int r = std::countr_zero(unsigned(bits));
-                    const std::uint8_t code = (*s.cellLeap)[std::size_t(entered[r])];
-                    if (code != 0) {
-                        leaping |= 1 << r;
-                        wholeBrick |= code == 2 ? 1 << r : 0;
-                        reach[r] =
-                            s.cellReach != nullptr ? (*s.cellReach)[std::size_t(entered[r])] : 0;
+                __m256i vReach;
+                if (s.cellLeapReach != nullptr) {
+                    // Code and reach of every lane that entered a cell, in one
+                    // gather and no branch per lane (active lanes' cells are
+                    // inside the grid; the others are masked off).
+                    const __m256i both = _mm256_mask_i32gather_epi32(
+                        _mm256_setzero_si256(),
+                        reinterpret_cast<const int*>(s.cellLeapReach->data()), cell,
+                        _mm256_castps_si256(laneMask(changed)), 4);
+                    const __m256i code = _mm256_and_si256(both, _mm256_set1_epi32(0xff));
+                    leaping = changed & ~maskBits(_mm256_cmpeq_epi32(code, _mm256_setzero_si256()));
+                    wholeBrick = changed & maskBits(_mm256_cmpeq_epi32(code, _mm256_set1_epi32(2)));
+                    vReach = _mm256_srli_epi32(both, 8);
+                } else {
+                    alignas(32) int entered[kWidth], reach[kWidth]{};
+                    storeInts(entered, cell);
+                    for (int bits = changed; bits != 0; bits &= bits - 1) {
+                        const int r = std::countr_zero(unsigned(bits));
+                        const std::uint8_t code = (*s.cellLeap)[std::size_t(entered[r])];
+                        if (code != 0) {
+                            leaping |= 1 << r;
+                            wholeBrick |= code == 2 ? 1 << r : 0;
+                            reach[r] = s.cellReach != nullptr
+                                           ? (*s.cellReach)[std::size_t(entered[r])]
+                                           : 0;
+                        }
                     }
+                    vReach = loadInts(reach);
                 }
                 vChecked =
                     _mm256_blendv_epi8(vChecked, cell, _mm256_castps_si256(laneMask(changed)));
@@ -270,7 +287,6 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
                     }
                     if (leaping != 0) {
                         const __m256i ijk[3] = {i, j, kk};
-                        const __m256i vReach = loadInts(reach);
                         __m256i lo[3], hi[3];
                         for (int a = 0; a < 3; ++a) {
                             const __m256i c = _mm256_sra_epi32(ijk[a], shiftCount);

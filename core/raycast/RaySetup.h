@@ -59,6 +59,9 @@ template <class Real> struct RaySetup {
     // cells of it, in every direction, can be leapt too (see LeapReach.h); the
     // fast kernels leap over that whole cube. Null: r = 0.
     const std::vector<std::uint8_t>* cellReach = nullptr;
+    // Per cell of levels[1]: cellLeap | cellReach << 8, for kernels that look
+    // up both in one load (the packet kernel's gather). Null: none built.
+    const std::vector<std::int32_t>* cellLeapReach = nullptr;
 };
 
 struct RayOutput {
