@@ -2,12 +2,16 @@
 // 512x512, ct-bone, shading on, trilinear, step 0.5, anterior view, 6 frames
 // turning 5 degrees each; and the accuracy of its first frame against the
 // reference (tricubic, step 1/16 voxel, double precision); and the same frames
-// through the scalar kernel (SamplingSettings::simd off). Prints the figures;
-// asserts nothing about time.
+// through the scalar kernel (SamplingSettings::simd off). Two scenes: ct-bone
+// as Lucent defines opacity (per voxel of the smallest spacing), and ct-bone
+// with its opacities taken per millimetre, VTK's default unit distance and the
+// scene of the VTK anchor (tests/perf/vtk_anchor.py renders both with
+// VTK). Prints the figures; asserts nothing about time.
 #include <QTest>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 
 #include "core/image/ImageMetrics.h"
@@ -20,7 +24,13 @@ using namespace lucent;
 class BenchCpuRender : public QObject {
     Q_OBJECT
 private slots:
+    void philipsCtBone_data() {
+        QTest::addColumn<double>("unitMm");
+        QTest::newRow("opacity-per-voxel") << 0.0;
+        QTest::newRow("opacity-per-mm") << 1.0;
+    }
     void philipsCtBone() {
+        QFETCH(double, unitMm);
         const std::filesystem::path dir =
             std::filesystem::path(LUCENT_TEST_DATA_DIR) / "dcm_qa_ct/Philips_S21570/S2020";
         if (!std::filesystem::exists(dir)) {
@@ -30,6 +40,15 @@ private slots:
         RenderDescription d;
         d.volume = &volume;
         d.transferFunction = loadPreset("ct-bone");
+        if (unitMm > 0.0) {
+            // An opacity per unitMm becomes one per dt_ref: a' = 1 - (1 - a)^(dt_ref / unit).
+            const double ratio = std::min({volume.geometry().spacing.x, volume.geometry().spacing.y,
+                                           volume.geometry().spacing.z}) /
+                                 unitMm;
+            for (OpacityPoint& p : d.transferFunction.opacity) {
+                p.opacity = 1.0 - std::pow(1.0 - p.opacity, ratio);
+            }
+        }
         d.sampling.step = 0.5;
         d.sampling.interpolation = Interpolation::Linear;
         CpuRayCaster caster(volume);
@@ -71,12 +90,13 @@ private slots:
         const RenderResult reference = caster.render(ref);
         const double refMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
         const std::filesystem::path out = std::filesystem::path(LUCENT_BIN_DIR) / "..";
-        writePng(first.image, out / "bench_cpu_render_fast.png");
-        writePng(reference.image, out / "bench_cpu_render_reference.png");
-        qInfo("cpu_render: render_ms=%.1f (median of 6, 512x512, 2 threads) first_ms=%.1f "
+        const std::string tag = unitMm > 0.0 ? "_per_mm" : "";
+        writePng(first.image, out / ("bench_cpu_render_fast" + tag + ".png"));
+        writePng(reference.image, out / ("bench_cpu_render_reference" + tag + ".png"));
+        qInfo("cpu_render%s: render_ms=%.1f (median of 6, 512x512, 2 threads) first_ms=%.1f "
               "scalar_render_ms=%.1f samples=%zu "
               "psnr_db=%.2f ssim=%.4f vs reference (reference took %.0f ms)",
-              median, firstMs, scalarMedian, first.stats.samples,
+              tag.c_str(), median, firstMs, scalarMedian, first.stats.samples,
               psnr(first.image, reference.image), ssim(first.image, reference.image), refMs);
     }
 };

@@ -1,0 +1,108 @@
+#!/usr/bin/python3
+"""The anchor of the CPU render benchmark, measured with VTK 9.1's
+vtkFixedPointVolumeRayCastMapper on the same scene as bench_cpu_render:
+Philips 140-slice CT (as converted by lucent-cli convert), 512x512, ct-bone,
+shading on, trilinear, step 0.5 voxel of the smallest spacing, Lucent's
+anterior camera (30 degree view angle, zoom 1 fits the bounding sphere).
+The opacity unit distance is one voxel of the smallest spacing, as in Lucent.
+
+Needs Debian's python3-vtk9 (a measuring tool, not a project dependency) and
+a display (run under xvfb-run). Usage:
+  build/bin/lucent-cli convert ../shared/data/dcm_qa_ct/Philips_S21570/S2020 /tmp/philips.mhd
+  xvfb-run -a /usr/bin/python3 tests/perf/vtk_anchor.py /tmp/philips.mhd \
+      resources/presets/ct-bone.json OUT.png [UNIT_MM]
+Prints the median time of 6 frames turning 5 degrees. Without UNIT_MM the
+scene is bench_cpu_render's first (opacity per voxel): compare OUT.png with
+build/bench_cpu_render_reference.png; with UNIT_MM 1 (VTK's default, the
+issue's anchor) compare with build/bench_cpu_render_reference_per_mm.png,
+using build/bin/lucent-cli compare.
+"""
+import json
+import math
+import statistics
+import sys
+import time
+
+import vtk
+
+volume_path, preset_path, out_path = sys.argv[1:4]
+# Optional 4th argument: the opacity unit distance in mm (default: Lucent's, the smallest spacing).
+unit_distance = float(sys.argv[4]) if len(sys.argv) > 4 else None
+reader = vtk.vtkMetaImageReader()
+reader.SetFileName(volume_path)
+reader.Update()
+image = reader.GetOutput()
+dims = image.GetDimensions()
+spacing = image.GetSpacing()
+origin = image.GetOrigin()
+
+preset = json.load(open(preset_path))
+opacity = vtk.vtkPiecewiseFunction()
+for value, a in preset["opacity"]:
+    opacity.AddPoint(value, a)
+colour = vtk.vtkColorTransferFunction()
+for value, r, g, b in preset["colour"]:
+    colour.AddRGBPoint(value, r, g, b)
+shading = preset.get("shading", {})
+
+prop = vtk.vtkVolumeProperty()
+prop.SetScalarOpacity(opacity)
+prop.SetColor(colour)
+prop.SetInterpolationTypeToLinear()
+prop.SetScalarOpacityUnitDistance(unit_distance or min(spacing))
+if shading.get("enabled", True):
+    prop.ShadeOn()
+    prop.SetAmbient(shading.get("ambient", 0.1))
+    prop.SetDiffuse(shading.get("diffuse", 0.9))
+    prop.SetSpecular(shading.get("specular", 0.2))
+    prop.SetSpecularPower(shading.get("specular_power", 10))
+
+mapper = vtk.vtkFixedPointVolumeRayCastMapper()
+mapper.SetInputData(image)
+mapper.SetAutoAdjustSampleDistances(0)
+mapper.SetSampleDistance(0.5 * min(spacing))
+mapper.SetInteractiveSampleDistance(0.5 * min(spacing))
+mapper.SetImageSampleDistance(1.0)
+mapper.SetNumberOfThreads(2)
+
+actor = vtk.vtkVolume()
+actor.SetMapper(mapper)
+actor.SetProperty(prop)
+renderer = vtk.vtkRenderer()
+renderer.AddVolume(actor)
+renderer.SetBackground(0, 0, 0)
+window = vtk.vtkRenderWindow()
+window.SetOffScreenRendering(1)
+window.AddRenderer(renderer)
+window.SetSize(512, 512)
+
+# Lucent's ViewFrame: eye in front (anterior, -y), looking +y, head (+z) up.
+centre = [origin[i] + spacing[i] * (dims[i] - 1) / 2 for i in range(3)]
+radius = math.sqrt(sum((spacing[i] * (dims[i] - 1) / 2) ** 2 for i in range(3)))
+distance = radius / math.sin(math.radians(15.0))
+camera = renderer.GetActiveCamera()
+camera.SetFocalPoint(*centre)
+camera.SetPosition(centre[0], centre[1] - distance, centre[2])
+camera.SetViewUp(0, 0, 1)
+camera.SetViewAngle(30.0)
+renderer.ResetCameraClippingRange()
+
+window.Render()  # first frame: setup, as Lucent's first_ms
+grab = vtk.vtkWindowToImageFilter()
+grab.SetInput(window)
+grab.SetInputBufferTypeToRGB()
+grab.ReadFrontBufferOff()
+grab.Update()
+writer = vtk.vtkPNGWriter()
+writer.SetFileName(out_path)
+writer.SetInputConnection(grab.GetOutputPort())
+writer.Write()
+
+times = []
+for frame in range(6):
+    camera.Azimuth(5.0)
+    renderer.ResetCameraClippingRange()
+    t0 = time.perf_counter()
+    window.Render()
+    times.append((time.perf_counter() - t0) * 1000.0)
+print("vtk_fixed_point: render_ms=%.1f (median of 6, 512x512, 2 threads)" % statistics.median(times))
