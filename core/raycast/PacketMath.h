@@ -26,24 +26,14 @@ LUCENT_AVX2 inline void splitPairs(__m256i g, const std::uint16_t*, __m256& a, _
     b = _mm256_cvtepi32_ps(_mm256_srli_epi32(g, 16));
 }
 
-LUCENT_AVX2 inline void loadPairs(const std::int16_t* const at[8], __m256& a, __m256& b) {
+// Two neighbouring voxels per lane (one 32-bit load each), as two float vectors.
+template <class T> LUCENT_AVX2 inline void loadPairs(const T* const at[8], __m256& a, __m256& b) {
     int v[8];
     for (int n = 0; n < 8; ++n) {
         __builtin_memcpy(&v[n], at[n], sizeof(int));
     }
     const __m256i g = _mm256_setr_epi32(v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7]);
-    a = _mm256_cvtepi32_ps(_mm256_srai_epi32(_mm256_slli_epi32(g, 16), 16));
-    b = _mm256_cvtepi32_ps(_mm256_srai_epi32(g, 16));
-}
-
-LUCENT_AVX2 inline void loadPairs(const std::uint16_t* const at[8], __m256& a, __m256& b) {
-    int v[8];
-    for (int n = 0; n < 8; ++n) {
-        __builtin_memcpy(&v[n], at[n], sizeof(int));
-    }
-    const __m256i g = _mm256_setr_epi32(v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7]);
-    a = _mm256_cvtepi32_ps(_mm256_and_si256(g, _mm256_set1_epi32(0xffff)));
-    b = _mm256_cvtepi32_ps(_mm256_srli_epi32(g, 16));
+    splitPairs(g, at[0], a, b);
 }
 
 LUCENT_AVX2 inline void loadPairs(const float* const at[8], __m256& a, __m256& b) {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <concepts>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -104,29 +105,22 @@ template <class T> std::span<const T> Volume::voxels() const {
     return {reinterpret_cast<const T*>(data_.get()), geometry_.voxelCount()};
 }
 
-// Calls f with a typed span of the volume's voxels (int16_t, uint16_t or float).
-template <class F> decltype(auto) visitVoxels(const Volume& volume, F&& f) {
-    switch (volume.type()) {
+// Calls f with a typed span of the volume's voxels (int16_t, uint16_t or float;
+// const when the volume is).
+template <class V, class F>
+requires std::same_as<std::remove_const_t<V>, Volume>
+decltype(auto) visitVoxels(V& volume, F&& f) {
+    using Out = std::conditional_t<std::is_const_v<V>, const Volume, Volume>;
+    Out& v = volume;
+    switch (v.type()) {
     case VoxelType::Int16:
-        return f(volume.voxels<std::int16_t>());
+        return f(v.template voxels<std::int16_t>());
     case VoxelType::UInt16:
-        return f(volume.voxels<std::uint16_t>());
+        return f(v.template voxels<std::uint16_t>());
     case VoxelType::Float32:
         break;
     }
-    return f(volume.voxels<float>());
-}
-
-template <class F> decltype(auto) visitVoxels(Volume& volume, F&& f) {
-    switch (volume.type()) {
-    case VoxelType::Int16:
-        return f(volume.voxels<std::int16_t>());
-    case VoxelType::UInt16:
-        return f(volume.voxels<std::uint16_t>());
-    case VoxelType::Float32:
-        break;
-    }
-    return f(volume.voxels<float>());
+    return f(v.template voxels<float>());
 }
 
 } // namespace lucent
