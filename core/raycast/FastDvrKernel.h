@@ -207,10 +207,11 @@ RayOutput FastDvrKernel<T>::cast(const glm::dvec3& o, const glm::dvec3& d,
                 const double exit = leapExit(i, j, k, cell, lattice);
                 checkedEmpty = exit >= 0.0;
                 if (checkedEmpty) {
-                    // Resume at the last lattice sample not beyond the exit: if
-                    // it still lies in this cell it is passed over as well. The
-                    // samples before it lie a step or more inside the cell.
-                    n = exit > double(span.nLast) ? span.nLast : std::max(n + 1, long(exit)) - 1;
+                    // Resume at the first lattice sample beyond the exit. The
+                    // last one not beyond it lies in the leapable box up to
+                    // float rounding of positions, which the cells' second
+                    // voxel of overlap covers: it is passed over as well.
+                    n = exit >= double(span.nLast) ? span.nLast : std::max(n, long(exit));
                     continue;
                 }
             }

@@ -324,25 +324,19 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
                             }
                         }
                         // A negative exit (rounding) means the cell is sampled after
-                        // all; exit > last: past the last sample; else the lane goes
-                        // on at max(n + 1, long(exit)).
+                        // all; else the lane goes on at max(n, long(exit)) + 1, the
+                        // first sample beyond the exit (FastDvrKernel::cast says why).
                         __m128i whole[2];
-                        int beyond = 0, ahead = 0;
+                        int ahead = 0;
                         for (int h = 0; h < 2; ++h) {
                             ahead |= _mm256_movemask_pd(
                                          _mm256_cmp_pd(exit[h], _mm256_setzero_pd(), _CMP_GE_OQ))
                                      << (4 * h);
-                            const __m128i lastH = halfOf(h, vLast);
-                            beyond |= _mm256_movemask_pd(_mm256_cmp_pd(
-                                          exit[h], _mm256_cvtepi32_pd(lastH), _CMP_GT_OQ))
-                                      << (4 * h);
                             whole[h] =
                                 _mm256_cvttpd_epi32(_mm256_min_pd(exit[h], _mm256_set1_pd(2e9)));
                         }
-                        const __m256i resume = _mm256_blendv_epi8(
-                            _mm256_max_epi32(_mm256_add_epi32(vn, one),
-                                             _mm256_set_m128i(whole[1], whole[0])),
-                            _mm256_add_epi32(vLast, one), _mm256_castps_si256(laneMask(beyond)));
+                        const __m256i resume = _mm256_add_epi32(
+                            _mm256_max_epi32(vn, _mm256_set_m128i(whole[1], whole[0])), one);
                         emptyBits &= ~(leaping & ~ahead);
                         next = _mm256_blendv_epi8(next, resume,
                                                   _mm256_castps_si256(laneMask(leaping & ahead)));
