@@ -1,5 +1,7 @@
 #include "core/pacs/SeriesRetriever.h"
 
+#include <optional>
+
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcuid.h>
 
@@ -177,7 +179,9 @@ RetrieveResult retrieveSeries(const PacsNode& node, const PacsSettings& settings
         DcmDataset q;
         missingQuery(q, studyUid, seriesUid, missing, listing.instances.size());
         OwnedResponses<RetrieveResponse> responses;
+        std::optional<StudyStore::Batch> batch(std::in_place, store);
         const OFCondition c = a.scu().sendCGETRequest(pc, &q, &responses.list);
+        batch.reset();
         result.received = receiver->received;
         result.alreadyStored += receiver->duplicates;
         result.failed = receiver->failed;

@@ -72,14 +72,23 @@ StudyStore::StudyStore(const fs::path& root) : root_(root) {
     // drop the last few index rows, whose instances the next retrieval fetches
     // again. FULL would fsync for every instance of a retrieval.
     exec("PRAGMA synchronous=NORMAL");
+    exec("CREATE TABLE IF NOT EXISTS patients (patient_key TEXT PRIMARY KEY, patient_id TEXT, "
+         "patient_name TEXT, birth_date TEXT)");
+    exec("CREATE TABLE IF NOT EXISTS studies (study_uid TEXT PRIMARY KEY, patient_key TEXT, "
+         "study_date TEXT, study_description TEXT, accession TEXT)");
     exec("CREATE TABLE IF NOT EXISTS series (series_uid TEXT PRIMARY KEY, study_uid TEXT, "
          "patient_id TEXT, patient_name TEXT, study_date TEXT, series_description TEXT, modality "
-         "TEXT, "
-         "series_number INTEGER, expected INTEGER DEFAULT 0)");
+         "TEXT, series_number INTEGER, expected INTEGER DEFAULT 0)");
     exec(
         "CREATE TABLE IF NOT EXISTS instances (sop_uid TEXT PRIMARY KEY, series_uid TEXT NOT NULL, "
         "path TEXT NOT NULL)");
     exec("CREATE INDEX IF NOT EXISTS instances_by_series ON instances(series_uid)");
+    // Stores from before the patients and studies tables: fill them from the series.
+    exec("INSERT OR IGNORE INTO patients (patient_key, patient_id, patient_name, birth_date) "
+         "SELECT patient_id || '|' || patient_name, patient_id, patient_name, '' FROM series");
+    exec("INSERT OR IGNORE INTO studies (study_uid, patient_key, study_date, study_description, "
+         "accession) SELECT study_uid, patient_id || '|' || patient_name, study_date, '', '' "
+         "FROM series");
 }
 
 StudyStore::~StudyStore() {
@@ -156,12 +165,21 @@ bool StudyStore::add(const fs::path& file, const InstanceRecord& r) {
     }
     series.addBindValue(r.seriesNumber);
     run(series, root_);
+    upsertStudy(r);
     QSqlQuery instance =
         prepared(connection_, "INSERT INTO instances (sop_uid, series_uid, path) VALUES (?,?,?)");
     instance.addBindValue(q(r.sopInstanceUid));
     instance.addBindValue(q(r.series.seriesUid));
-    instance.addBindValue(q(fs::relative(target, root_).string()));
+    instance.addBindValue(q((fs::path("files") / safeComponent(r.series.studyUid) /
+                             safeComponent(r.series.seriesUid) / target.filename())
+                                .string()));
     run(instance, root_);
+    // A long retrieval commits now and then, so that other connections (the
+    // storage SCP, the study browser) are not kept waiting for the write lock.
+    if (batchDepth_ > 0 && ++batchAdds_ % 32 == 0) {
+        exec("COMMIT");
+        exec("BEGIN IMMEDIATE");
+    }
     return true;
 }
 
@@ -179,6 +197,14 @@ void StudyStore::remove(const std::string& sop) {
 }
 
 void StudyStore::setExpected(const SeriesInfo& s, int seriesNumber, int instances) {
+    InstanceRecord r;
+    r.series = s;
+    r.seriesNumber = seriesNumber;
+    setExpected(r, instances);
+}
+
+void StudyStore::setExpected(const InstanceRecord& r, int instances) {
+    const SeriesInfo& s = r.series;
     QSqlQuery query = prepared(
         connection_,
         "INSERT INTO series (series_uid, study_uid, patient_id, patient_name, study_date, "
@@ -188,9 +214,87 @@ void StudyStore::setExpected(const SeriesInfo& s, int seriesNumber, int instance
                                  &s.studyDate, &s.description, &s.modality}) {
         query.addBindValue(q(*v));
     }
-    query.addBindValue(seriesNumber);
+    query.addBindValue(r.seriesNumber);
     query.addBindValue(instances);
     run(query, root_);
+    upsertStudy(r);
+}
+
+void StudyStore::upsertStudy(const InstanceRecord& r) {
+    const QString key = q(r.series.patientId + "|" + r.series.patientName);
+    QSqlQuery patient = prepared(
+        connection_, "INSERT INTO patients (patient_key, patient_id, patient_name, birth_date) "
+                     "VALUES (?,?,?,?) ON CONFLICT(patient_key) DO UPDATE SET birth_date = "
+                     "excluded.birth_date WHERE excluded.birth_date <> ''");
+    patient.addBindValue(key);
+    patient.addBindValue(q(r.series.patientId));
+    patient.addBindValue(q(r.series.patientName));
+    patient.addBindValue(q(r.patientBirthDate));
+    run(patient, root_);
+    QSqlQuery study = prepared(
+        connection_,
+        "INSERT INTO studies (study_uid, patient_key, study_date, study_description, accession) "
+        "VALUES (?,?,?,?,?) ON CONFLICT(study_uid) DO UPDATE SET "
+        "study_description = CASE WHEN excluded.study_description <> '' THEN "
+        "excluded.study_description ELSE study_description END, "
+        "accession = CASE WHEN excluded.accession <> '' THEN excluded.accession ELSE accession "
+        "END");
+    study.addBindValue(q(r.series.studyUid));
+    study.addBindValue(key);
+    study.addBindValue(q(r.series.studyDate));
+    study.addBindValue(q(r.studyDescription));
+    study.addBindValue(q(r.accessionNumber));
+    run(study, root_);
+}
+
+std::vector<StoredSeries> StudyStore::listSeries() const {
+    QSqlQuery query = prepared(
+        connection_,
+        "SELECT s.series_uid, s.study_uid, s.modality, s.series_description, p.patient_name, "
+        "p.patient_id, st.study_date, st.study_description, st.accession, p.birth_date, "
+        "s.series_number, s.expected, (SELECT COUNT(*) FROM instances i WHERE i.series_uid = "
+        "s.series_uid) FROM series s JOIN studies st ON st.study_uid = s.study_uid JOIN patients "
+        "p ON p.patient_key = st.patient_key ORDER BY p.patient_name, st.study_date, "
+        "s.study_uid, s.series_number, s.series_uid");
+    run(query, root_);
+    std::vector<StoredSeries> out;
+    while (query.next()) {
+        StoredSeries s;
+        auto text = [&](int i) { return query.value(i).toString().toStdString(); };
+        s.info.seriesUid = text(0);
+        s.info.studyUid = text(1);
+        s.info.modality = text(2);
+        s.info.description = text(3);
+        s.info.patientName = text(4);
+        s.info.patientId = text(5);
+        s.info.studyDate = text(6);
+        s.studyDescription = text(7);
+        s.accessionNumber = text(8);
+        s.patientBirthDate = text(9);
+        s.seriesNumber = query.value(10).toInt();
+        s.expected = query.value(11).toInt();
+        s.stored = query.value(12).toInt();
+        s.complete = s.expected > 0 && s.stored >= s.expected;
+        s.folder = seriesFolder(s.info.studyUid, s.info.seriesUid);
+        out.push_back(std::move(s));
+    }
+    return out;
+}
+
+StudyStore::Batch::Batch(StudyStore& store) : store_(store) {
+    if (store_.batchDepth_++ == 0) {
+        store_.exec("BEGIN IMMEDIATE");
+    }
+}
+
+StudyStore::Batch::~Batch() {
+    if (--store_.batchDepth_ == 0) {
+        try {
+            store_.exec("COMMIT");
+        } catch (const StoreError&) {
+            // Rows lost here only make their files be fetched again; never throw from here.
+        }
+    }
 }
 
 int StudyStore::expected(const std::string& seriesUid) const {

@@ -5,6 +5,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "core/volume/SeriesInfo.h"
 
@@ -20,6 +21,24 @@ struct InstanceRecord {
     SeriesInfo series;
     int seriesNumber = 0;
     std::string sopInstanceUid;
+    // Study and patient facts for the index (empty when unknown).
+    std::string studyDescription;
+    std::string accessionNumber;
+    std::string patientBirthDate;
+};
+
+// One series of the index, for the study browser: patient, study, series and
+// how complete it is.
+struct StoredSeries {
+    SeriesInfo info;
+    std::string studyDescription;
+    std::string accessionNumber;
+    std::string patientBirthDate;
+    int seriesNumber = 0;
+    int expected = 0; // instances the PACS listed; 0 when unknown (e.g. pushed to Lucent)
+    int stored = 0;
+    bool complete = false; // expected known and all stored
+    std::filesystem::path folder;
 };
 
 // The local study store: DICOM files under a folder
@@ -49,13 +68,37 @@ public:
     void remove(const std::string& sopInstanceUid);
 
     void setExpected(const SeriesInfo& series, int seriesNumber, int instances);
+    // The same with the study and patient facts of `series` (its SOP UID is unused).
+    void setExpected(const InstanceRecord& series, int instances);
     int expected(const std::string& seriesUid) const;
     bool isComplete(const std::string& seriesUid) const;
     std::filesystem::path seriesFolder(const std::string& studyUid,
                                        const std::string& seriesUid) const;
 
+    // Every series of the index (patients, studies, series with their
+    // completeness), ordered by patient name, study date, study, series number.
+    std::vector<StoredSeries> listSeries() const;
+
+    // Groups the index writes of a retrieval into one transaction (one commit
+    // instead of one per instance). Commits when destroyed, also on an
+    // exception: every row it holds describes a file already in place. Nests.
+    class Batch {
+    public:
+        explicit Batch(StudyStore& store);
+        ~Batch();
+        Batch(const Batch&) = delete;
+        Batch& operator=(const Batch&) = delete;
+
+    private:
+        StudyStore& store_;
+    };
+
 private:
     void exec(const std::string& sql) const;
+    void upsertStudy(const InstanceRecord& r);
+
+    int batchDepth_ = 0;
+    std::uint64_t batchAdds_ = 0;
 
     std::filesystem::path root_;
     std::string connection_;

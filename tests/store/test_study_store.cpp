@@ -88,6 +88,41 @@ private slots:
         QVERIFY(!two.contains("1.2.3.4.1"));
     }
 
+    void indexListsPatientsStudiesAndSeries() {
+        QTemporaryDir dir;
+        {
+            StudyStore store(dir.path().toStdString());
+            StudyStore::Batch batch(store); // one transaction, committed when it goes
+            InstanceRecord facts = record("");
+            facts.studyDescription = "Head";
+            facts.accessionNumber = "ACC7";
+            facts.patientBirthDate = "19700101";
+            store.setExpected(facts, 3);
+            for (const char* sop : {"1.2.3.4.1", "1.2.3.4.2"}) {
+                QVERIFY(store.add(incoming(store, sop), record(sop)));
+            }
+            for (int i = 0; i < 40; ++i) { // past the periodic commit inside a batch
+                const std::string sop = "1.2.3.5." + std::to_string(i);
+                QVERIFY(store.add(incoming(store, sop), record(sop, "1.2.3.5")));
+            }
+        }
+        StudyStore store(dir.path().toStdString());
+        const std::vector<StoredSeries> all = store.listSeries();
+        QCOMPARE(all.size(), std::size_t(2));
+        QCOMPARE(all[0].info.seriesUid, std::string("1.2.3.4"));
+        QCOMPARE(all[0].info.patientName, std::string("Test^Store"));
+        QCOMPARE(all[0].studyDescription, std::string("Head"));
+        QCOMPARE(all[0].accessionNumber, std::string("ACC7"));
+        QCOMPARE(all[0].patientBirthDate, std::string("19700101"));
+        QCOMPARE(all[0].expected, 3);
+        QCOMPARE(all[0].stored, 2);
+        QVERIFY(!all[0].complete);
+        QCOMPARE(all[1].stored, 40);
+        QCOMPARE(all[1].expected, 0); // pushed: nobody said how many
+        QVERIFY(!all[1].complete);
+        QCOMPARE(all[1].folder, store.seriesFolder("1.2.3", "1.2.3.5"));
+    }
+
     void badInputIsRefused() {
         QTemporaryDir dir;
         const std::string file = dir.filePath("plain-file").toStdString();

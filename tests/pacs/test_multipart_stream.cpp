@@ -1,0 +1,68 @@
+// The incremental multipart/related parser: the same parts whatever the chunking.
+#include <QTest>
+
+#include <string>
+#include <vector>
+
+#include "core/pacs/MultipartStream.h"
+#include "core/pacs/PacsNode.h"
+
+using namespace lucent;
+
+namespace {
+
+std::vector<QByteArray> parse(const QByteArray& type, const QByteArray& body, qsizetype chunk) {
+    MultipartStream stream(type, "test");
+    std::vector<QByteArray> parts;
+    stream.onPartBegin = [&] { parts.emplace_back(); };
+    stream.onPartData = [&](const char* p, qsizetype n) { parts.back().append(p, n); };
+    int ended = 0;
+    stream.onPartEnd = [&] { ++ended; };
+    for (qsizetype i = 0; i < body.size(); i += chunk) {
+        stream.feed(body.constData() + i, std::min(chunk, body.size() - i));
+    }
+    stream.finish();
+    if (ended != static_cast<int>(parts.size())) {
+        throw std::runtime_error("a part did not end");
+    }
+    return parts;
+}
+
+} // namespace
+
+class TestMultipartStream : public QObject {
+    Q_OBJECT
+private slots:
+    void partsSurviveAnyChunking() {
+        // Bodies that contain CR LF, dashes and most of the boundary.
+        const std::vector<QByteArray> want = {QByteArray("DICM\r\n--bound\r\n-x"),
+                                              QByteArray(70000, 'a') + "\r\n--boundar",
+                                              QByteArray(), QByteArray("\0\1\2", 3)};
+        QByteArray body = "preamble\r\n";
+        for (const QByteArray& p : want) {
+            body += "--boundary\r\nContent-Type: application/dicom\r\n\r\n" + p + "\r\n";
+        }
+        body += "--boundary--\r\n";
+        for (const qsizetype chunk : {1, 2, 7, 13, 4096, 1 << 20}) {
+            const auto got = parse(
+                "multipart/related; type=\"application/dicom\"; boundary=boundary", body, chunk);
+            QCOMPARE(got.size(), want.size());
+            for (std::size_t i = 0; i < want.size(); ++i) {
+                QCOMPARE(got[i], want[i]);
+            }
+        }
+        const QByteArray quoted = "--b c\r\n\r\nxyz\r\n--b c--";
+        const auto got = parse("multipart/related; boundary=\"b c\"; type=x", quoted, 3);
+        QCOMPARE(got.size(), std::size_t(1));
+        QCOMPARE(got[0], QByteArray("xyz"));
+    }
+
+    void cutShortOrNotMultipartSaysSo() {
+        QVERIFY_THROWS_EXCEPTION(PacsError, MultipartStream("application/dicom", "x"));
+        QVERIFY_THROWS_EXCEPTION(
+            PacsError, parse("multipart/related; boundary=b", "--b\r\n\r\nhalf a part", 5));
+    }
+};
+
+QTEST_GUILESS_MAIN(TestMultipartStream)
+#include "test_multipart_stream.moc"
