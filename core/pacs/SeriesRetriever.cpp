@@ -64,6 +64,36 @@ private:
     int toFetch_;
 };
 
+// Follows a C-MOVE's pending responses: reports progress and, on cancel,
+// sends C-CANCEL and stops waiting (the association is then aborted, so the
+// PACS stops the sub-operations whether or not it honours C-CANCEL).
+class MovingScu : public DcmSCU {
+public:
+    explicit MovingScu(const RetrieveControl& control) : control_(control) {}
+    bool cancelled = false;
+
+protected:
+    OFCondition handleMOVEResponse(const T_ASC_PresentationContextID presID,
+                                   RetrieveResponse* response,
+                                   OFBool& waitForNextResponse) override {
+        const OFCondition c = DcmSCU::handleMOVEResponse(presID, response, waitForNextResponse);
+        if (waitForNextResponse && control_.onProgress) {
+            const int done = response->m_numberOfCompletedSubops +
+                             response->m_numberOfFailedSubops + response->m_numberOfWarningSubops;
+            control_.onProgress(done, done + response->m_numberOfRemainingSubops);
+        }
+        if (waitForNextResponse && control_.stop.stop_requested()) {
+            cancelled = true;
+            sendCANCELRequest(presID);
+            waitForNextResponse = OFFalse;
+        }
+        return c;
+    }
+
+private:
+    const RetrieveControl& control_;
+};
+
 struct SeriesListing {
     SeriesInfo info;
     int seriesNumber = 0;
@@ -203,7 +233,8 @@ RetrieveResult retrieveSeries(const PacsNode& node, const PacsSettings& settings
 
 RetrieveResult moveSeries(const PacsNode& node, const PacsSettings& settings,
                           const std::string& destinationAe, const std::string& studyUid,
-                          const std::string& seriesUid, StudyStore& store) {
+                          const std::string& seriesUid, StudyStore& store,
+                          const RetrieveControl& control) {
     checkAeTitle(destinationAe, "move destination");
     const RetrievalPlan plan = planRetrieval(node, settings, studyUid, seriesUid, store);
     const SeriesListing& listing = plan.listing;
@@ -211,15 +242,24 @@ RetrieveResult moveSeries(const PacsNode& node, const PacsSettings& settings,
     RetrieveResult result = plan.result;
     const std::size_t before = store.instancesOf(seriesUid).size();
     if (!missing.empty()) {
-        DimseAssociation a(node, settings, {UID_MOVEStudyRootQueryRetrieveInformationModel});
+        auto scu = std::make_unique<MovingScu>(control);
+        const MovingScu& mover = *scu;
+        DimseAssociation a(node, settings, {UID_MOVEStudyRootQueryRetrieveInformationModel},
+                           std::move(scu));
         const T_ASC_PresentationContextID pc =
             a.context(UID_MOVEStudyRootQueryRetrieveInformationModel, "C-MOVE");
         DcmDataset q;
         missingQuery(q, studyUid, seriesUid, missing, listing.instances.size());
         OwnedResponses<RetrieveResponse> responses;
-        if (const OFCondition c =
-                a.scu().sendMOVERequest(pc, destinationAe.c_str(), &q, &responses.list);
-            c.bad()) {
+        const OFCondition c =
+            a.scu().sendMOVERequest(pc, destinationAe.c_str(), &q, &responses.list);
+        if (mover.cancelled || control.stop.stop_requested()) {
+            a.scu().abortAssociation();
+            throw PacsError(
+                node.describe() + ": retrieval of series " + seriesUid + " cancelled after " +
+                std::to_string(store.instancesOf(seriesUid).size() - before) + " instance(s)");
+        }
+        if (c.bad()) {
             a.fail("C-MOVE failed", c);
         }
         const Uint16 status = responses.list.empty() ? 0xC000 : responses.list.back()->m_status;

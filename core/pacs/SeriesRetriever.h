@@ -22,7 +22,7 @@ struct RetrieveResult {
 
 struct RetrieveControl {
     std::function<void(int done, int total)> onProgress; // instances handled / to fetch
-    std::stop_token stop;                                // cancel: the association is aborted
+    std::stop_token stop; // cancel: the association (or HTTP request) is aborted
 };
 
 // Retrieves a series by C-GET into the store, asking only for the instances the
@@ -35,8 +35,11 @@ RetrieveResult retrieveSeries(const PacsNode& node, const PacsSettings& settings
 // Retrieves a series by C-MOVE: the PACS sends the instances the store lacks
 // to destinationAe, a storage SCP it knows (Lucent's StorageScp on the same
 // store). Throws PacsError, e.g. when the PACS does not know the destination.
+// Progress counts the PACS's sub-operations; cancel sends C-CANCEL and aborts
+// the association, which stops the PACS sending.
 RetrieveResult moveSeries(const PacsNode& node, const PacsSettings& settings,
                           const std::string& destinationAe, const std::string& studyUid,
-                          const std::string& seriesUid, StudyStore& store);
+                          const std::string& seriesUid, StudyStore& store,
+                          const RetrieveControl& control = {});
 
 } // namespace lucent
