@@ -228,6 +228,9 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
         const __m256 qz = _mm256_add_ps(vez, _mm256_mul_ps(vsz, fn));
         __m256i i = _mm256_cvttps_epi32(qx), j = _mm256_cvttps_epi32(qy),
                 kk = _mm256_cvttps_epi32(qz);
+        // Lanes that sample this pass, and where each lane goes on.
+        int sampling = active;
+        __m256i next = _mm256_add_epi32(vn, _mm256_set1_epi32(1));
         if (s.leap) {
             const __m256i cy =
                 _mm256_add_epi32(_mm256_sra_epi32(j, shiftCount),
@@ -240,8 +243,8 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
             // entered a cell that cannot be leapt samples it; one that entered
             // a leapable cell goes on to the last sample not beyond the exit of
             // the cube (or brick) of leapable cells around it, plus one; one
-            // still in the leapable cell it checked goes on by one sample. Then
-            // the packet is looked at again, until every lane samples or is done.
+            // still in the leapable cell it checked goes on by one sample. The
+            // other lanes sample in the same pass.
             const int changed = active & ~same;
             const int stepping = active & same & emptyBits;
             if ((changed | stepping) != 0) {
@@ -279,13 +282,9 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
                     _mm256_blendv_epi8(vChecked, cell, _mm256_castps_si256(laneMask(changed)));
                 emptyBits = (emptyBits & ~changed) | leaping;
                 if ((leaping | stepping) != 0) {
-                    const __m256i one = _mm256_set1_epi32(1);
-                    __m256i next = vn;
-                    if (stepping != 0) {
-                        next = _mm256_blendv_epi8(next, _mm256_add_epi32(vn, one),
-                                                  _mm256_castps_si256(laneMask(stepping)));
-                    }
+                    sampling &= ~stepping;
                     if (leaping != 0) {
+                        const __m256i one = _mm256_set1_epi32(1);
                         const __m256i ijk[3] = {i, j, kk};
                         __m256i lo[3], hi[3];
                         for (int a = 0; a < 3; ++a) {
@@ -340,114 +339,115 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
                         emptyBits &= ~(leaping & ~ahead);
                         next = _mm256_blendv_epi8(next, resume,
                                                   _mm256_castps_si256(laneMask(leaping & ahead)));
+                        sampling &= ~(leaping & ahead);
                     }
-                    vn = next;
-                    active &=
-                        ~_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(vn, vLast)));
-                    continue;
                 }
             }
         }
-        samples += std::size_t(std::popcount(unsigned(active)));
-        // Rays that are done may lie anywhere: clamping keeps their reads inside.
-        i = clampInt(i, lastIjk[0]);
-        j = clampInt(j, lastIjk[1]);
-        kk = clampInt(kk, lastIjk[2]);
-        const __m256 fx = _mm256_sub_ps(qx, _mm256_cvtepi32_ps(i));
-        const __m256 fy = _mm256_sub_ps(qy, _mm256_cvtepi32_ps(j));
-        const __m256 fz = _mm256_sub_ps(qz, _mm256_cvtepi32_ps(kk));
-        const __m256i o00 =
-            _mm256_add_epi32(i, _mm256_add_epi32(_mm256_mullo_epi32(j, rowStride),
-                                                 _mm256_mullo_epi32(kk, sliceStride)));
-        alignas(32) int offset[kWidth];
-        storeInts(offset, o00);
-        const T* base[kWidth];
-        for (int r = 0; r < kWidth; ++r) {
-            base[r] = data + offset[r];
-        }
-        // Lanes that are done keep whatever rows they had: nothing reads them.
-        if ((active & ~maskBits(_mm256_cmpeq_epi32(o00, cellAt))) != 0) {
-            for (int r = 0; r < 4; ++r) {
-                cell.row[r] =
-                    pairAt(base, ((r & 1) != 0 ? rowStep : 0) + ((r & 2) != 0 ? sliceStep : 0));
+        if (sampling != 0) {
+            samples += std::size_t(std::popcount(unsigned(sampling)));
+            // Rays that are done may lie anywhere: clamping keeps their reads inside.
+            i = clampInt(i, lastIjk[0]);
+            j = clampInt(j, lastIjk[1]);
+            kk = clampInt(kk, lastIjk[2]);
+            const __m256 fx = _mm256_sub_ps(qx, _mm256_cvtepi32_ps(i));
+            const __m256 fy = _mm256_sub_ps(qy, _mm256_cvtepi32_ps(j));
+            const __m256 fz = _mm256_sub_ps(qz, _mm256_cvtepi32_ps(kk));
+            const __m256i o00 =
+                _mm256_add_epi32(i, _mm256_add_epi32(_mm256_mullo_epi32(j, rowStride),
+                                                     _mm256_mullo_epi32(kk, sliceStride)));
+            alignas(32) int offset[kWidth];
+            storeInts(offset, o00);
+            const T* base[kWidth];
+            for (int r = 0; r < kWidth; ++r) {
+                base[r] = data + offset[r];
             }
-            cellAt = o00;
-        }
-        // The same operations, in the same order, as FastDvrKernel's.
-        const __m256 c00 = lerp(cell.row[0].a, cell.row[0].b, fx);
-        const __m256 c10 = lerp(cell.row[1].a, cell.row[1].b, fx);
-        const __m256 c01 = lerp(cell.row[2].a, cell.row[2].b, fx);
-        const __m256 c11 = lerp(cell.row[3].a, cell.row[3].b, fx);
-        const __m256 v = lerp(lerp(c00, c10, fy), lerp(c01, c11, fy), fz);
-        const __m256 inRange = _mm256_and_ps(_mm256_cmp_ps(v, visibleLo, _CMP_GE_OQ),
-                                             _mm256_cmp_ps(v, visibleHi, _CMP_LE_OQ));
-        const int visible = active & _mm256_movemask_ps(inRange);
-        __m256 c[4];
-        const int contributing =
-            visible == 0
-                ? 0
-                : (lookup(v, c),
-                   visible & maskBits(_mm256_cmp_ps(c[3], _mm256_setzero_ps(), _CMP_GT_OQ)));
-        if (contributing != 0) {
-            if (s.shading) {
-                const __m256i inside = _mm256_and_si256(
-                    _mm256_and_si256(
-                        _mm256_cmpgt_epi32(_mm256_min_epi32(i, _mm256_min_epi32(j, kk)),
-                                           _mm256_setzero_si256()),
-                        _mm256_cmpgt_epi32(lastIjk[0], i)),
-                    _mm256_and_si256(_mm256_cmpgt_epi32(lastIjk[1], j),
-                                     _mm256_cmpgt_epi32(lastIjk[2], kk)));
-                const int insideBits = contributing & maskBits(inside);
-                __m256 grad[3];
-                if (insideBits != 0) {
-                    const int same = cornersValid & maskBits(_mm256_cmpeq_epi32(o00, cornersAt));
-                    if ((insideBits & ~same) != 0) {
-                        // The corners of every active lane inside the volume;
-                        // lanes at the border read a lane's inside the volume,
-                        // then take the clamped filter's gradient below.
-                        const int valid = active & maskBits(inside);
-                        const T* at[kWidth];
-                        const T* some = base[std::countr_zero(unsigned(insideBits))];
-                        for (int r = 0; r < kWidth; ++r) {
-                            at[r] = (valid >> r & 1) != 0 ? base[r] : some;
+            // Lanes that are done keep whatever rows they had: nothing reads them.
+            if ((sampling & ~maskBits(_mm256_cmpeq_epi32(o00, cellAt))) != 0) {
+                for (int r = 0; r < 4; ++r) {
+                    cell.row[r] =
+                        pairAt(base, ((r & 1) != 0 ? rowStep : 0) + ((r & 2) != 0 ? sliceStep : 0));
+                }
+                cellAt = o00;
+            }
+            // The same operations, in the same order, as FastDvrKernel's.
+            const __m256 c00 = lerp(cell.row[0].a, cell.row[0].b, fx);
+            const __m256 c10 = lerp(cell.row[1].a, cell.row[1].b, fx);
+            const __m256 c01 = lerp(cell.row[2].a, cell.row[2].b, fx);
+            const __m256 c11 = lerp(cell.row[3].a, cell.row[3].b, fx);
+            const __m256 v = lerp(lerp(c00, c10, fy), lerp(c01, c11, fy), fz);
+            const __m256 inRange = _mm256_and_ps(_mm256_cmp_ps(v, visibleLo, _CMP_GE_OQ),
+                                                 _mm256_cmp_ps(v, visibleHi, _CMP_LE_OQ));
+            const int visible = sampling & _mm256_movemask_ps(inRange);
+            __m256 c[4];
+            const int contributing =
+                visible == 0
+                    ? 0
+                    : (lookup(v, c),
+                       visible & maskBits(_mm256_cmp_ps(c[3], _mm256_setzero_ps(), _CMP_GT_OQ)));
+            if (contributing != 0) {
+                if (s.shading) {
+                    const __m256i inside = _mm256_and_si256(
+                        _mm256_and_si256(
+                            _mm256_cmpgt_epi32(_mm256_min_epi32(i, _mm256_min_epi32(j, kk)),
+                                               _mm256_setzero_si256()),
+                            _mm256_cmpgt_epi32(lastIjk[0], i)),
+                        _mm256_and_si256(_mm256_cmpgt_epi32(lastIjk[1], j),
+                                         _mm256_cmpgt_epi32(lastIjk[2], kk)));
+                    const int insideBits = contributing & maskBits(inside);
+                    __m256 grad[3];
+                    if (insideBits != 0) {
+                        const int same =
+                            cornersValid & maskBits(_mm256_cmpeq_epi32(o00, cornersAt));
+                        if ((insideBits & ~same) != 0) {
+                            // The corners of every active lane inside the volume;
+                            // lanes at the border read a lane's inside the volume,
+                            // then take the clamped filter's gradient below.
+                            const int valid = sampling & maskBits(inside);
+                            const T* at[kWidth];
+                            const T* some = base[std::countr_zero(unsigned(insideBits))];
+                            for (int r = 0; r < kWidth; ++r) {
+                                at[r] = (valid >> r & 1) != 0 ? base[r] : some;
+                            }
+                            gradientCorners(at, cell, rowStep, sliceStep, corners);
+                            cornersAt = o00;
+                            cornersValid = valid;
                         }
-                        gradientCorners(at, cell, rowStep, sliceStep, corners);
-                        cornersAt = o00;
-                        cornersValid = valid;
+                        blendGradient(corners, fx, fy, fz, grad);
                     }
-                    blendGradient(corners, fx, fy, fz, grad);
+                    if (const int border = contributing & ~insideBits; border != 0) {
+                        alignas(32) float px[kWidth], py[kWidth], pz[kWidth], gs[3][kWidth]{};
+                        _mm256_store_ps(px, qx);
+                        _mm256_store_ps(py, qy);
+                        _mm256_store_ps(pz, qz);
+                        for (int a = 0; a < 3 && insideBits != 0; ++a) {
+                            _mm256_store_ps(gs[a], grad[a]);
+                        }
+                        for (int b = border; b != 0; b &= b - 1) {
+                            const int r = std::countr_zero(unsigned(b));
+                            const glm::vec3 gr = field.gradient(glm::vec3(px[r], py[r], pz[r]));
+                            gs[0][r] = gr.x, gs[1][r] = gr.y, gs[2][r] = gr.z;
+                        }
+                        for (int a = 0; a < 3; ++a) {
+                            grad[a] = _mm256_load_ps(gs[a]);
+                        }
+                    }
+                    light(grad, dir, contributing, c);
                 }
-                if (const int border = contributing & ~insideBits; border != 0) {
-                    alignas(32) float px[kWidth], py[kWidth], pz[kWidth], gs[3][kWidth]{};
-                    _mm256_store_ps(px, qx);
-                    _mm256_store_ps(py, qy);
-                    _mm256_store_ps(pz, qz);
-                    for (int a = 0; a < 3 && insideBits != 0; ++a) {
-                        _mm256_store_ps(gs[a], grad[a]);
-                    }
-                    for (int b = border; b != 0; b &= b - 1) {
-                        const int r = std::countr_zero(unsigned(b));
-                        const glm::vec3 gr = field.gradient(glm::vec3(px[r], py[r], pz[r]));
-                        gs[0][r] = gr.x, gs[1][r] = gr.y, gs[2][r] = gr.z;
-                    }
-                    for (int a = 0; a < 3; ++a) {
-                        grad[a] = _mm256_load_ps(gs[a]);
-                    }
+                // Front to back, in the lanes that add something.
+                const __m256 adds = laneMask(contributing);
+                const __m256 weight =
+                    _mm256_mul_ps(_mm256_sub_ps(_mm256_set1_ps(1.0f), acc[3]), c[3]);
+                for (int ch = 0; ch < 3; ++ch) {
+                    acc[ch] = _mm256_blendv_ps(
+                        acc[ch], _mm256_add_ps(acc[ch], _mm256_mul_ps(weight, c[ch])), adds);
                 }
-                light(grad, dir, contributing, c);
+                acc[3] = _mm256_blendv_ps(acc[3], _mm256_add_ps(acc[3], weight), adds);
+                active &= ~(contributing &
+                            maskBits(_mm256_cmp_ps(acc[3], _mm256_set1_ps(stop), _CMP_GE_OQ)));
             }
-            // Front to back, in the lanes that add something.
-            const __m256 adds = laneMask(contributing);
-            const __m256 weight = _mm256_mul_ps(_mm256_sub_ps(_mm256_set1_ps(1.0f), acc[3]), c[3]);
-            for (int ch = 0; ch < 3; ++ch) {
-                acc[ch] = _mm256_blendv_ps(
-                    acc[ch], _mm256_add_ps(acc[ch], _mm256_mul_ps(weight, c[ch])), adds);
-            }
-            acc[3] = _mm256_blendv_ps(acc[3], _mm256_add_ps(acc[3], weight), adds);
-            active &=
-                ~(contributing & maskBits(_mm256_cmp_ps(acc[3], _mm256_set1_ps(stop), _CMP_GE_OQ)));
         }
-        vn = _mm256_add_epi32(vn, _mm256_set1_epi32(1));
+        vn = next;
         active &= ~_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(vn, vLast)));
     }
 
