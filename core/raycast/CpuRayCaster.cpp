@@ -11,6 +11,7 @@
 
 #include "core/raycast/BSplinePrefilter.h"
 #include "core/raycast/FastDvrKernel.h"
+#include "core/raycast/InvisibleCells.h"
 #include "core/raycast/LeapReach.h"
 #include "core/raycast/PacketDvrKernel.h"
 #include "core/raycast/RayKernel.h"
@@ -44,6 +45,9 @@ struct CpuRayCaster::Cache {
     LevelData coarse, fine;
     std::vector<std::uint8_t> cellLeap, reach;
     std::vector<std::int32_t> leapReach; // cellLeap | reach << 8
+    // Cells no sample can see (packet kernel), and the bounds they were found for.
+    std::optional<std::pair<double, double>> invisibleBounds;
+    InvisibleCells invisible;
 };
 
 namespace {
@@ -362,6 +366,19 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
     const double tableCell = exact ? 0.0 : (tHi - tLo) / double(kTableSize - 1);
     sf.visibleLo = sd.visibleLo = visLo - tableCell;
     sf.visibleHi = sd.visibleHi = visHi + tableCell;
+    // The packet kernel passes over samples in cells whose voxels all lie
+    // beyond the visible range by more than the float rounding of a trilinear
+    // sample (a table cell, or a few float ulps of the largest value).
+    if (fast && sampling.simd && simdAllowed() && (std::isfinite(visLo) || std::isfinite(visHi))) {
+        const double margin = tableCell + 4e-6 * std::max(std::abs(tLo), std::abs(tHi));
+        const std::pair bounds(sf.visibleLo - margin, sf.visibleHi + margin);
+        if (cache.invisibleBounds != bounds) {
+            cache.invisibleBounds.reset();
+            cache.invisible = findInvisibleCells(volume_, bounds.first, bounds.second);
+            cache.invisibleBounds = bounds;
+        }
+        sf.invisibleCells = &cache.invisible;
+    }
 
     RenderResult result;
     result.image = ImageRGBA8::filled(desc.width, desc.height, 0);

@@ -7,6 +7,7 @@
 #include <bit>
 #include <cmath>
 
+#include "core/raycast/InvisibleCells.h"
 #include "core/raycast/PacketMath.h"
 
 namespace lucent {
@@ -29,6 +30,30 @@ LUCENT_AVX2 inline __m256 laneMask(int bits) {
     return _mm256_castsi256_ps(
         _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(bits), lane), lane));
 }
+
+// Per lane in `lanes`, whether its cell (i, j, k) is one of InvisibleCells'.
+struct HiddenCells {
+    const int* words = nullptr;
+    int rowWords = 0, ny = 0;
+    explicit HiddenCells(const InvisibleCells* cells) {
+        if (cells != nullptr) {
+            words = reinterpret_cast<const int*>(cells->words.data());
+            rowWords = cells->rowWords;
+            ny = cells->ny;
+        }
+    }
+    LUCENT_AVX2 int operator()(__m256i i, __m256i j, __m256i k, int lanes) const {
+        const __m256i row = _mm256_add_epi32(j, _mm256_mullo_epi32(k, _mm256_set1_epi32(ny)));
+        const __m256i word = _mm256_add_epi32(_mm256_mullo_epi32(row, _mm256_set1_epi32(rowWords)),
+                                              _mm256_srli_epi32(i, 5));
+        const __m256i bits = _mm256_mask_i32gather_epi32(_mm256_setzero_si256(), words, word,
+                                                         _mm256_castps_si256(laneMask(lanes)), 4);
+        const __m256i one = _mm256_set1_epi32(1);
+        const __m256i bit = _mm256_and_si256(
+            _mm256_srlv_epi32(bits, _mm256_and_si256(i, _mm256_set1_epi32(31))), one);
+        return lanes & maskBits(_mm256_cmpeq_epi32(bit, one));
+    }
+};
 
 // The table's colour and opacity at value v: FastDvrKernel's lookup and
 // interpolation. Every lane gets a lookup (x is clamped into the table, NaN
@@ -185,6 +210,7 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
         active |= 1 << r;
     }
 
+    const HiddenCells hidden(s.invisibleCells);
     const TableLookup lookup{table, k.tableScale_, k.tableOffset_, k.tableMax_, int(k.lastEntry_)};
     const Lighting light{k.toWorld_,
                          float(s.light.ambient),
@@ -350,6 +376,13 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
             i = clampInt(i, lastIjk[0]);
             j = clampInt(j, lastIjk[1]);
             kk = clampInt(kk, lastIjk[2]);
+            // A lane in a cell no sample can see is taken as transparent
+            // without reading its voxels.
+            if (hidden.words != nullptr) {
+                sampling &= ~hidden(i, j, kk, sampling);
+            }
+        }
+        if (sampling != 0) {
             const __m256 fx = _mm256_sub_ps(qx, _mm256_cvtepi32_ps(i));
             const __m256 fy = _mm256_sub_ps(qy, _mm256_cvtepi32_ps(j));
             const __m256 fz = _mm256_sub_ps(qz, _mm256_cvtepi32_ps(kk));

@@ -13,6 +13,8 @@
 
 namespace lucent {
 
+struct InvisibleCells;
+
 // Everything a ray needs that does not change from pixel to pixel.
 template <class Real> struct RaySetup {
     RenderMode mode = RenderMode::Dvr;
@@ -40,6 +42,9 @@ template <class Real> struct RaySetup {
     // (post-classification DVR): they need no table lookup.
     double visibleLo = -std::numeric_limits<double>::infinity();
     double visibleHi = std::numeric_limits<double>::infinity();
+    // Trilinear cells whose samples all lie outside [visibleLo, visibleHi]
+    // (packet kernel). Null: none built.
+    const InvisibleCells* invisibleCells = nullptr;
     // Empty-space leaping over two levels: the bricks, then finer cells inside
     // the bricks that cannot be leapt. skippable[] holds the static decisions
     // (DVR, iso); range[] the min/max that MIP/MinIP decide on as they go.
