@@ -57,13 +57,12 @@ template <class T>
 void findCells(const T* data, glm::ivec3 n, double lo, double hi, InvisibleCells& out) {
     const Classify<T> classify(lo, hi);
     const std::size_t sy = std::size_t(n.x), sz = sy * std::size_t(n.y);
-    const int bytes = out.rowWords * 4;
 #pragma omp parallel
     {
         // Per x, what the two voxels along z share in row j and in row j + 1,
         // then what the four of the column (y, z) .. (y + 1, z + 1) share.
         std::vector<std::uint8_t> rowJ(sy), rowNext(sy), column(sy);
-        std::vector<std::uint8_t> cell(std::size_t(bytes) * 8, 0);
+        std::vector<std::uint8_t> cell(std::size_t(out.blocks.x) * 8, 0);
 #pragma omp for schedule(static)
         for (int k = 0; k < n.z - 2; ++k) {
             const T* slice = data + std::size_t(k) * sz;
@@ -81,14 +80,16 @@ void findCells(const T* data, glm::ivec3 n, double lo, double hi, InvisibleCells
                 for (int i = 0; i + 2 < n.x; ++i) {
                     cells[i] = (c[i] & c[i + 1]) != 0 ? 1 : 0;
                 }
-                // Eight 0/1 bytes to eight bits, lowest byte to lowest bit.
-                auto* row = reinterpret_cast<std::uint8_t*>(
-                    out.words.data() + (std::size_t(j) + std::size_t(n.y) * std::size_t(k)) *
-                                           std::size_t(out.rowWords));
-                for (int byte = 0; byte < bytes; ++byte) {
+                // Eight 0/1 bytes to eight bits, lowest byte to lowest bit:
+                // the byte of row (j, k) in each block along x.
+                auto* bytes = reinterpret_cast<std::uint8_t*>(out.words.data());
+                const std::size_t first =
+                    InvisibleCells::wordOf({0, j, k}, out.blocks) * 4 + std::size_t(j & 3);
+                for (int b = 0; b < out.blocks.x; ++b) {
                     std::uint64_t eight;
-                    std::memcpy(&eight, &cells[std::size_t(byte) * 8], 8);
-                    row[byte] = std::uint8_t((eight * 0x0102040810204080ull) >> 56);
+                    std::memcpy(&eight, &cells[std::size_t(b) * 8], 8);
+                    bytes[first + std::size_t(b) * 64] =
+                        std::uint8_t((eight * 0x0102040810204080ull) >> 56);
                 }
                 rowJ.swap(rowNext);
             }
@@ -101,9 +102,8 @@ void findCells(const T* data, glm::ivec3 n, double lo, double hi, InvisibleCells
 InvisibleCells findInvisibleCells(const Volume& volume, double lo, double hi) {
     const glm::ivec3 n = volume.geometry().dims;
     InvisibleCells out;
-    out.rowWords = (n.x + 31) / 32;
-    out.ny = n.y;
-    out.words.assign(std::size_t(out.rowWords) * std::size_t(n.y) * std::size_t(n.z), 0u);
+    out.blocks = (n + 7) / 8;
+    out.words.assign(std::size_t(out.blocks.x) * out.blocks.y * out.blocks.z * 16, 0u);
     if (n.x >= 3 && n.y >= 3 && n.z >= 3) {
         visitVoxels(volume, [&](auto v) { findCells(v.data(), n, lo, hi, out); });
     }

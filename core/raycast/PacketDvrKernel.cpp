@@ -34,24 +34,31 @@ LUCENT_AVX2 inline __m256 laneMask(int bits) {
 // Per lane in `lanes`, whether its cell (i, j, k) is one of InvisibleCells'.
 struct HiddenCells {
     const int* words = nullptr;
-    int rowWords = 0, ny = 0;
+    glm::ivec3 blocks{0};
     explicit HiddenCells(const InvisibleCells* cells) {
         if (cells != nullptr) {
             words = reinterpret_cast<const int*>(cells->words.data());
-            rowWords = cells->rowWords;
-            ny = cells->ny;
+            blocks = cells->blocks;
         }
     }
+    // InvisibleCells::wordOf and bitOf for eight lanes.
     LUCENT_AVX2 int operator()(__m256i i, __m256i j, __m256i k, int lanes) const {
-        const __m256i row = _mm256_add_epi32(j, _mm256_mullo_epi32(k, _mm256_set1_epi32(ny)));
-        const __m256i word = _mm256_add_epi32(_mm256_mullo_epi32(row, _mm256_set1_epi32(rowWords)),
-                                              _mm256_srli_epi32(i, 5));
+        const __m256i three = _mm256_set1_epi32(3), seven = _mm256_set1_epi32(7);
+        const __m256i row = _mm256_add_epi32(
+            _mm256_srli_epi32(j, 3),
+            _mm256_mullo_epi32(_mm256_set1_epi32(blocks.y), _mm256_srli_epi32(k, 3)));
+        const __m256i block = _mm256_add_epi32(
+            _mm256_srli_epi32(i, 3), _mm256_mullo_epi32(_mm256_set1_epi32(blocks.x), row));
+        const __m256i inBlock = _mm256_add_epi32(_mm256_srli_epi32(_mm256_and_si256(j, seven), 2),
+                                                 _mm256_slli_epi32(_mm256_and_si256(k, seven), 1));
+        const __m256i word = _mm256_add_epi32(_mm256_slli_epi32(block, 4), inBlock);
+        const __m256i bit = _mm256_add_epi32(_mm256_and_si256(i, seven),
+                                             _mm256_slli_epi32(_mm256_and_si256(j, three), 3));
         const __m256i bits = _mm256_mask_i32gather_epi32(_mm256_setzero_si256(), words, word,
                                                          _mm256_castps_si256(laneMask(lanes)), 4);
         const __m256i one = _mm256_set1_epi32(1);
-        const __m256i bit = _mm256_and_si256(
-            _mm256_srlv_epi32(bits, _mm256_and_si256(i, _mm256_set1_epi32(31))), one);
-        return lanes & maskBits(_mm256_cmpeq_epi32(bit, one));
+        const __m256i set = _mm256_and_si256(_mm256_srlv_epi32(bits, bit), one);
+        return lanes & maskBits(_mm256_cmpeq_epi32(set, one));
     }
 };
 
