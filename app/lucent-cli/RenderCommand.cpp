@@ -11,6 +11,10 @@
 #include "core/image/PngIO.h"
 #include "core/io/Catalog.h"
 #include "core/raycast/CpuRayCaster.h"
+#include "core/volume/BrickResidency.h"
+#include "render/GlError.h"
+#include "render/GpuRayCaster.h"
+#include "render/OffscreenContext.h"
 
 namespace lucent::cli {
 namespace {
@@ -118,7 +122,8 @@ int runRender(const QStringList& args) {
     parser.addOptions({
         {{"o", "output"}, "The PNG to write.", "OUT.png"},
         {"series", "Series id or UID (default: the largest volume).", "UID"},
-        {"backend", "cpu (this build), gl or ws://HOST:PORT (later).", "NAME", "cpu"},
+        {"backend", "cpu, gl (an EGL context, no display needed) or ws://HOST:PORT (later).",
+         "NAME", "cpu"},
         {"token", "Access token for a remote backend.", "T"},
         {"size", "Image size (default 512x512).", "WxH"},
         {"preset", "Transfer function preset (default ct-bone, ct-mip or mr-default).", "NAME"},
@@ -154,17 +159,24 @@ int runRender(const QStringList& args) {
         err << "lucent-cli render: expected PATH and -o OUT.png\n";
         return kUsage;
     }
-    if (parser.value("backend") != "cpu") {
-        err << "lucent-cli render: backend '" << parser.value("backend")
-            << "' is not available in this build (use --backend cpu)\n";
+    const QString backend = parser.value("backend");
+    if (backend != "cpu" && backend != "gl") {
+        err << "lucent-cli render: backend '" << backend
+            << "' is not available in this build (use --backend cpu or gl)\n";
         return kUsage;
     }
     int repeat = 1;
+    GpuOptions gpuOptions;
     try {
         repeat = static_cast<int>(number(parser, "repeat", 1));
         if (repeat < 1 || repeat > 10000) {
             throw UsageError("--repeat must be between 1 and 10000");
         }
+        const double budget = number(parser, "gpu-budget", 0.0);
+        if (!(budget >= 0.0) || budget > 1e7) {
+            throw UsageError("--gpu-budget must be a number of MiB above 0");
+        }
+        gpuOptions.budgetBytes = std::size_t(budget * 1024.0 * 1024.0);
     } catch (const UsageError& e) {
         err << "lucent-cli render: " << e.what() << "\n";
         return kUsage;
@@ -188,17 +200,61 @@ int runRender(const QStringList& args) {
     try {
         RenderDescription desc = describe(parser, volume);
         desc.validate();
-        CpuRayCaster caster(volume);
+        // The GL backend needs an EGL context; without one the CPU renders, and says so.
+        std::unique_ptr<OffscreenContext> context;
+        std::unique_ptr<GpuRayCaster> gpu;
+        std::string gpuExtra;
+        if (backend == "gl") {
+            try {
+                context = OffscreenContext::create();
+                gpu = std::make_unique<GpuRayCaster>(volume, gpuOptions);
+            } catch (const GlError& e) {
+                err << "lucent-cli render: the GL backend is not available (" << e.what()
+                    << "); rendering on the CPU instead\n";
+                gpu.reset();
+                context.reset();
+            }
+        }
+        std::unique_ptr<CpuRayCaster> cpu = gpu ? nullptr : std::make_unique<CpuRayCaster>(volume);
         std::vector<double> frames;
         RenderResult first;
         for (int n = 0; n < repeat; ++n) {
             timer.restart();
-            RenderResult r = caster.render(desc);
+            RenderResult r;
+            if (gpu) {
+                GpuRenderResult g = gpu->render(desc);
+                r = std::move(g.frame);
+                if (n == 0) {
+                    const GpuFrameStats& gs = g.gpu;
+                    gpuExtra = " backend=gl uploads=" + std::to_string(gs.bricksUploaded) +
+                               " upload_mib=" +
+                               QString::number(double(gs.bytesUploaded) / 1048576.0, 'f', 1)
+                                   .toStdString() +
+                               " resident=" + std::to_string(gs.bricksResident) +
+                               " pool_slots=" + std::to_string(gs.poolSlots) +
+                               " budget_mib=" + std::to_string(gs.budgetBytes >> 20);
+                    if (!gs.lodReason.empty()) {
+                        err << "lucent-cli render: rendered from level " << r.stats.lod << ": "
+                            << QString::fromStdString(gs.lodReason) << "\n";
+                    }
+                } else {
+                    gpuExtra += n + 1 == repeat
+                                    ? " uploads_after_first=" + std::to_string(g.gpu.bricksUploaded)
+                                    : "";
+                }
+            } else {
+                r = cpu->render(desc);
+            }
             frames.push_back(double(timer.nsecsElapsed()) / 1e6);
             if (n == 0) {
                 first = std::move(r);
             }
             desc.camera.azimuth += 5.0;
+        }
+        if (context) {
+            gpuExtra += " renderer=\"" + context->description() + "\"";
+        } else {
+            gpuExtra = " backend=cpu";
         }
         writePng(first.image, parser.value("output").toStdString());
         if (parser.isSet("stats")) {
@@ -212,7 +268,7 @@ int runRender(const QStringList& args) {
             out << " render_ms=" << QString::number(median(frames), 'f', 1)
                 << " samples=" << s.samples << " bricks_total=" << s.bricksTotal
                 << " bricks_used=" << s.bricksUsed << " lod=" << s.lod << " frames=" << repeat
-                << "\n";
+                << QString::fromStdString(gpuExtra) << "\n";
         }
     } catch (const UsageError& e) {
         err << "lucent-cli render: " << e.what() << "\n";
@@ -220,6 +276,12 @@ int runRender(const QStringList& args) {
     } catch (const std::invalid_argument& e) {
         err << "lucent-cli render: " << e.what() << "\n";
         return kUsage;
+    } catch (const BudgetError& e) {
+        err << "lucent-cli render: " << e.what() << "\n";
+        return kBadInput;
+    } catch (const GlError& e) {
+        err << "lucent-cli render: GL: " << e.what() << "\n";
+        return kBadInput;
     } catch (const std::exception& e) {
         err << "lucent-cli render: " << e.what() << "\n";
         return kBadInput;

@@ -98,7 +98,7 @@ private slots:
         QTest::newRow("unknown preset")
             << QStringList{"--preset", "ct-nothing"} << 3 << "ct-nothing";
         QTest::newRow("unknown mode") << QStringList{"--mode", "xray"} << 2 << "--mode";
-        QTest::newRow("gl backend") << QStringList{"--backend", "gl"} << 2 << "backend";
+        QTest::newRow("unknown backend") << QStringList{"--backend", "vulkan"} << 2 << "backend";
         QTest::newRow("repeat 0") << QStringList{"--repeat", "0"} << 2 << "--repeat";
     }
     void badInputIsRefused() {

@@ -1,0 +1,24 @@
+#pragma once
+// Which data values can contribute to an image: the test both ray casters use
+// to leap over bricks and to keep empty bricks off the GPU.
+
+#include <functional>
+#include <utility>
+
+#include "core/raycast/RenderDescription.h"
+
+namespace lucent {
+
+// isVisible(lo, hi) for visibleBricks: whether any value in [lo, hi] can show.
+// DVR: non-zero opacity; isosurface: the iso value inside; MIP, MinIP and
+// average: always. tableSize is the size of the table the renderer classifies
+// with (0 when it evaluates the transfer function exactly): the range is
+// widened by one table cell, since a lookup mixes neighbouring entries.
+std::function<bool(double lo, double hi)>
+valueVisibility(const RenderDescription& desc, double tableLo, double tableHi, int tableSize);
+
+// The values outside which the transfer function's opacity is zero, widened
+// by `tableCell` (infinite where the opacity never drops to zero).
+std::pair<double, double> visibleValueRange(const TransferFunction& tf, double tableCell);
+
+} // namespace lucent

@@ -1,0 +1,64 @@
+#include "render/BrickPool.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "render/GlError.h"
+
+namespace lucent {
+
+namespace {
+
+// The slot grid for `capacity` slots: as cubic as the texture limit allows.
+glm::ivec3 slotGrid(std::size_t capacity, int slotSize) {
+    GLint maxSize = 0;
+    glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSize);
+    const int perAxisMax = std::max(1, maxSize / slotSize);
+    const auto c = double(std::max<std::size_t>(capacity, 1));
+    const int x = std::clamp(int(std::ceil(std::cbrt(c))), 1, perAxisMax);
+    const int y = std::clamp(int(std::ceil(std::sqrt(c / x))), 1, perAxisMax);
+    const int z = std::clamp(int(std::ceil(c / (double(x) * y))), 1, perAxisMax);
+    return {x, y, z};
+}
+
+} // namespace
+
+BrickPool::BrickPool(int slotSize, const TexelFormat& format, std::size_t capacity)
+    : slotSize_(slotSize), format_(format), slots_(0) {
+    slotsPerAxis_ = slotGrid(capacity, slotSize);
+    const std::size_t fits =
+        std::size_t(slotsPerAxis_.x) * std::size_t(slotsPerAxis_.y) * std::size_t(slotsPerAxis_.z);
+    slots_ = BrickSlots(std::min(capacity, fits));
+    texture_ = makeTexture(GL_TEXTURE_3D);
+    const glm::ivec3 size = textureSize();
+    glTextureStorage3D(texture_.get(), 1, format_.internalFormat, size.x, size.y, size.z);
+    checkGl("brick pool of " + std::to_string(size.x) + "x" + std::to_string(size.y) + "x" +
+            std::to_string(size.z) + " texels (" + std::to_string(bytes() >> 20) + " MiB)");
+    glTextureParameteri(texture_.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(texture_.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    for (const GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) {
+        glTextureParameteri(texture_.get(), wrap, GL_CLAMP_TO_EDGE);
+    }
+}
+
+std::size_t BrickPool::bytes() const {
+    const glm::ivec3 s = textureSize();
+    return std::size_t(s.x) * std::size_t(s.y) * std::size_t(s.z) * format_.gpuBytes;
+}
+
+glm::ivec3 BrickPool::slotOrigin(std::uint32_t slot) const {
+    const int x = int(slot % std::uint32_t(slotsPerAxis_.x));
+    const int y = int((slot / std::uint32_t(slotsPerAxis_.x)) % std::uint32_t(slotsPerAxis_.y));
+    const int z = int(slot / std::uint32_t(slotsPerAxis_.x * slotsPerAxis_.y));
+    return {x, y, z};
+}
+
+void BrickPool::upload(std::uint32_t slot, const void* texels) {
+    const glm::ivec3 at = slotOrigin(slot) * slotSize_;
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTextureSubImage3D(texture_.get(), 0, at.x, at.y, at.z, slotSize_, slotSize_, slotSize_,
+                        GL_RED, format_.uploadType, texels);
+}
+
+} // namespace lucent

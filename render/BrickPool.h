@@ -1,0 +1,48 @@
+#pragma once
+// The GPU side of the bricks: one 3D texture cut into slots of
+// (brick + 2 * overlap)^3 texels, and which brick sits in which slot
+// (BrickSlots decides; this class uploads). Private to render/.
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "core/volume/BrickResidency.h"
+#include "render/GlObjects.h"
+
+namespace lucent {
+
+struct TexelFormat {
+    GLenum internalFormat = GL_R16_SNORM;
+    GLenum uploadType = GL_SHORT; // the client data's type (format GL_RED)
+    std::size_t clientBytes = 2;  // per voxel of client data
+    std::size_t gpuBytes = 2;     // per texel in the pool
+    float valueScale = 32767.0f;  // texture value -> data value
+};
+
+class BrickPool {
+public:
+    // A pool of at most `capacity` slots; fewer when one 3D texture cannot hold
+    // them. Throws GlError when the driver refuses the memory.
+    BrickPool(int slotSize, const TexelFormat& format, std::size_t capacity);
+
+    int slotSize() const { return slotSize_; }
+    const TexelFormat& format() const { return format_; }
+    GLuint texture() const { return texture_.get(); }
+    glm::ivec3 textureSize() const { return slotsPerAxis_ * slotSize_; }
+    glm::ivec3 slotOrigin(std::uint32_t slot) const; // in slots
+    BrickSlots& slots() { return slots_; }
+    std::size_t bytes() const;
+
+    // Copies one brick's texels (slotSize^3 of the client type) into a slot.
+    void upload(std::uint32_t slot, const void* texels);
+
+private:
+    int slotSize_;
+    TexelFormat format_;
+    glm::ivec3 slotsPerAxis_{1};
+    GlTexture texture_;
+    BrickSlots slots_;
+};
+
+} // namespace lucent

@@ -1,0 +1,425 @@
+#include "render/GpuRayCaster.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <tuple>
+
+#include "core/raycast/BSplinePrefilter.h"
+#include "core/raycast/BrickVisibility.h"
+#include "core/raycast/ViewFrame.h"
+#include "core/volume/BrickResidency.h"
+#include "core/volume/LodPyramid.h"
+#include "render/BrickPool.h"
+#include "render/GlError.h"
+#include "render/GlObjects.h"
+#include "render/GpuBudget.h"
+#include "render/RenderTarget.h"
+
+namespace lucent {
+
+namespace {
+
+constexpr int kTableSize = 4096; // as the CPU ray caster's float path
+constexpr int kPreintegrationSize = 256;
+constexpr int kOverlap = 3;
+constexpr int kCellSize = 8; // the finer leaping level, as on the CPU
+constexpr int kUploadBatch = 64;
+
+TexelFormat texelFormat(VoxelType type, bool coefficients, bool half) {
+    if (coefficients || type == VoxelType::Float32) {
+        return half && coefficients ? TexelFormat{GL_R16F, GL_FLOAT, 4, 2, 1.0f}
+                                    : TexelFormat{GL_R32F, GL_FLOAT, 4, 4, 1.0f};
+    }
+    if (type == VoxelType::UInt16) {
+        return {GL_R16, GL_UNSIGNED_SHORT, 2, 2, 65535.0f};
+    }
+    return {GL_R16_SNORM, GL_SHORT, 2, 2, 32767.0f};
+}
+
+int shaderMode(RenderMode m) {
+    switch (m) {
+    case RenderMode::Dvr:
+        return 0;
+    case RenderMode::Mip:
+        return 1;
+    case RenderMode::MinIp:
+        return 2;
+    case RenderMode::Average:
+        return 3;
+    case RenderMode::Isosurface:
+        break;
+    }
+    return 4;
+}
+
+} // namespace
+
+struct GpuRayCaster::State {
+    const Volume& volume;
+    GpuOptions options;
+    std::size_t budget = 0;
+    std::string budgetSource;
+
+    std::unique_ptr<LodPyramid> pyramid;            // built when level 0 does not fit
+    std::map<int, std::unique_ptr<Volume>> splines; // B-spline coefficients per level
+    std::map<std::tuple<int, bool, int>, std::unique_ptr<BrickGrid>> grids; // (brick, cubic, level)
+    double valueLo = 0.0, valueHi = 1.0;
+
+    std::map<std::string, std::unique_ptr<ShaderProgram>> programs; // by their #defines
+    GlVertexArray vao;
+    RenderTarget target;
+    std::unique_ptr<BrickPool> pool;
+    std::tuple<int, bool> poolKind{0, false};
+    GlTexture pageTable, cellCode, cellRange, table, preTable;
+    std::optional<std::tuple<TransferFunction, double, double, double>> preKey;
+
+    State(const Volume& v, GpuOptions o) : volume(v), options(o) {}
+
+    const Volume& levelVolume(int level) {
+        if (level == 0) {
+            return volume;
+        }
+        if (!pyramid) {
+            pyramid = std::make_unique<LodPyramid>(volume);
+        }
+        return pyramid->level(level);
+    }
+    int levelCount() {
+        if (!pyramid) {
+            pyramid = std::make_unique<LodPyramid>(volume);
+        }
+        return pyramid->levelCount();
+    }
+    // What the pool holds for a level: voxels, or the spline's coefficients.
+    const Volume& source(int level, bool cubic) {
+        const Volume& v = levelVolume(level);
+        if (!cubic) {
+            return v;
+        }
+        auto& s = splines[level];
+        if (!s) {
+            s = std::make_unique<Volume>(v.geometry(), VoxelType::Float32);
+            const std::vector<float> c = bsplineCoefficients<float>(v);
+            std::copy(c.begin(), c.end(), s->voxels<float>().begin());
+        }
+        return *s;
+    }
+    const BrickGrid& grid(int brickSize, bool cubic, int level) {
+        auto& g = grids[{brickSize, cubic, level}];
+        if (!g) {
+            g = std::make_unique<BrickGrid>(source(level, cubic), brickSize, kOverlap);
+        }
+        return *g;
+    }
+};
+
+GpuRayCaster::GpuRayCaster(const Volume& volume, GpuOptions options) {
+    if (epoxy_gl_version() < 43) {
+        throw GlError("the GPU ray caster needs OpenGL 4.3 or newer; the current context has " +
+                      std::to_string(epoxy_gl_version() / 10) + "." +
+                      std::to_string(epoxy_gl_version() % 10));
+    }
+    if (volume.empty()) {
+        throw std::invalid_argument("the GPU ray caster was given an empty volume");
+    }
+    state_ = std::make_unique<State>(volume, options);
+    State& s = *state_;
+    const GpuBudget b = gpuBudget(options.budgetBytes);
+    s.budget = b.bytes;
+    s.budgetSource = b.source;
+    const auto range = volume.valueRange();
+    s.valueLo = range.first;
+    s.valueHi = range.second;
+    GLuint vao = 0;
+    glCreateVertexArrays(1, &vao);
+    s.vao = GlVertexArray(vao);
+    checkGl("GPU ray caster setup");
+}
+
+GpuRayCaster::~GpuRayCaster() = default;
+
+GpuRenderResult GpuRayCaster::render(const RenderDescription& desc) {
+    desc.validate();
+    State& s = *state_;
+    if (desc.volume != nullptr && desc.volume != &s.volume) {
+        throw std::invalid_argument("render description names another volume than this caster's");
+    }
+    const SamplingSettings& sampling = desc.sampling;
+    const bool cubic = sampling.interpolation == Interpolation::Cubic;
+    const bool preintegrate = sampling.preintegrate && desc.mode == RenderMode::Dvr;
+    const int brickSize = sampling.brickSize;
+    const int slotSize = brickSize + 2 * kOverlap;
+    GpuRenderResult out;
+
+    // The pool: one per brick size and content; a change starts a new one.
+    const TexelFormat format = texelFormat(s.volume.type(), cubic, s.options.halfFloatCoefficients);
+    const std::size_t slotBytes = std::size_t(slotSize) * slotSize * slotSize * format.gpuBytes;
+    if (!s.pool || s.poolKind != std::tuple(brickSize, cubic)) {
+        s.pool.reset();
+        const std::size_t allLevel0 = s.grid(brickSize, cubic, 0).count();
+        const std::size_t capacity = std::min(s.budget / slotBytes, allLevel0);
+        if (capacity == 0) {
+            throw BudgetError("the GPU budget of " + std::to_string(s.budget >> 20) +
+                              " MiB holds no brick of " + std::to_string(slotBytes >> 10) + " KiB");
+        }
+        s.pool = std::make_unique<BrickPool>(slotSize, format, capacity);
+        s.poolKind = {brickSize, cubic};
+    }
+    BrickPool& pool = *s.pool;
+
+    // Table range: the voxels', or the coefficients' (a spline overshoots its samples).
+    double tLo = s.valueLo, tHi = s.valueHi;
+    if (cubic) {
+        tLo = std::numeric_limits<double>::max();
+        tHi = std::numeric_limits<double>::lowest();
+        for (const Brick& b : s.grid(brickSize, true, 0).bricks()) {
+            tLo = std::min(tLo, double(b.minValue));
+            tHi = std::max(tHi, double(b.maxValue));
+        }
+    }
+    if (!(tHi > tLo)) {
+        tHi = tLo + 1.0;
+    }
+    const auto visible =
+        valueVisibility(desc, tLo, tHi, preintegrate ? kPreintegrationSize : kTableSize);
+
+    // The finest level whose bricks fit the pool.
+    const bool neighbours = preintegrate || desc.mode == RenderMode::Isosurface;
+    std::vector<const BrickGrid*> levels{&s.grid(brickSize, cubic, 0)};
+    std::optional<ResidencyPlan> plan;
+    for (;;) {
+        try {
+            plan = planResidency(levels, visible, desc.clip, neighbours, pool.slots().capacity());
+            break;
+        } catch (const BudgetError& e) {
+            if (int(levels.size()) >= s.levelCount()) {
+                throw BudgetError(std::string(e.what()) + " (budget " +
+                                  std::to_string(s.budget >> 20) + " MiB, " + s.budgetSource + ")");
+            }
+            levels.push_back(&s.grid(brickSize, cubic, int(levels.size())));
+        }
+    }
+    const int level = plan->level;
+    const BrickGrid& grid = *levels[std::size_t(level)];
+    if (level > 0) {
+        out.gpu.lodReason = "level 0 needs " + std::to_string(plan->rejected.front()) +
+                            " bricks; the budget of " + std::to_string(s.budget >> 20) +
+                            " MiB holds " + std::to_string(pool.slots().capacity());
+    }
+
+    // Upload what is missing, in batches: bricks extracted in parallel, then copied.
+    std::vector<std::uint64_t> keys;
+    keys.reserve(plan->bricks.size());
+    for (const std::uint32_t id : plan->bricks) {
+        keys.push_back(BrickSlots::key(level, id));
+    }
+    const std::vector<BrickSlots::Upload> uploads = pool.slots().acquire(keys);
+    const Volume& src = s.source(level, cubic);
+    const std::size_t texels = std::size_t(slotSize) * slotSize * slotSize;
+    std::vector<std::byte> staging(std::min<std::size_t>(uploads.size(), kUploadBatch) * texels *
+                                   format.clientBytes);
+    for (std::size_t first = 0; first < uploads.size(); first += kUploadBatch) {
+        const std::size_t count = std::min<std::size_t>(kUploadBatch, uploads.size() - first);
+        visitVoxels(src, [&](auto voxels) {
+            using T = std::remove_const_t<typename decltype(voxels)::element_type>;
+            T* dst = reinterpret_cast<T*>(staging.data());
+#pragma omp parallel for schedule(dynamic)
+            for (std::size_t n = 0; n < count; ++n) {
+                const Brick& b = grid.bricks()[std::uint32_t(uploads[first + n].key)];
+                extractBrick<T>(voxels.data(), src.dims(), b.first, kOverlap, slotSize,
+                                cubic ? BrickEdge::Mirror : BrickEdge::Clamp, dst + n * texels);
+            }
+        });
+        for (std::size_t n = 0; n < count; ++n) {
+            pool.upload(uploads[first + n].slot, staging.data() + n * texels * format.clientBytes);
+        }
+        checkGl("uploading bricks");
+    }
+    out.gpu.bricksUploaded = uploads.size();
+    out.gpu.bytesUploaded = uploads.size() * texels * format.clientBytes;
+    out.gpu.bricksResident = pool.slots().resident();
+    out.gpu.poolSlots = pool.slots().capacity();
+    out.gpu.budgetBytes = s.budget;
+    out.gpu.budgetSource = s.budgetSource;
+
+    // Page table and brick ranges of the level.
+    const glm::ivec3 per = grid.bricksPerAxis();
+    std::vector<glm::u16vec4> page(grid.count(), glm::u16vec4(0));
+    for (std::size_t n = 0; n < plan->bricks.size(); ++n) {
+        const glm::ivec3 o = pool.slotOrigin(*pool.slots().slotOf(keys[n]));
+        page[plan->bricks[n]] = glm::u16vec4(o, plan->leapable[n] != 0 ? 2 : 1);
+    }
+    s.pageTable = makeTexture(GL_TEXTURE_3D);
+    glTextureStorage3D(s.pageTable.get(), 1, GL_RGBA16UI, per.x, per.y, per.z);
+    glTextureSubImage3D(s.pageTable.get(), 0, 0, 0, 0, per.x, per.y, per.z, GL_RGBA_INTEGER,
+                        GL_UNSIGNED_SHORT, page.data());
+
+    // Leaping cells: their codes under this transfer function and residency, and their ranges.
+    const BrickGrid& cells = s.grid(kCellSize, cubic, level);
+    const glm::ivec3 cellsPer = cells.bricksPerAxis();
+    std::vector<std::uint8_t> codes(cells.count(), 0);
+    std::vector<glm::vec2> ranges(cells.count());
+    const bool decided = desc.mode == RenderMode::Dvr || desc.mode == RenderMode::Isosurface;
+#pragma omp parallel for schedule(static)
+    for (std::size_t n = 0; n < cells.count(); ++n) {
+        const Brick& c = cells.bricks()[n];
+        const glm::ivec3 lo = c.first / brickSize, hi = (c.last - 1) / brickSize;
+        const std::uint16_t brickState = page[grid.idOf(lo)].w;
+        if (lo == hi && (brickState == 0 || (decided && brickState == 2))) {
+            codes[n] = 2;
+        } else if (decided && !visible(c.minValue, c.maxValue)) {
+            codes[n] = 1;
+        }
+        const double margin =
+            cubic ? 1e-5 * (std::abs(c.minValue) + std::abs(c.maxValue) + 1.0) : 0.0;
+        ranges[n] = glm::vec2(float(c.minValue - margin), float(c.maxValue + margin));
+    }
+    s.cellCode = makeTexture(GL_TEXTURE_3D);
+    glTextureStorage3D(s.cellCode.get(), 1, GL_R8UI, cellsPer.x, cellsPer.y, cellsPer.z);
+    glTextureSubImage3D(s.cellCode.get(), 0, 0, 0, 0, cellsPer.x, cellsPer.y, cellsPer.z,
+                        GL_RED_INTEGER, GL_UNSIGNED_BYTE, codes.data());
+    s.cellRange = makeTexture(GL_TEXTURE_3D);
+    glTextureStorage3D(s.cellRange.get(), 1, GL_RG32F, cellsPer.x, cellsPer.y, cellsPer.z);
+    glTextureSubImage3D(s.cellRange.get(), 0, 0, 0, 0, cellsPer.x, cellsPer.y, cellsPer.z, GL_RG,
+                        GL_FLOAT, ranges.data());
+
+    // Transfer-function tables, as the CPU's float path bakes them.
+    const double levelFactor = std::ldexp(1.0, level);
+    const double stepRatio = sampling.step * levelFactor;
+    std::vector<glm::vec4> rows = bakeTable(desc.transferFunction, tLo, tHi, kTableSize).rgba;
+    rows.resize(2 * kTableSize);
+    for (int n = 0; n < kTableSize; ++n) {
+        glm::vec4 raw = rows[std::size_t(n)];
+        rows[std::size_t(kTableSize + n)] = raw;
+        raw.a = raw.a <= 0.0f
+                    ? 0.0f
+                    : float(1.0 - std::pow(1.0 - std::min(double(raw.a), 1.0), stepRatio));
+        rows[std::size_t(n)] = raw;
+    }
+    s.table = makeTexture(GL_TEXTURE_2D);
+    glTextureStorage2D(s.table.get(), 1, GL_RGBA32F, kTableSize, 2);
+    glTextureSubImage2D(s.table.get(), 0, 0, 0, kTableSize, 2, GL_RGBA, GL_FLOAT, rows.data());
+    if (preintegrate) {
+        auto key = std::tuple(desc.transferFunction, tLo, tHi, stepRatio);
+        if (s.preKey != key) {
+            const PreintegrationTable pre = buildPreintegrationTable(
+                desc.transferFunction, tLo, tHi, kPreintegrationSize, stepRatio);
+            s.preTable = makeTexture(GL_TEXTURE_2D);
+            glTextureStorage2D(s.preTable.get(), 1, GL_RGBA32F, kPreintegrationSize,
+                               kPreintegrationSize);
+            glTextureSubImage2D(s.preTable.get(), 0, 0, 0, kPreintegrationSize, kPreintegrationSize,
+                                GL_RGBA, GL_FLOAT, pre.rgba.data());
+            s.preKey = std::move(key);
+        }
+    }
+    checkGl("transfer-function tables");
+
+    // Uniforms: the CPU ray caster's setup, with the level's scale.
+    const VolumeGeometry& g = s.volume.geometry();
+    const ViewFrame frame = makeViewFrame(g, desc.camera, desc.width, desc.height);
+    const glm::dmat3 linear(g.direction[0] * g.spacing.x, g.direction[1] * g.spacing.y,
+                            g.direction[2] * g.spacing.z);
+    const double dt =
+        sampling.step * std::min({g.spacing.x, g.spacing.y, g.spacing.z}) * levelFactor;
+    const glm::dvec3 boxLo(0.0), boxHi(g.dims - 1);
+    const double tableCell = (tHi - tLo) / double(kTableSize - 1);
+    const auto [visLo, visHi] = visibleValueRange(desc.transferFunction, tableCell);
+    const auto flag = [](bool b) { return b ? "true" : "false"; };
+    const std::string defines =
+        "#define LUCENT_MODE " + std::to_string(shaderMode(desc.mode)) +
+        "\n#define LUCENT_INTERP " +
+        std::to_string(sampling.interpolation == Interpolation::Nearest ? 0
+                       : cubic                                          ? 2
+                                                                        : 1) +
+        "\n#define LUCENT_PRECLASSIFY " + flag(sampling.classification == Classification::Pre) +
+        "\n#define LUCENT_PREINTEGRATE " + flag(preintegrate) + "\n#define LUCENT_SHADING " +
+        flag(desc.transferFunction.shading.enabled) + "\n#define LUCENT_LEAP " +
+        flag(sampling.emptySpaceLeaping) + "\n#define LUCENT_LEVEL0 " + flag(level == 0) +
+        "\n#define LUCENT_CELLS_IN_ONE_BRICK " + flag(brickSize % kCellSize == 0) + "\n";
+    auto& program = s.programs[defines];
+    if (!program) {
+        program = std::make_unique<ShaderProgram>("raycast.vert", "raycast.frag", defines);
+    }
+    const ShaderProgram& p = *program;
+    p.use();
+    p.set("uEye", g.toIndex(frame.eye));
+    p.set("uForward", frame.forward);
+    p.set("uRight", frame.right);
+    p.set("uUp", frame.up);
+    p.set("uToIndex", glm::inverse(linear));
+    p.set("uTanHalfFov", frame.tanHalfFov);
+    p.set("uAspect", frame.aspect);
+    p.set("uImageSize", glm::ivec2(desc.width, desc.height));
+    p.set("uDt", dt);
+    p.set("uBoxLo", boxLo);
+    p.set("uBoxHi", boxHi);
+    p.set("uClipLo", glm::max(desc.clip.lo, boxLo));
+    p.set("uClipHi", glm::min(desc.clip.hi, boxHi));
+    const Shading& light = desc.transferFunction.shading;
+    p.set("uEarlyTermination", float(sampling.earlyTermination));
+    p.set("uIso", float(desc.isoValue));
+    p.set("uLight", glm::vec4(light.ambient, light.diffuse, light.specular, light.specularPower));
+    p.set("uGradientToWorld", glm::mat3(glm::transpose(glm::inverse(linear)) / levelFactor));
+    p.set("uVisibleLo", float(std::max(visLo, -3.0e38)));
+    p.set("uVisibleHi", float(std::min(visHi, 3.0e38)));
+    p.set("uStepRatio", float(stepRatio));
+    p.set("uLevelScale", float(1.0 / levelFactor));
+    p.set("uLevelOffset", float(-(levelFactor - 1.0) * 0.5 / levelFactor));
+    p.set("uDims", grid.volumeDims());
+    p.set("uBrickSize", brickSize);
+    p.set("uInvBrickSize", 1.0f / float(brickSize));
+    p.set("uBricksPerAxis", per);
+    p.set("uOverlap", kOverlap);
+    p.set("uSlotSize", slotSize);
+    p.set("uInvPoolSize", 1.0f / glm::vec3(pool.textureSize()));
+    p.set("uValueScale", format.valueScale);
+    p.set("uTableSize", kTableSize);
+    p.set("uTableLo", float(tLo));
+    p.set("uTableScale", float(double(kTableSize - 1) / (tHi - tLo)));
+    p.set("uPreSize", kPreintegrationSize);
+    p.set("uPreLo", float(tLo));
+    p.set("uPreHi", float(tHi));
+    p.set("uCellSize", kCellSize);
+    p.set("uInvCellSize", 1.0f / float(kCellSize));
+    p.set("uCellsPerAxis", cellsPer);
+    const GLuint units[] = {s.pageTable.get(), s.cellCode.get(),
+                            s.cellRange.get(), pool.texture(),
+                            s.table.get(),     preintegrate ? s.preTable.get() : s.table.get()};
+    const char* samplers[] = {"uPageTable", "uCellCode", "uCellRange",
+                              "uPool",      "uTable",    "uPreTable"};
+    for (int u = 0; u < 6; ++u) {
+        glBindTextureUnit(GLuint(u), units[u]);
+        p.set(samplers[u], u);
+    }
+
+    s.target.resize(desc.width, desc.height);
+    s.target.bindAndClear();
+    glBindVertexArray(s.vao.get());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    checkGl("ray casting");
+    RenderResult& r = out.frame;
+    std::size_t samples = 0;
+    s.target.read(r.premultiplied, samples);
+    r.stats.samples = samples;
+    r.stats.bricksTotal = grid.count();
+    r.stats.bricksUsed = plan->needed;
+    r.stats.lod = level;
+    r.image = ImageRGBA8::filled(desc.width, desc.height, 0);
+    for (int y = 0; y < desc.height; ++y) {
+        for (int x = 0; x < desc.width; ++x) {
+            const glm::vec4 c = r.premultiplied[std::size_t(y) * desc.width + x];
+            const glm::dvec3 rgb = glm::dvec3(c) + (1.0 - double(c.a)) * desc.background;
+            std::uint8_t* px = r.image.at(x, y);
+            for (int ch = 0; ch < 3; ++ch) {
+                px[ch] = static_cast<std::uint8_t>(std::clamp(rgb[ch], 0.0, 1.0) * 255.0 + 0.5);
+            }
+            px[3] = 255;
+        }
+    }
+    return out;
+}
+
+} // namespace lucent

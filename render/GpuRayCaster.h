@@ -1,0 +1,59 @@
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <string>
+
+#include "core/raycast/CpuRayCaster.h"
+#include "core/raycast/RenderDescription.h"
+
+namespace lucent {
+
+struct GpuOptions {
+    // Bytes the brick pool may take; 0: half of what the GPU reports, or
+    // 1 GiB where the driver reports nothing (Mesa's llvmpipe).
+    std::size_t budgetBytes = 0;
+    // The B-spline coefficients in 32-bit floats (exact) or 16-bit floats (half the memory).
+    bool halfFloatCoefficients = false;
+};
+
+// What a GPU frame did beyond the common statistics.
+struct GpuFrameStats {
+    std::size_t bricksUploaded = 0; // this frame
+    std::size_t bytesUploaded = 0;  // this frame
+    std::size_t bricksResident = 0;
+    std::size_t poolSlots = 0;
+    std::size_t budgetBytes = 0;
+    std::string budgetSource; // where the budget came from
+    std::string lodReason;    // why a coarser level, when one was used
+};
+
+struct GpuRenderResult {
+    RenderResult frame; // image, premultiplied colour and the common statistics (lod included)
+    GpuFrameStats gpu;
+};
+
+// The GPU ray caster: the CPU reference's rays, lattice and filters in a
+// fragment shader, over a pool of bricks that holds only what the current
+// transfer function and clip box need, at the finest level of detail that
+// fits the budget. Needs a current OpenGL 4.3 core context (an
+// OffscreenContext, or a QOpenGLWidget's) for its whole life.
+class GpuRayCaster {
+public:
+    // Throws GlError when the context is missing or too old or the shaders fail.
+    explicit GpuRayCaster(const Volume& volume, GpuOptions options = {});
+    ~GpuRayCaster();
+    GpuRayCaster(const GpuRayCaster&) = delete;
+    GpuRayCaster& operator=(const GpuRayCaster&) = delete;
+
+    // Renders and reads the image back. Throws std::invalid_argument for a
+    // setting out of range, BudgetError when even the coarsest level does not
+    // fit the budget, GlError when the driver refuses.
+    GpuRenderResult render(const RenderDescription& description);
+
+private:
+    struct State;
+    std::unique_ptr<State> state_;
+};
+
+} // namespace lucent

@@ -1,0 +1,66 @@
+#include "render/RenderTarget.h"
+
+#include <algorithm>
+#include <string>
+
+#include "render/GlError.h"
+
+namespace lucent {
+
+void RenderTarget::resize(int width, int height) {
+    if (width == width_ && height == height_ && framebuffer_.get() != 0) {
+        return;
+    }
+    colour_ = makeTexture(GL_TEXTURE_2D);
+    glTextureStorage2D(colour_.get(), 1, GL_RGBA32F, width, height);
+    samples_ = makeTexture(GL_TEXTURE_2D);
+    glTextureStorage2D(samples_.get(), 1, GL_R32UI, width, height);
+    GLuint fb = 0;
+    glCreateFramebuffers(1, &fb);
+    framebuffer_ = GlFramebuffer(fb);
+    glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0, colour_.get(), 0);
+    glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, samples_.get(), 0);
+    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glNamedFramebufferDrawBuffers(fb, 2, buffers);
+    if (glCheckNamedFramebufferStatus(fb, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        throw GlError("the " + std::to_string(width) + "x" + std::to_string(height) +
+                      " float framebuffer is not complete on this driver");
+    }
+    checkGl("render target");
+    width_ = width;
+    height_ = height;
+}
+
+void RenderTarget::bindAndClear() {
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.get());
+    glViewport(0, 0, width_, height_);
+    const GLfloat zero[4] = {0, 0, 0, 0};
+    const GLuint none[4] = {0, 0, 0, 0};
+    glClearNamedFramebufferfv(framebuffer_.get(), GL_COLOR, 0, zero);
+    glClearNamedFramebufferuiv(framebuffer_.get(), GL_COLOR, 1, none);
+    glDisable(GL_BLEND);
+    glDisable(GL_DEPTH_TEST);
+}
+
+void RenderTarget::read(std::vector<glm::vec4>& colour, std::size_t& samples) const {
+    const std::size_t n = std::size_t(width_) * std::size_t(height_);
+    std::vector<glm::vec4> flipped(n);
+    std::vector<GLuint> counts(n);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTextureImage(colour_.get(), 0, GL_RGBA, GL_FLOAT, GLsizei(n * sizeof(glm::vec4)),
+                      flipped.data());
+    glGetTextureImage(samples_.get(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                      GLsizei(n * sizeof(GLuint)), counts.data());
+    checkGl("reading the image back");
+    colour.resize(n);
+    for (int y = 0; y < height_; ++y) {
+        std::copy_n(flipped.begin() + std::ptrdiff_t(std::size_t(height_ - 1 - y) * width_), width_,
+                    colour.begin() + std::ptrdiff_t(std::size_t(y) * width_));
+    }
+    samples = 0;
+    for (const GLuint c : counts) {
+        samples += c;
+    }
+}
+
+} // namespace lucent

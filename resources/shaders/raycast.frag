@@ -1,0 +1,470 @@
+#version 430 core
+// The GPU ray caster: the same rays, lattice, leaping rules, filters and
+// compositing as the CPU ray caster (core/raycast/RayKernel.h), over a pool of
+// bricks. Ray setup runs in double precision, as on the CPU, so both sample
+// the same lattice; the march runs in float.
+
+layout(location = 0) out vec4 outColour; // premultiplied rgb, alpha
+layout(location = 1) out uint outSamples;
+
+const int kDvr = 0, kMip = 1, kMinIp = 2, kAverage = 3, kIso = 4;
+const int kNearest = 0, kLinear = 1, kCubic = 2;
+
+// View and lattice, in level-0 index space; t in patient mm.
+uniform dvec3 uEye;
+uniform dvec3 uForward, uRight, uUp;
+uniform dmat3 uToIndex;
+uniform double uTanHalfFov, uAspect;
+uniform ivec2 uImageSize;
+uniform double uDt;
+uniform dvec3 uBoxLo, uBoxHi, uClipLo, uClipHi;
+
+// The settings that change what the march does are compile-time constants, one
+// program per combination (the renderer prepends the #defines): no branch on a
+// setting survives into the loop (on llvmpipe, whose SIMD lanes execute both
+// sides of every branch, that halves the time).
+const int kMode = LUCENT_MODE, kInterp = LUCENT_INTERP;
+const bool kPreclassify = LUCENT_PRECLASSIFY, kPreintegrate = LUCENT_PREINTEGRATE;
+const bool kShading = LUCENT_SHADING, kLeap = LUCENT_LEAP, kLevel0 = LUCENT_LEVEL0;
+const bool kCellsInOneBrick = LUCENT_CELLS_IN_ONE_BRICK;
+uniform float uEarlyTermination, uIso;
+uniform vec4 uLight; // ambient, diffuse, specular, specular power
+uniform mat3 uGradientToWorld;
+uniform float uVisibleLo, uVisibleHi;
+
+// The level rendered: p_level = p0 * uLevelScale + uLevelOffset.
+uniform float uLevelScale, uLevelOffset;
+uniform ivec3 uDims;
+
+// Bricks: page table entry xyz = slot (in slots), w = 0 absent, 1 resident,
+// 2 resident only for its neighbours (leapt over, read at the border).
+uniform int uBrickSize;
+uniform float uInvBrickSize;
+uniform ivec3 uBricksPerAxis;
+uniform int uOverlap, uSlotSize;
+uniform vec3 uInvPoolSize;
+uniform usampler3D uPageTable;
+uniform sampler3D uPool;
+uniform float uValueScale; // texture value -> data value
+
+// Transfer function: row 0 alpha corrected for dt, row 1 alpha per dt_ref.
+uniform sampler2D uTable;
+uniform int uTableSize;
+uniform float uTableLo, uTableScale;
+uniform sampler2D uPreTable;
+uniform int uPreSize;
+uniform float uPreLo, uPreHi;
+
+// --- the brick a position lies in -------------------------------------------
+
+ivec3 gBrick = ivec3(-1);
+uvec4 gPage = uvec4(0u);
+vec3 gSlotBase = vec3(0.0); // texel of the brick's core origin in the pool
+
+ivec3 brickOf(vec3 p) {
+    return min(ivec3(p * uInvBrickSize), uBricksPerAxis - 1);
+}
+
+void enterBrick(ivec3 b) {
+    if (b != gBrick) {
+        gBrick = b;
+        gPage = texelFetch(uPageTable, b, 0);
+        gSlotBase = vec3(ivec3(gPage.xyz) * uSlotSize + uOverlap - b * uBrickSize);
+    }
+}
+
+// --- filters (positions in the level's index space, inside the current brick's reach)
+
+float fetchTexel(ivec3 v) {
+    return texelFetch(uPool, ivec3(gSlotBase) + v, 0).r * uValueScale;
+}
+
+float linearAt(vec3 q) {
+    return texture(uPool, (gSlotBase + q + 0.5) * uInvPoolSize).r * uValueScale;
+}
+
+vec3 clampToVolume(vec3 q) {
+    return clamp(q, vec3(0.0), vec3(uDims - 1));
+}
+
+// Cubic B-spline weights folded into two linear fetches per axis (Sigg &
+// Hadwiger, GPU Gems 2 ch. 20): g = weights of the pairs, h = where to fetch.
+void cubicAxis(float x, out vec2 g, out vec2 h, out vec2 dg, out vec2 dh) {
+    float i = floor(x), t = x - i;
+    float t2 = t * t, t3 = t2 * t, s = 1.0 - t;
+    float w0 = s * s * s / 6.0, w1 = (3.0 * t3 - 6.0 * t2 + 4.0) / 6.0;
+    float w2 = (-3.0 * t3 + 3.0 * t2 + 3.0 * t + 1.0) / 6.0, w3 = t3 / 6.0;
+    float d0 = -s * s / 2.0, d1 = (3.0 * t2 - 4.0 * t) / 2.0;
+    float d2 = (-3.0 * t2 + 2.0 * t + 1.0) / 2.0, d3 = t2 / 2.0;
+    g = vec2(w0 + w1, w2 + w3);
+    h = vec2(i - 1.0 + w1 / g.x, i + 1.0 + w3 / g.y);
+    dg = vec2(d0 + d1, d2 + d3);
+    dh = vec2(i - 1.0 + d1 / dg.x, i + 1.0 + d3 / dg.y);
+}
+
+float cubicSum(vec2 gx, vec2 hx, vec2 gy, vec2 hy, vec2 gz, vec2 hz) {
+    float v = 0.0;
+    for (int c = 0; c < 2; ++c) {
+        for (int b = 0; b < 2; ++b) {
+            float wyz = gy[b] * gz[c];
+            v += wyz * (gx.x * linearAt(vec3(hx.x, hy[b], hz[c])) +
+                        gx.y * linearAt(vec3(hx.y, hy[b], hz[c])));
+        }
+    }
+    return v;
+}
+
+float cubicValue(vec3 q, out vec3 grad, bool withGradient) {
+    q = clampToVolume(q);
+    vec2 gx, hx, dgx, dhx, gy, hy, dgy, dhy, gz, hz, dgz, dhz;
+    cubicAxis(q.x, gx, hx, dgx, dhx);
+    cubicAxis(q.y, gy, hy, dgy, dhy);
+    cubicAxis(q.z, gz, hz, dgz, dhz);
+    if (withGradient) {
+        grad = vec3(cubicSum(dgx, dhx, gy, hy, gz, hz), cubicSum(gx, hx, dgy, dhy, gz, hz),
+                    cubicSum(gx, hx, gy, hy, dgz, dhz));
+    }
+    return cubicSum(gx, hx, gy, hy, gz, hz);
+}
+
+float valueAt(vec3 q) { // any position: clamped to the volume
+    if (kInterp == kNearest) {
+        return fetchTexel(ivec3(clampToVolume(q) + 0.5));
+    }
+    if (kInterp == kLinear) {
+        return linearAt(clampToVolume(q));
+    }
+    vec3 unused;
+    return cubicValue(q, unused, false);
+}
+
+vec3 gradientAt(vec3 q) {
+    if (kInterp == kNearest) {
+        ivec3 v = ivec3(clampToVolume(q) + 0.5), hi = uDims - 1;
+        return 0.5 * vec3(fetchTexel(min(v + ivec3(1, 0, 0), hi)) - fetchTexel(max(v - ivec3(1, 0, 0), 0)),
+                          fetchTexel(min(v + ivec3(0, 1, 0), hi)) - fetchTexel(max(v - ivec3(0, 1, 0), 0)),
+                          fetchTexel(min(v + ivec3(0, 0, 1), hi)) - fetchTexel(max(v - ivec3(0, 0, 1), 0)));
+    }
+    if (kInterp == kLinear) {
+        return 0.5 * vec3(valueAt(q + vec3(1, 0, 0)) - valueAt(q - vec3(1, 0, 0)),
+                          valueAt(q + vec3(0, 1, 0)) - valueAt(q - vec3(0, 1, 0)),
+                          valueAt(q + vec3(0, 0, 1)) - valueAt(q - vec3(0, 0, 1)));
+    }
+    vec3 grad;
+    cubicValue(q, grad, true);
+    return grad;
+}
+
+// --- transfer function --------------------------------------------------------
+
+vec4 classify(float v, int row) {
+    float x = clamp((v - uTableLo) * uTableScale, 0.0, float(uTableSize - 1));
+    int i = min(int(x), uTableSize - 2);
+    vec4 a = texelFetch(uTable, ivec2(i, row), 0), b = texelFetch(uTable, ivec2(i + 1, row), 0);
+    return a + (x - float(i)) * (b - a);
+}
+
+float correctedAlpha(float a, float stepRatio) {
+    return a <= 0.0 ? 0.0 : 1.0 - pow(1.0 - min(a, 1.0), stepRatio);
+}
+
+uniform float uStepRatio;
+
+// A voxel's value: the texel, or for the spline the spline there (which
+// interpolates the voxels).
+float voxelValue(ivec3 v) {
+    if (kInterp != kCubic) {
+        return fetchTexel(v);
+    }
+    vec3 unused;
+    return cubicValue(vec3(v), unused, false);
+}
+
+// Pre-classification: the eight voxels classified, then interpolated.
+vec4 preclassified(vec3 q) {
+    q = clampToVolume(q);
+    ivec3 base = ivec3(floor(q));
+    vec3 f = q - vec3(base);
+    vec4 acc = vec4(0.0);
+    for (int n = 0; n < 8; ++n) {
+        ivec3 o = ivec3(n & 1, (n >> 1) & 1, (n >> 2) & 1);
+        float w = (o.x != 0 ? f.x : 1.0 - f.x) * (o.y != 0 ? f.y : 1.0 - f.y) *
+                        (o.z != 0 ? f.z : 1.0 - f.z);
+        if (w == 0.0) {
+            continue;
+        }
+        vec4 k = classify(voxelValue(min(base + o, uDims - 1)), 1);
+        acc += w * vec4(k.rgb * k.a, k.a);
+    }
+    if (acc.a <= 0.0) {
+        return vec4(0.0);
+    }
+    return vec4(acc.rgb / acc.a, correctedAlpha(acc.a, uStepRatio));
+}
+
+vec2 preTablePosition(float v) {
+    float t = (v - uPreLo) / (uPreHi - uPreLo) * float(uPreSize - 1);
+    if (!(t > 0.0)) {
+        return vec2(0.0);
+    }
+    if (t >= float(uPreSize - 1)) {
+        return vec2(uPreSize - 2, 1.0);
+    }
+    return vec2(floor(t), t - floor(t));
+}
+
+vec4 preintegrated(float front, float back) {
+    vec2 f = preTablePosition(front), b = preTablePosition(back);
+    ivec2 i = ivec2(f.x, b.x);
+    vec4 near = mix(texelFetch(uPreTable, i, 0), texelFetch(uPreTable, i + ivec2(1, 0), 0), f.y);
+    vec4 far = mix(texelFetch(uPreTable, i + ivec2(0, 1), 0),
+                         texelFetch(uPreTable, i + ivec2(1, 1), 0), f.y);
+    return mix(near, far, b.y);
+}
+
+vec3 shade(vec3 base, vec3 q, vec3 w) {
+    vec3 g = uGradientToWorld * gradientAt(q);
+    float len = length(g);
+    if (len < 1e-6) {
+        return base;
+    }
+    float ndotl = min(1.0, abs(dot(g, w)) / len);
+    float diffuse = uLight.x + uLight.y * ndotl;
+    return base * diffuse + vec3(uLight.z * pow(ndotl, uLight.w));
+}
+
+// --- leaping ------------------------------------------------------------------
+//
+// Rays leap over cells of 8^3 voxels and over whole bricks. Cell codes, made
+// per render: 2 the brick holding the cell is leapt over (not resident, or
+// resident only for its neighbours), 1 the cell is, 0 neither. MIP and MinIP
+// decide from the cell's min/max as they go. A leap resumes one lattice sample
+// before the exit: never past a sample that counts, and the samples it may
+// take in an empty cell add nothing.
+
+uniform usampler3D uCellCode;
+uniform sampler3D uCellRange; // r = min, g = max over the cell and its overlap
+uniform int uCellSize;
+uniform float uInvCellSize;
+uniform ivec3 uCellsPerAxis;
+
+vec3 gEntry, gStride; // the ray in the level's index space: p(n) = gEntry + gStride * n
+
+// The lattice index at which the ray leaves the box [lo, hi) (level space).
+float exitIndex(vec3 lo, vec3 hi) {
+    float e = 1.0e30;
+    for (int a = 0; a < 3; ++a) {
+        if (gStride[a] > 1e-20) {
+            e = min(e, (hi[a] - gEntry[a]) / gStride[a]);
+        } else if (gStride[a] < -1e-20) {
+            e = min(e, (lo[a] - gEntry[a]) / gStride[a]);
+        }
+    }
+    return e;
+}
+
+vec3 levelPosition(vec3 p0) {
+    return kLevel0 ? p0 : p0 * uLevelScale + uLevelOffset;
+}
+
+// --- the ray --------------------------------------------------------------------
+
+void main() {
+    outColour = vec4(0.0);
+    outSamples = 0u;
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    // y = 0 is the top row, as in the CPU image.
+    double sx = (2.0 * (double(pixel.x) + 0.5) / double(uImageSize.x) - 1.0) * uTanHalfFov * uAspect;
+    double sy = (1.0 - 2.0 * (double(uImageSize.y - 1 - pixel.y) + 0.5) / double(uImageSize.y)) * uTanHalfFov;
+    dvec3 wd = normalize(uForward + uRight * sx + uUp * sy);
+    dvec3 o = uEye;
+    dvec3 d = uToIndex * wd;
+    vec3 w = vec3(wd);
+
+    // raySpan (core/raycast/RaySetup.h), in double as on the CPU.
+    double t0 = -1.0e300LF, t1 = 1.0e300LF, c0 = t0, c1 = t1;
+    for (int a = 0; a < 3; ++a) {
+        if (abs(d[a]) < 1e-15) {
+            if (o[a] < uBoxLo[a] || o[a] > uBoxHi[a] || o[a] < uClipLo[a] || o[a] > uClipHi[a]) {
+                return;
+            }
+            continue;
+        }
+        double ta = (uBoxLo[a] - o[a]) / d[a], tb = (uBoxHi[a] - o[a]) / d[a];
+        t0 = max(t0, min(ta, tb));
+        t1 = min(t1, max(ta, tb));
+        double ca = (uClipLo[a] - o[a]) / d[a], cb = (uClipHi[a] - o[a]) / d[a];
+        c0 = max(c0, min(ca, cb));
+        c1 = min(c1, max(ca, cb));
+    }
+    t0 = max(t0, 0.0);
+    double tEnd = min(t1, c1);
+    if (t1 < t0 || tEnd < max(t0, c0)) {
+        return;
+    }
+    int nFirst = c0 > t0 ? int(ceil((c0 - t0) / uDt - 1e-9)) : 0;
+    int nLast = int(floor((tEnd - t0) / uDt + 1e-9));
+
+    vec3 entry = vec3(o + d * t0), stride = vec3(d * uDt);
+    gEntry = levelPosition(entry);
+    gStride = kLevel0 ? stride : stride * uLevelScale;
+    bool continuity = kPreintegrate || kMode == kIso;
+    vec4 acc = vec4(0.0);
+    float extreme = kMode == kMinIp ? 3.0e38 : -3.0e38;
+    double sum = 0.0;
+    int count = 0;
+    bool havePrev = false;
+    float prev = 0.0;
+    int nPrev = 0;
+    uint samples = 0u;
+    ivec3 cell = ivec3(-1);
+    uint code = 0u;
+
+    for (int n = nFirst; n <= nLast; ++n) {
+        vec3 p = levelPosition(entry + stride * float(n));
+        ivec3 c = min(ivec3(p * uInvCellSize), uCellsPerAxis - 1);
+        if (c != cell) {
+            cell = c;
+            code = texelFetch(uCellCode, c, 0).r;
+            if (kCellsInOneBrick) {
+                enterBrick(brickOf(p));
+            }
+            bool leap = false;
+            vec3 lo, hi;
+            if (kLeap) {
+                if (kMode == kMip || kMode == kMinIp) {
+                    vec2 r = texelFetch(uCellRange, c, 0).rg;
+                    leap = havePrev && (kMode == kMip ? r.y <= extreme : r.x >= extreme);
+                    lo = vec3(c * uCellSize);
+                    hi = lo + float(uCellSize);
+                } else if (code != 0u && kMode != kAverage) {
+                    leap = true;
+                    ivec3 b = brickOf(p);
+                    lo = vec3(code == 2u ? b * uBrickSize : c * uCellSize);
+                    hi = lo + float(code == 2u ? uBrickSize : uCellSize);
+                }
+            }
+            if (leap) {
+                int resume = max(n + 1, int(floor(exitIndex(lo, hi))) - 1);
+                if (!continuity) {
+                    n = resume - 1;
+                    continue;
+                }
+                // As on the CPU: sample n and the last one before `resume` are
+                // read, so that crossings and segments at the border survive.
+                enterBrick(brickOf(p));
+                bool known = gPage.w != 0u;
+                float vn = known ? valueAt(p) : prev;
+                ++samples;
+                bool crossing = kMode == kIso && havePrev && known && ((prev < uIso) != (vn < uIso));
+                if (!crossing && resume - 1 > n) {
+                    vec3 pl = levelPosition(entry + stride * float(resume - 1));
+                    enterBrick(brickOf(pl));
+                    havePrev = gPage.w != 0u;
+                    prev = havePrev ? valueAt(pl) : 0.0;
+                    nPrev = resume - 1;
+                    ++samples;
+                    n = resume - 1;
+                    cell = ivec3(-1);
+                    continue;
+                }
+            }
+        }
+        if (!kCellsInOneBrick) {
+            enterBrick(brickOf(p));
+        }
+        ++samples;
+        if (gPage.w == 0u) {
+            // A brick that is not resident holds nothing that can contribute;
+            // a value read across it is unknown.
+            havePrev = havePrev && !continuity;
+            continue;
+        }
+        float v = valueAt(p);
+        if (kMode == kMip) {
+            extreme = max(extreme, v);
+            havePrev = true;
+            continue;
+        }
+        if (kMode == kMinIp) {
+            extreme = min(extreme, v);
+            havePrev = true;
+            continue;
+        }
+        if (kMode == kAverage) {
+            sum += double(v);
+            ++count;
+            continue;
+        }
+        if (kMode == kIso) {
+            if (havePrev && (prev < uIso) != (v < uIso)) {
+                // Bisection between the two lattice samples for the crossing.
+                double a = t0 + double(nPrev) * uDt, b = t0 + double(n) * uDt;
+                float va = prev;
+                for (int it = 0; it < 40 && b - a > 1e-9 * uDt; ++it) {
+                    double m = 0.5 * (a + b);
+                    vec3 pm = levelPosition(vec3(o + d * m));
+                    enterBrick(brickOf(pm));
+                    float vm = valueAt(pm);
+                    if ((va < uIso) == (vm < uIso)) {
+                        a = m;
+                        va = vm;
+                    } else {
+                        b = m;
+                    }
+                }
+                vec3 hit = levelPosition(vec3(o + d * (0.5 * (a + b))));
+                enterBrick(brickOf(hit));
+                vec4 k = classify(uIso, 1);
+                outColour = vec4(kShading ? shade(k.rgb, hit, w) : k.rgb, 1.0);
+                outSamples = samples;
+                return;
+            }
+            prev = v;
+            nPrev = n;
+            havePrev = true;
+            continue;
+        }
+
+        vec4 k;
+        if (kPreintegrate) {
+            if (!havePrev) {
+                prev = v;
+                havePrev = true;
+                continue;
+            }
+            vec4 seg = preintegrated(prev, v);
+            prev = v;
+            if (seg.a <= 0.0) {
+                continue;
+            }
+            k = vec4(seg.rgb / seg.a, seg.a);
+        } else {
+            if (!kPreclassify && (v < uVisibleLo || v > uVisibleHi)) {
+                continue;
+            }
+            k = kPreclassify && kInterp != kNearest ? preclassified(p) : classify(v, 0);
+        }
+        if (k.a <= 0.0) {
+            continue;
+        }
+        vec3 rgb = kShading ? shade(k.rgb, p, w) : k.rgb;
+        float weight = (1.0 - acc.a) * k.a;
+        acc += vec4(weight * rgb, weight);
+        if (acc.a >= uEarlyTermination) {
+            break;
+        }
+    }
+
+    outSamples = samples;
+    if (kMode == kMip || kMode == kMinIp || kMode == kAverage) {
+        bool any = kMode == kAverage ? count > 0 : havePrev;
+        if (any) {
+            float v = kMode == kAverage ? float(sum / double(count)) : extreme;
+            vec4 k = classify(v, 1);
+            outColour = vec4(k.rgb * k.a, k.a);
+        }
+        return;
+    }
+    outColour = acc;
+}

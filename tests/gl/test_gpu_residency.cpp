@@ -1,0 +1,130 @@
+// What the GPU keeps: only the bricks a transfer function needs, never
+// uploaded twice; coarser levels when the budget is small; clear errors.
+#include <QTest>
+
+#include "core/raycast/InteractiveQuality.h"
+#include "core/volume/BrickResidency.h"
+#include "render/GlError.h"
+#include "tests/gl/GlTestSupport.h"
+#include "tests/raycast/RaycastScenes.h"
+
+using namespace lucent;
+using namespace lucent::test;
+
+namespace {
+
+Volume realOrMade() {
+    if (std::filesystem::exists(philipsCt())) {
+        return loadPath(philipsCt());
+    }
+    return makeVolume(
+        {200, 180, 90},
+        [](int i, int j, int k) {
+            return 8.0 * blobs(i / 5, j / 5, k / 3) - 500.0 + (i > 150 ? 1200.0 : 0.0);
+        },
+        VoxelType::Int16);
+}
+
+} // namespace
+
+class TestGpuResidency : public QObject {
+    Q_OBJECT
+    std::unique_ptr<OffscreenContext> context_;
+
+private slots:
+    void initTestCase() { context_ = OffscreenContext::create(); }
+
+    // Bone needs fewer bricks than soft tissue; switching back and forth
+    // uploads only bricks not yet resident, and returning uploads nothing.
+    void transferFunctionChangeUploadsNoVoxelTwice() {
+        const Volume v = realOrMade();
+        GpuRayCaster gpu(v);
+        RenderDescription d = describe(v, loadPreset("ct-bone"), 64);
+        const GpuRenderResult bone = gpu.render(d);
+        QVERIFY(bone.gpu.bricksUploaded > 0);
+        QCOMPARE(bone.gpu.bricksUploaded, bone.frame.stats.bricksUsed);
+        QVERIFY(bone.frame.stats.bricksUsed < bone.frame.stats.bricksTotal);
+
+        d.transferFunction = loadPreset("ct-soft-tissue");
+        const GpuRenderResult soft = gpu.render(d);
+        QVERIFY(soft.frame.stats.bricksUsed >= bone.frame.stats.bricksUsed);
+        // Only what bone did not already bring.
+        QCOMPARE(soft.gpu.bricksUploaded, soft.gpu.bricksResident - bone.gpu.bricksResident);
+
+        d.transferFunction = loadPreset("ct-bone");
+        const GpuRenderResult again = gpu.render(d);
+        QCOMPARE(again.gpu.bricksUploaded, std::size_t(0));
+        QCOMPARE(maxDifference(again.frame.premultiplied, bone.frame.premultiplied), 0.0f);
+
+        d.camera.azimuth = 90.0; // a new view of the same scene needs no upload either
+        QCOMPARE(gpu.render(d).gpu.bricksUploaded, std::size_t(0));
+    }
+
+    // A budget far below the volume still renders, from a coarser level, says
+    // so, and looks like the full-resolution image.
+    void smallBudgetRendersCoarserLevel() {
+        const Volume v = realOrMade();
+        RenderDescription d = describe(v, loadPreset("ct-bone"), 96);
+        GpuRayCaster full(v);
+        const GpuRenderResult fine = full.render(d);
+        QCOMPARE(fine.frame.stats.lod, 0);
+
+        GpuOptions small;
+        small.budgetBytes = v.byteCount() / 3;
+        GpuRayCaster gpu(v, small);
+        const GpuRenderResult coarse = gpu.render(d);
+        QVERIFY2(coarse.frame.stats.lod > 0,
+                 "a budget of a third of the volume should need a coarser level");
+        QVERIFY(!coarse.gpu.lodReason.empty());
+        QVERIFY(coarse.gpu.bricksResident <= coarse.gpu.poolSlots);
+        const double p = psnr(coarse.frame.image, fine.frame.image);
+        QVERIFY2(p > 25.0, qPrintable(QString("coarse level vs full: psnr %1 dB").arg(p)));
+    }
+
+    void budgetTooSmallForAnyLevelSaysSo() {
+        const Volume v = realOrMade();
+        GpuOptions tiny;
+        tiny.budgetBytes = 1024; // not one brick
+        GpuRayCaster gpu(v, tiny);
+        try {
+            gpu.render(describe(v, loadPreset("ct-bone"), 32));
+            QFAIL("a 1 KiB budget rendered");
+        } catch (const BudgetError& e) {
+            QVERIFY2(std::string(e.what()).find("budget") != std::string::npos, e.what());
+        }
+    }
+
+    // While dragging: fewer samples on a smaller image, scaled up to the view,
+    // close to the still frame.
+    void interactiveFrameIsCheaperAndClose() {
+        const Volume v = realOrMade();
+        GpuRayCaster gpu(v);
+        const RenderDescription still = describe(v, loadPreset("ct-bone"), 128);
+        const GpuRenderResult full = gpu.render(still);
+        const RenderDescription moving = interactiveDescription(still);
+        QCOMPARE(moving.width, 64);
+        QCOMPARE(moving.sampling.step, 2.0 * still.sampling.step);
+        const GpuRenderResult quick = gpu.render(moving);
+        QVERIFY2(quick.frame.stats.samples * 4 < full.frame.stats.samples,
+                 qPrintable(QString("%1 vs %2 samples")
+                                .arg(quick.frame.stats.samples)
+                                .arg(full.frame.stats.samples)));
+        const ImageRGBA8 shown = scaledTo(quick.frame.image, 128, 128);
+        QCOMPARE(shown.width, 128);
+        const double p = psnr(shown, full.frame.image);
+        QVERIFY2(p > 20.0, qPrintable(QString("interactive vs still: %1 dB").arg(p)));
+        QVERIFY_THROWS_EXCEPTION(std::invalid_argument,
+                                 interactiveDescription(still, InteractiveQuality{0.5, 2}));
+    }
+
+    void badSettingsAreRefusedByName() {
+        const Volume v = realOrMade();
+        GpuRayCaster gpu(v);
+        RenderDescription d = describe(v, loadPreset("ct-bone"), 32);
+        d.sampling.step = -1.0;
+        QVERIFY_THROWS_EXCEPTION(std::invalid_argument, gpu.render(d));
+    }
+};
+
+QTEST_GUILESS_MAIN(TestGpuResidency)
+#include "test_gpu_residency.moc"

@@ -1,0 +1,201 @@
+// Benchmark (label perf): the GPU ray caster through EGL (llvmpipe here, a real
+// GPU where there is one).
+//  - The CPU issue's scene: Philips 140-slice CT at 512x512, ct-bone, shading,
+//    trilinear, step 0.5, anterior view, 6 frames turning 5 degrees each; both
+//    opacity units (per voxel, and per mm as VTK's anchor renders it). Accuracy
+//    against the CPU reference (same settings, double precision) and against
+//    the converged reference (tricubic, step 1/16, double).
+//  - A gigavoxel volume tiled from the same CT (1024 x 1024 x 1120, 2.3 GB of
+//    int16) in a 512 MiB budget: the level used, the time, what was uploaded.
+// LUCENT_BENCH_SIZE=WxH and LUCENT_GIGA_BUDGET_MIB change the sizes. Prints the
+// figures; asserts nothing about time.
+#include <QTest>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+
+#include "core/image/ImageMetrics.h"
+#include "core/image/PngIO.h"
+#include "core/io/Catalog.h"
+#include "core/raycast/CpuRayCaster.h"
+#include "render/GpuRayCaster.h"
+#include "render/OffscreenContext.h"
+
+using namespace lucent;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+std::filesystem::path philips() {
+    return std::filesystem::path(LUCENT_TEST_DATA_DIR) / "dcm_qa_ct/Philips_S21570/S2020";
+}
+
+double msSince(Clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+glm::ivec2 benchSize() {
+    glm::ivec2 s(512, 512);
+    if (const char* e = std::getenv("LUCENT_BENCH_SIZE")) {
+        std::sscanf(e, "%dx%d", &s.x, &s.y);
+    }
+    return s;
+}
+
+TransferFunction boneTf(const Volume& v, double unitMm) {
+    TransferFunction tf = loadPreset("ct-bone");
+    if (unitMm > 0.0) {
+        const glm::dvec3 s = v.geometry().spacing;
+        const double ratio = std::min({s.x, s.y, s.z}) / unitMm;
+        for (OpacityPoint& p : tf.opacity) {
+            p.opacity = 1.0 - std::pow(1.0 - p.opacity, ratio);
+        }
+    }
+    return tf;
+}
+
+// Mirrored tiles of the CT, so that the tiled volume has no seams.
+Volume tiled(const Volume& ct, glm::ivec3 dims) {
+    VolumeGeometry g = ct.geometry();
+    g.dims = dims;
+    Volume out(g, VoxelType::Int16);
+    out.modality = ct.modality;
+    const auto src = ct.voxels<std::int16_t>();
+    const auto dst = out.voxels<std::int16_t>();
+    const glm::ivec3 n = ct.dims();
+    const auto mirror = [](int i, int size) {
+        const int period = 2 * size;
+        i %= period;
+        return i < size ? i : period - 1 - i;
+    };
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < dims.z; ++k) {
+        const int kk = mirror(k, n.z);
+        for (int j = 0; j < dims.y; ++j) {
+            const int jj = mirror(j, n.y);
+            for (int i = 0; i < dims.x; ++i) {
+                dst[out.linearIndex(i, j, k)] = src[ct.linearIndex(mirror(i, n.x), jj, kk)];
+            }
+        }
+    }
+    return out;
+}
+
+} // namespace
+
+class BenchGpuRender : public QObject {
+    Q_OBJECT
+    std::unique_ptr<OffscreenContext> context_;
+
+private slots:
+    void initTestCase() {
+        context_ = OffscreenContext::create();
+        qInfo("GL: %s", context_->description().c_str());
+    }
+
+    void philipsCtBone_data() {
+        QTest::addColumn<double>("unitMm");
+        QTest::newRow("opacity-per-voxel") << 0.0;
+        QTest::newRow("opacity-per-mm") << 1.0;
+    }
+    void philipsCtBone() {
+        QFETCH(double, unitMm);
+        if (!std::filesystem::exists(philips())) {
+            QSKIP("real test data not found: ../shared/data/dcm_qa_ct/Philips_S21570/S2020");
+        }
+        const Volume volume = loadPath(philips());
+        RenderDescription d;
+        d.volume = &volume;
+        d.transferFunction = boneTf(volume, unitMm);
+        d.width = benchSize().x;
+        d.height = benchSize().y;
+        GpuRayCaster gpu(volume);
+        std::vector<double> ms;
+        GpuRenderResult first;
+        double firstMs = 0.0, uploadedMib = 0.0;
+        for (int frame = 0; frame < 7; ++frame) { // frame 0: compile and upload
+            RenderDescription f = d;
+            f.camera.azimuth = 5.0 * std::max(0, frame - 1);
+            const auto t0 = Clock::now();
+            GpuRenderResult r = gpu.render(f);
+            (frame == 0 ? firstMs : ms.emplace_back()) = msSince(t0);
+            uploadedMib += double(r.gpu.bytesUploaded) / 1048576.0;
+            if (frame == 1) {
+                first = std::move(r);
+            }
+        }
+        CpuRayCaster cpu(volume);
+        RenderDescription same = d;
+        same.sampling.precision = Precision::Double;
+        const RenderResult sameRef = cpu.render(same);
+        RenderDescription converged = same;
+        converged.sampling.step = 1.0 / 16.0;
+        converged.sampling.interpolation = Interpolation::Cubic;
+        const RenderResult truth = cpu.render(converged);
+        const std::string tag = unitMm > 0.0 ? "_per_mm" : "";
+        writePng(first.frame.image, std::filesystem::path(LUCENT_BIN_DIR) / ".." /
+                                        ("bench_gpu_render" + tag + ".png"));
+        qInfo("gpu_render%s: render_ms=%.1f (median of 6, %dx%d) first_ms=%.1f samples=%zu "
+              "bricks_used=%zu/%zu uploaded_mib=%.1f psnr_db=%.2f ssim=%.4f vs the CPU with the "
+              "same settings; psnr_db=%.2f ssim=%.4f vs the converged reference",
+              tag.c_str(), median(ms), d.width, d.height, firstMs, first.frame.stats.samples,
+              first.frame.stats.bricksUsed, first.frame.stats.bricksTotal, uploadedMib,
+              psnr(first.frame.image, sameRef.image), ssim(first.frame.image, sameRef.image),
+              psnr(first.frame.image, truth.image), ssim(first.frame.image, truth.image));
+    }
+
+    void gigavoxelInBudget() {
+        if (!std::filesystem::exists(philips())) {
+            QSKIP("real test data not found");
+        }
+        const auto t0 = Clock::now();
+        const Volume giga = tiled(loadPath(philips()), {1024, 1024, 1120});
+        const double buildMs = msSince(t0);
+        std::size_t budgetMib = 512;
+        if (const char* e = std::getenv("LUCENT_GIGA_BUDGET_MIB")) {
+            budgetMib = std::size_t(std::atol(e));
+        }
+        GpuOptions options;
+        options.budgetBytes = budgetMib << 20;
+        GpuRayCaster gpu(giga, options);
+        RenderDescription d;
+        d.volume = &giga;
+        d.transferFunction = loadPreset("ct-bone");
+        d.width = benchSize().x;
+        d.height = benchSize().y;
+        std::vector<double> ms;
+        GpuRenderResult first;
+        double firstMs = 0.0;
+        for (int frame = 0; frame < 4; ++frame) {
+            RenderDescription f = d;
+            f.camera.azimuth = 5.0 * frame;
+            const auto t = Clock::now();
+            GpuRenderResult r = gpu.render(f);
+            (frame == 0 ? firstMs : ms.emplace_back()) = msSince(t);
+            if (frame == 0) {
+                first = std::move(r);
+            }
+        }
+        writePng(first.frame.image,
+                 std::filesystem::path(LUCENT_BIN_DIR) / ".." / "bench_gpu_giga.png");
+        qInfo("gpu_giga: %dx%dx%d int16 (%.2f GB, tiled in %.0f ms) budget_mib=%zu lod=%d "
+              "(%s) first_ms=%.1f render_ms=%.1f (median of 3) resident=%zu slots=%zu "
+              "uploaded_mib=%.1f",
+              giga.dims().x, giga.dims().y, giga.dims().z, double(giga.byteCount()) / 1e9, buildMs,
+              budgetMib, first.frame.stats.lod, first.gpu.lodReason.c_str(), firstMs, median(ms),
+              first.gpu.bricksResident, first.gpu.poolSlots,
+              double(first.gpu.bytesUploaded) / 1048576.0);
+        QVERIFY(first.gpu.poolSlots > 0);
+    }
+};
+
+QTEST_GUILESS_MAIN(BenchGpuRender)
+#include "bench_gpu_render.moc"
