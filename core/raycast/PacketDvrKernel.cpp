@@ -440,10 +440,11 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
                         const int same =
                             cornersValid & maskBits(_mm256_cmpeq_epi32(o00, cornersAt));
                         if ((insideBits & ~same) != 0) {
-                            // The corners of every active lane inside the volume;
-                            // lanes at the border read a lane's inside the volume,
-                            // then take the clamped filter's gradient below.
-                            const int valid = sampling & maskBits(inside);
+                            // The corners of the lanes that shade inside the volume;
+                            // the others read one of theirs (no cache misses for
+                            // voxels nobody shades), and lanes at the border take
+                            // the clamped filter's gradient below.
+                            const int valid = insideBits;
                             const T* at[kWidth];
                             const T* some = base[std::countr_zero(unsigned(insideBits))];
                             for (int r = 0; r < kWidth; ++r) {
