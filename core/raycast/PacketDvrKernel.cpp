@@ -396,19 +396,24 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
             const __m256i o00 =
                 _mm256_add_epi32(i, _mm256_add_epi32(_mm256_mullo_epi32(j, rowStride),
                                                      _mm256_mullo_epi32(kk, sliceStride)));
+            // Lanes that do not sample read a sampling lane's voxels (no cache
+            // misses for voxels nobody uses); their rows then belong to no cell.
+            const __m256i samplingLanes = _mm256_castps_si256(laneMask(sampling));
+            const __m256i some = _mm256_set1_epi32(std::countr_zero(unsigned(sampling)));
             alignas(32) int offset[kWidth];
-            storeInts(offset, o00);
+            storeInts(offset, _mm256_blendv_epi8(_mm256_permutevar8x32_epi32(o00, some), o00,
+                                                 samplingLanes));
             const T* base[kWidth];
             for (int r = 0; r < kWidth; ++r) {
                 base[r] = data + offset[r];
             }
-            // Lanes that are done keep whatever rows they had: nothing reads them.
             if ((sampling & ~maskBits(_mm256_cmpeq_epi32(o00, cellAt))) != 0) {
                 for (int r = 0; r < 4; ++r) {
                     cell.row[r] =
                         pairAt(base, ((r & 1) != 0 ? rowStep : 0) + ((r & 2) != 0 ? sliceStep : 0));
                 }
-                cellAt = o00;
+                cellAt =
+                    _mm256_or_si256(o00, _mm256_andnot_si256(samplingLanes, _mm256_set1_epi32(-1)));
             }
             // The same operations, in the same order, as FastDvrKernel's.
             const __m256 c00 = lerp(cell.row[0].a, cell.row[0].b, fx);
