@@ -24,8 +24,9 @@ glm::ivec3 slotGrid(std::size_t capacity, int slotSize) {
 
 } // namespace
 
-BrickPool::BrickPool(int slotSize, const TexelFormat& format, std::size_t capacity)
-    : slotSize_(slotSize), format_(format), slots_(0) {
+BrickPool::BrickPool(int slotSize, const TexelFormat& format, std::size_t capacity,
+                     bool withGradients)
+    : slotSize_(slotSize), format_(format), withGradients_(withGradients), slots_(0) {
     slotsPerAxis_ = slotGrid(capacity, slotSize);
     const std::size_t fits =
         std::size_t(slotsPerAxis_.x) * std::size_t(slotsPerAxis_.y) * std::size_t(slotsPerAxis_.z);
@@ -35,16 +36,26 @@ BrickPool::BrickPool(int slotSize, const TexelFormat& format, std::size_t capaci
     glTextureStorage3D(texture_.get(), 1, format_.internalFormat, size.x, size.y, size.z);
     checkGl("brick pool of " + std::to_string(size.x) + "x" + std::to_string(size.y) + "x" +
             std::to_string(size.z) + " texels (" + std::to_string(bytes() >> 20) + " MiB)");
-    glTextureParameteri(texture_.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(texture_.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    for (const GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) {
-        glTextureParameteri(texture_.get(), wrap, GL_CLAMP_TO_EDGE);
+    const auto linear = [](GLuint t) {
+        glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        for (const GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) {
+            glTextureParameteri(t, wrap, GL_CLAMP_TO_EDGE);
+        }
+    };
+    linear(texture_.get());
+    if (withGradients) {
+        gradients_ = makeTexture(GL_TEXTURE_3D);
+        glTextureStorage3D(gradients_.get(), 1, GL_RGBA16_SNORM, size.x, size.y, size.z);
+        checkGl("gradient pool (" + std::to_string(bytes() >> 20) + " MiB with the values)");
+        linear(gradients_.get());
     }
 }
 
 std::size_t BrickPool::bytes() const {
     const glm::ivec3 s = textureSize();
-    return std::size_t(s.x) * std::size_t(s.y) * std::size_t(s.z) * format_.gpuBytes;
+    return std::size_t(s.x) * std::size_t(s.y) * std::size_t(s.z) *
+           (format_.gpuBytes + (withGradients_ ? kGradientBytes : 0));
 }
 
 glm::ivec3 BrickPool::slotOrigin(std::uint32_t slot) const {
@@ -52,6 +63,13 @@ glm::ivec3 BrickPool::slotOrigin(std::uint32_t slot) const {
     const int y = int((slot / std::uint32_t(slotsPerAxis_.x)) % std::uint32_t(slotsPerAxis_.y));
     const int z = int(slot / std::uint32_t(slotsPerAxis_.x * slotsPerAxis_.y));
     return {x, y, z};
+}
+
+void BrickPool::uploadGradients(std::uint32_t slot, const std::int16_t* texels) {
+    const glm::ivec3 at = slotOrigin(slot) * slotSize_;
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTextureSubImage3D(gradients_.get(), 0, at.x, at.y, at.z, slotSize_, slotSize_, slotSize_,
+                        GL_RGBA, GL_SHORT, texels);
 }
 
 void BrickPool::upload(std::uint32_t slot, const void* texels) {

@@ -23,12 +23,17 @@ struct TexelFormat {
 class BrickPool {
 public:
     // A pool of at most `capacity` slots; fewer when one 3D texture cannot hold
-    // them. Throws GlError when the driver refuses the memory.
-    BrickPool(int slotSize, const TexelFormat& format, std::size_t capacity);
+    // them. With gradients, a second texture of the same layout holds each
+    // slot's gradient (RGBA16 snorm, see extractGradientBrick). Throws GlError
+    // when the driver refuses the memory.
+    BrickPool(int slotSize, const TexelFormat& format, std::size_t capacity, bool withGradients);
+    static constexpr std::size_t kGradientBytes = 8; // per texel
 
     int slotSize() const { return slotSize_; }
     const TexelFormat& format() const { return format_; }
     GLuint texture() const { return texture_.get(); }
+    GLuint gradientTexture() const { return gradients_.get(); }
+    bool hasGradients() const { return gradients_.get() != 0; }
     glm::ivec3 textureSize() const { return slotsPerAxis_ * slotSize_; }
     glm::ivec3 slotOrigin(std::uint32_t slot) const; // in slots
     BrickSlots& slots() { return slots_; }
@@ -36,12 +41,16 @@ public:
 
     // Copies one brick's texels (slotSize^3 of the client type) into a slot.
     void upload(std::uint32_t slot, const void* texels);
+    // Four int16 per texel (x, y, z, 0).
+    void uploadGradients(std::uint32_t slot, const std::int16_t* texels);
 
 private:
     int slotSize_;
     TexelFormat format_;
+    bool withGradients_;
     glm::ivec3 slotsPerAxis_{1};
     GlTexture texture_;
+    GlTexture gradients_;
     BrickSlots slots_;
 };
 

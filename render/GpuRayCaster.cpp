@@ -26,7 +26,7 @@ constexpr int kTableSize = 4096; // as the CPU ray caster's float path
 constexpr int kPreintegrationSize = 256;
 constexpr int kOverlap = 3;
 constexpr int kCellSize = 8; // the finer leaping level, as on the CPU
-constexpr int kUploadBatch = 64;
+constexpr int kUploadBatch = 16;
 
 TexelFormat texelFormat(VoxelType type, bool coefficients, bool half) {
     if (coefficients || type == VoxelType::Float32) {
@@ -156,16 +156,21 @@ GpuRenderResult GpuRayCaster::render(const RenderDescription& desc) {
 
     // The pool: one per brick size and content; a change starts a new one.
     const TexelFormat format = texelFormat(s.volume.type(), cubic, s.options.halfFloatCoefficients);
-    const std::size_t slotBytes = std::size_t(slotSize) * slotSize * slotSize * format.gpuBytes;
+    const std::size_t texelsPerSlot = std::size_t(slotSize) * slotSize * slotSize;
     if (!s.pool || s.poolKind != std::tuple(brickSize, cubic)) {
         s.pool.reset();
         const std::size_t allLevel0 = s.grid(brickSize, cubic, 0).count();
+        const bool gradients =
+            !cubic && s.options.gradientCache &&
+            allLevel0 * texelsPerSlot * (format.gpuBytes + BrickPool::kGradientBytes) <= s.budget;
+        const std::size_t slotBytes =
+            texelsPerSlot * (format.gpuBytes + (gradients ? BrickPool::kGradientBytes : 0));
         const std::size_t capacity = std::min(s.budget / slotBytes, allLevel0);
         if (capacity == 0) {
             throw BudgetError("the GPU budget of " + std::to_string(s.budget >> 20) +
                               " MiB holds no brick of " + std::to_string(slotBytes >> 10) + " KiB");
         }
-        s.pool = std::make_unique<BrickPool>(slotSize, format, capacity);
+        s.pool = std::make_unique<BrickPool>(slotSize, format, capacity, gradients);
         s.poolKind = {brickSize, cubic};
     }
     BrickPool& pool = *s.pool;
@@ -219,8 +224,10 @@ GpuRenderResult GpuRayCaster::render(const RenderDescription& desc) {
     const std::vector<BrickSlots::Upload> uploads = pool.slots().acquire(keys);
     const Volume& src = s.source(level, cubic);
     const std::size_t texels = std::size_t(slotSize) * slotSize * slotSize;
-    std::vector<std::byte> staging(std::min<std::size_t>(uploads.size(), kUploadBatch) * texels *
-                                   format.clientBytes);
+    const std::size_t batch = std::min<std::size_t>(uploads.size(), kUploadBatch);
+    std::vector<std::byte> staging(batch * texels * format.clientBytes);
+    std::vector<std::int16_t> gradientStaging(pool.hasGradients() ? batch * texels * 4 : 0);
+    const double gradientUnit = std::max(s.valueHi - s.valueLo, 1e-30) / 2.0 / 32767.0;
     for (std::size_t first = 0; first < uploads.size(); first += kUploadBatch) {
         const std::size_t count = std::min<std::size_t>(kUploadBatch, uploads.size() - first);
         visitVoxels(src, [&](auto voxels) {
@@ -231,15 +238,25 @@ GpuRenderResult GpuRayCaster::render(const RenderDescription& desc) {
                 const Brick& b = grid.bricks()[std::uint32_t(uploads[first + n].key)];
                 extractBrick<T>(voxels.data(), src.dims(), b.first, kOverlap, slotSize,
                                 cubic ? BrickEdge::Mirror : BrickEdge::Clamp, dst + n * texels);
+                if (pool.hasGradients()) {
+                    extractGradientBrick<T>(voxels.data(), src.dims(), b.first, kOverlap, slotSize,
+                                            gradientUnit, gradientStaging.data() + n * texels * 4);
+                }
             }
         });
         for (std::size_t n = 0; n < count; ++n) {
             pool.upload(uploads[first + n].slot, staging.data() + n * texels * format.clientBytes);
+            if (pool.hasGradients()) {
+                pool.uploadGradients(uploads[first + n].slot,
+                                     gradientStaging.data() + n * texels * 4);
+            }
         }
         checkGl("uploading bricks");
     }
     out.gpu.bricksUploaded = uploads.size();
-    out.gpu.bytesUploaded = uploads.size() * texels * format.clientBytes;
+    out.gpu.bytesUploaded =
+        uploads.size() * texels * (format.clientBytes + (pool.hasGradients() ? 8 : 0));
+    out.gpu.gradientsCached = pool.hasGradients();
     out.gpu.bricksResident = pool.slots().resident();
     out.gpu.poolSlots = pool.slots().capacity();
     out.gpu.budgetBytes = s.budget;
@@ -338,7 +355,8 @@ GpuRenderResult GpuRayCaster::render(const RenderDescription& desc) {
         "\n#define LUCENT_PREINTEGRATE " + flag(preintegrate) + "\n#define LUCENT_SHADING " +
         flag(desc.transferFunction.shading.enabled) + "\n#define LUCENT_LEAP " +
         flag(sampling.emptySpaceLeaping) + "\n#define LUCENT_LEVEL0 " + flag(level == 0) +
-        "\n#define LUCENT_CELLS_IN_ONE_BRICK " + flag(brickSize % kCellSize == 0) + "\n";
+        "\n#define LUCENT_CELLS_IN_ONE_BRICK " + flag(brickSize % kCellSize == 0) +
+        "\n#define LUCENT_GRADIENT_TEXTURE " + flag(pool.hasGradients()) + "\n";
     auto& program = s.programs[defines];
     if (!program) {
         program = std::make_unique<ShaderProgram>("raycast.vert", "raycast.frag", defines);
@@ -376,6 +394,7 @@ GpuRenderResult GpuRayCaster::render(const RenderDescription& desc) {
     p.set("uSlotSize", slotSize);
     p.set("uInvPoolSize", 1.0f / glm::vec3(pool.textureSize()));
     p.set("uValueScale", format.valueScale);
+    p.set("uGradientScale", float(gradientUnit * 32767.0));
     p.set("uTableSize", kTableSize);
     p.set("uTableLo", float(tLo));
     p.set("uTableScale", float(double(kTableSize - 1) / (tHi - tLo)));
@@ -385,14 +404,19 @@ GpuRenderResult GpuRayCaster::render(const RenderDescription& desc) {
     p.set("uCellSize", kCellSize);
     p.set("uInvCellSize", 1.0f / float(kCellSize));
     p.set("uCellsPerAxis", cellsPer);
-    const GLuint units[] = {s.pageTable.get(), s.cellCode.get(),
-                            s.cellRange.get(), pool.texture(),
-                            s.table.get(),     preintegrate ? s.preTable.get() : s.table.get()};
-    const char* samplers[] = {"uPageTable", "uCellCode", "uCellRange",
-                              "uPool",      "uTable",    "uPreTable"};
-    for (int u = 0; u < 6; ++u) {
-        glBindTextureUnit(GLuint(u), units[u]);
-        p.set(samplers[u], u);
+    // Texture units, in the order of the samplers' names.
+    const std::pair<const char*, GLuint> units[] = {
+        {"uPageTable", s.pageTable.get()},
+        {"uCellCode", s.cellCode.get()},
+        {"uCellRange", s.cellRange.get()},
+        {"uPool", pool.texture()},
+        {"uTable", s.table.get()},
+        {"uPreTable", preintegrate ? s.preTable.get() : s.table.get()},
+        {"uGradientPool", pool.hasGradients() ? pool.gradientTexture() : pool.texture()},
+    };
+    for (int u = 0; u < int(std::size(units)); ++u) {
+        glBindTextureUnit(GLuint(u), units[u].second);
+        p.set(units[u].first, u);
     }
 
     s.target.resize(desc.width, desc.height);

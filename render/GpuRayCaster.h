@@ -15,6 +15,10 @@ struct GpuOptions {
     std::size_t budgetBytes = 0;
     // The B-spline coefficients in 32-bit floats (exact) or 16-bit floats (half the memory).
     bool halfFloatCoefficients = false;
+    // Keep each brick's gradient next to its voxels (8 more bytes a voxel) when
+    // every brick of the full-resolution level fits the budget that way:
+    // shading then reads one texel instead of six (nearest and trilinear).
+    bool gradientCache = true;
 };
 
 // What a GPU frame did beyond the common statistics.
@@ -24,6 +28,7 @@ struct GpuFrameStats {
     std::size_t bricksResident = 0;
     std::size_t poolSlots = 0;
     std::size_t budgetBytes = 0;
+    bool gradientsCached = false;
     std::string budgetSource; // where the budget came from
     std::string lodReason;    // why a coarser level, when one was used
 };

@@ -232,7 +232,8 @@ int runRender(const QStringList& args) {
                                    .toStdString() +
                                " resident=" + std::to_string(gs.bricksResident) +
                                " pool_slots=" + std::to_string(gs.poolSlots) +
-                               " budget_mib=" + std::to_string(gs.budgetBytes >> 20);
+                               " budget_mib=" + std::to_string(gs.budgetBytes >> 20) +
+                               " gradients=" + (gs.gradientsCached ? "cached" : "computed");
                     if (!gs.lodReason.empty()) {
                         err << "lucent-cli render: rendered from level " << r.stats.lod << ": "
                             << QString::fromStdString(gs.lodReason) << "\n";

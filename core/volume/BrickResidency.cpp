@@ -171,6 +171,44 @@ void extractBrick(const T* data, glm::ivec3 dims, glm::ivec3 first, int overlap,
     }
 }
 
+template <class T>
+void extractGradientBrick(const T* data, glm::ivec3 dims, glm::ivec3 first, int overlap,
+                          int slotSize, double unit, std::int16_t* out) {
+    const glm::ivec3 start = first - overlap;
+    const double inverse = 0.5 / unit;
+    const auto at = [&](int i, int j, int k) {
+        return double(data[std::size_t(std::clamp(i, 0, dims.x - 1)) +
+                           std::size_t(dims.x) *
+                               (std::size_t(std::clamp(j, 0, dims.y - 1)) +
+                                std::size_t(dims.y) * std::size_t(std::clamp(k, 0, dims.z - 1)))]);
+    };
+    const auto quantised = [&](double d) {
+        return std::int16_t(std::clamp(std::lround(d * inverse), -32767L, 32767L));
+    };
+    for (int c = 0; c < slotSize; ++c) {
+        const int k = std::clamp(start.z + c, 0, dims.z - 1);
+        for (int b = 0; b < slotSize; ++b) {
+            const int j = std::clamp(start.y + b, 0, dims.y - 1);
+            std::int16_t* dst =
+                out + 4 * std::size_t(slotSize) * (std::size_t(b) + std::size_t(slotSize) * c);
+            for (int a = 0; a < slotSize; ++a) {
+                const int i = std::clamp(start.x + a, 0, dims.x - 1);
+                dst[4 * a + 0] = quantised(at(i + 1, j, k) - at(i - 1, j, k));
+                dst[4 * a + 1] = quantised(at(i, j + 1, k) - at(i, j - 1, k));
+                dst[4 * a + 2] = quantised(at(i, j, k + 1) - at(i, j, k - 1));
+                dst[4 * a + 3] = 0;
+            }
+        }
+    }
+}
+
+template void extractGradientBrick<std::int16_t>(const std::int16_t*, glm::ivec3, glm::ivec3, int,
+                                                 int, double, std::int16_t*);
+template void extractGradientBrick<std::uint16_t>(const std::uint16_t*, glm::ivec3, glm::ivec3, int,
+                                                  int, double, std::int16_t*);
+template void extractGradientBrick<float>(const float*, glm::ivec3, glm::ivec3, int, int, double,
+                                          std::int16_t*);
+
 template void extractBrick<std::int16_t>(const std::int16_t*, glm::ivec3, glm::ivec3, int, int,
                                          BrickEdge, std::int16_t*);
 template void extractBrick<std::uint16_t>(const std::uint16_t*, glm::ivec3, glm::ivec3, int, int,

@@ -83,4 +83,14 @@ template <class T>
 void extractBrick(const T* data, glm::ivec3 dims, glm::ivec3 first, int overlap, int slotSize,
                   BrickEdge edge, T* out);
 
+// The gradient of the same block: half the difference of the two neighbours
+// along each axis (indices clamped to the volume), divided by `unit` and
+// rounded to int16, four per voxel (x, y, z, 0). Trilinear interpolation of
+// these gives the central differences of the trilinear field one voxel apart
+// (what the ray casters shade with), up to rounding, except on the outermost
+// voxels. unit = (max - min) / 2 / 32767 keeps every component in range.
+template <class T>
+void extractGradientBrick(const T* data, glm::ivec3 dims, glm::ivec3 first, int overlap,
+                          int slotSize, double unit, std::int16_t* out);
+
 } // namespace lucent

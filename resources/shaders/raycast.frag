@@ -27,6 +27,8 @@ const int kMode = LUCENT_MODE, kInterp = LUCENT_INTERP;
 const bool kPreclassify = LUCENT_PRECLASSIFY, kPreintegrate = LUCENT_PREINTEGRATE;
 const bool kShading = LUCENT_SHADING, kLeap = LUCENT_LEAP, kLevel0 = LUCENT_LEVEL0;
 const bool kCellsInOneBrick = LUCENT_CELLS_IN_ONE_BRICK;
+// Each brick's central differences sit in a second pool (nearest, trilinear).
+const bool kGradientTexture = LUCENT_GRADIENT_TEXTURE;
 uniform float uEarlyTermination, uIso;
 uniform vec4 uLight; // ambient, diffuse, specular, specular power
 uniform mat3 uGradientToWorld;
@@ -46,6 +48,8 @@ uniform vec3 uInvPoolSize;
 uniform usampler3D uPageTable;
 uniform sampler3D uPool;
 uniform float uValueScale; // texture value -> data value
+uniform sampler3D uGradientPool;
+uniform float uGradientScale; // texture value -> half the difference of the neighbours
 
 // Transfer function: row 0 alpha corrected for dt, row 1 alpha per dt_ref.
 uniform sampler2D uTable;
@@ -139,6 +143,14 @@ float valueAt(vec3 q) { // any position: clamped to the volume
 }
 
 vec3 gradientAt(vec3 q) {
+    if (kGradientTexture && kInterp == kNearest) {
+        return texelFetch(uGradientPool, ivec3(gSlotBase) + ivec3(clampToVolume(q) + 0.5), 0).xyz *
+               uGradientScale;
+    }
+    if (kGradientTexture && kInterp == kLinear) {
+        return texture(uGradientPool, (gSlotBase + clampToVolume(q) + 0.5) * uInvPoolSize).xyz *
+               uGradientScale;
+    }
     if (kInterp == kNearest) {
         ivec3 v = ivec3(clampToVolume(q) + 0.5), hi = uDims - 1;
         return 0.5 * vec3(fetchTexel(min(v + ivec3(1, 0, 0), hi)) - fetchTexel(max(v - ivec3(1, 0, 0), 0)),

@@ -125,6 +125,33 @@ private slots:
         QCOMPARE(got(0, 3, 3), at(3, 4, 4)); // i = -3 mirrors to 3
         QCOMPARE(got(3, 9, 9), at(0, 6, 4)); // j = 10 mirrors to 6 (of 9), k = 10 to 4 (of 8)
     }
+
+    void gradientSlotHoldsCentralDifferences() {
+        const glm::ivec3 dims(10, 9, 8);
+        std::vector<std::int16_t> data(std::size_t(dims.x * dims.y * dims.z));
+        const auto f = [](int i, int j, int k) { return 3 * i * i - 5 * j + 7 * k; };
+        for (int k = 0; k < dims.z; ++k) {
+            for (int j = 0; j < dims.y; ++j) {
+                for (int i = 0; i < dims.x; ++i) {
+                    data[std::size_t(i + dims.x * (j + dims.y * k))] = std::int16_t(f(i, j, k));
+                }
+            }
+        }
+        const int slot = 4 + 2 * 3;
+        std::vector<std::int16_t> out(std::size_t(slot * slot * slot) * 4);
+        const double unit = 0.5;
+        extractGradientBrick<std::int16_t>(data.data(), dims, {4, 4, 0}, 3, slot, unit, out.data());
+        const auto got = [&](int a, int b, int c, int ch) {
+            return out[4 * std::size_t(a + slot * (b + slot * c)) + std::size_t(ch)];
+        };
+        // Voxel (5, 5, 4) sits at slot (4, 4, 7): d/di = 6i = 30, d/dj = -5, d/dk = 7; / unit.
+        QCOMPARE(got(4, 4, 7, 0), std::int16_t(60));
+        QCOMPARE(got(4, 4, 7, 1), std::int16_t(-10));
+        QCOMPARE(got(4, 4, 7, 2), std::int16_t(14));
+        QCOMPARE(got(4, 4, 7, 3), std::int16_t(0));
+        // k = 0 lies at slot c = 3: the neighbour below is clamped, so half of one step.
+        QCOMPARE(got(4, 4, 3, 2), std::int16_t(7));
+    }
 };
 
 QTEST_GUILESS_MAIN(TestBrickResidency)

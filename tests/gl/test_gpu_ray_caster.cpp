@@ -166,6 +166,27 @@ private slots:
         }
     }
 
+    // Shading from the cached gradients and from six fetches agree (nearest,
+    // trilinear, pre-classified), and the cache is used when it fits.
+    void gradientCacheMatchesComputedGradients() {
+        const Volume v = madeVolume();
+        GpuOptions off;
+        off.gradientCache = false;
+        GpuRayCaster cached(v), computed(v, off);
+        for (const Interpolation interp : {Interpolation::Nearest, Interpolation::Linear}) {
+            RenderDescription d = describe(v, madeTf(), 96);
+            d.camera.azimuth = 25.0;
+            d.sampling.interpolation = interp;
+            const GpuRenderResult a = cached.render(d), b = computed.render(d);
+            QVERIFY(a.gpu.gradientsCached);
+            QVERIFY(!b.gpu.gradientsCached);
+            const double p =
+                comparedPsnr(a.frame.image, b.frame.image,
+                             std::string("gradients-") + interpolationName(interp), 50.0);
+            QVERIFY2(p >= 50.0, qPrintable(QString("cached vs computed: %1 dB").arg(p)));
+        }
+    }
+
     void clipBoxMatchesReference() {
         const Volume v = madeVolume();
         GpuRayCaster gpu(v);
