@@ -1,0 +1,138 @@
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+
+#include <QImage>
+#include <QPointF>
+#include <QString>
+#include <QSurfaceFormat>
+#include <QWidget>
+
+#include "core/raycast/CpuRayCaster.h"
+#include "core/raycast/InteractiveQuality.h"
+#include "core/raycast/RenderDescription.h"
+
+class QPainter;
+
+namespace lucent {
+
+// The 3D view: the volume ray cast on the GPU (GpuRayCaster in a QOpenGLWidget's
+// context) or, where OpenGL 4.3 cannot be had, on the CPU (CpuRayCaster), with a
+// one-line notice saying why. The view owns the camera, mode, clip box and
+// transfer function it renders with.
+//
+// Mouse: left-drag rotates (kDegreesPerPixel of azimuth per pixel right, of
+// elevation per pixel down), right-drag zooms (up = closer), middle-drag pans,
+// the wheel zooms (kWheelZoomPerNotch per notch). While a button is down frames
+// use interactiveDescription() scaled up to the view; on release one frame at
+// full quality follows. Pan moves the rendered image in the view (the shared
+// RenderDescription has no pan of its own).
+class VolumeView : public QWidget {
+    Q_OBJECT
+
+public:
+    enum class Backend { Gpu, Cpu };
+    static constexpr double kDegreesPerPixel = 0.5;
+    static constexpr double kZoomPerPixel = 0.01; // zoom *= exp(-dy * this)
+    static constexpr double kWheelZoomPerNotch = 1.1;
+
+    // preferred = Gpu tries OpenGL first and falls back to the CPU by itself.
+    explicit VolumeView(QWidget* parent = nullptr, Backend preferred = Backend::Gpu);
+    ~VolumeView() override;
+
+    // The format the GL path asks for (4.3 core). Best set as the application's
+    // default with QSurfaceFormat::setDefaultFormat before QApplication exists.
+    static QSurfaceFormat surfaceFormat();
+
+    void setVolume(std::shared_ptr<const Volume> volume);
+    const std::shared_ptr<const Volume>& volume() const { return volume_; }
+    std::uint64_t volumeGeneration() const { return volumeGeneration_; }
+
+    const TransferFunction& transferFunction() const { return transferFunction_; }
+    const Camera& camera() const { return camera_; }
+    RenderMode mode() const { return mode_; }
+    double isoValue() const { return isoValue_; }
+    const ClipBox& clipBox() const { return clip_; }
+    const SamplingSettings& sampling() const { return sampling_; }
+    QPointF pan() const { return pan_; }
+    void setInteractiveQuality(const InteractiveQuality& quality) { quality_ = quality; }
+
+    // What a still frame renders now, at this size in device pixels (the view's
+    // size when not given).
+    RenderDescription description() const;
+    RenderDescription description(int width, int height) const;
+
+    Backend backend() const { return backend_; }
+    // Why the view is not on the GPU, or the last render error; empty otherwise.
+    QString notice() const { return notice_; }
+    bool interacting() const { return dragButton_ != Qt::NoButton; }
+    // The last frame as shown (scaled up when it was an interactive one).
+    const ImageRGBA8& lastFrame() const { return lastFrame_; }
+    // The view's pixels as on screen (renders a frame).
+    QImage grabImage();
+
+    // Used by the render surfaces: renders one frame with `render` and paints it.
+    using FrameRenderer = std::function<RenderResult(const RenderDescription&)>;
+    void paintFrame(QPainter& painter, const QSize& deviceSize, const FrameRenderer& render);
+    CpuRayCaster& cpuCaster();
+    // Called by the GL surface when OpenGL fails: switches to the CPU renderer.
+    void fallBackToCpu(const QString& reason);
+
+public slots:
+    void setTransferFunction(const lucent::TransferFunction& tf);
+    void setCamera(const lucent::Camera& camera);
+    void resetCamera();
+    void setMode(lucent::RenderMode mode);
+    void setIsoValue(double value);
+    void setClipBox(const lucent::ClipBox& clip);
+    void setSampling(const lucent::SamplingSettings& sampling);
+    void setPan(const QPointF& pan);
+    void requestRender();
+
+signals:
+    void volumeChanged();
+    void cameraChanged(const lucent::Camera& camera);
+    void transferFunctionChanged(const lucent::TransferFunction& tf);
+    // After each frame: its statistics and whether it was an interactive one.
+    void renderedFrame(const lucent::RenderStats& stats, bool interactive);
+    void noticeChanged(const QString& notice);
+
+protected:
+    void mousePressEvent(QMouseEvent* event) override;
+    void mouseMoveEvent(QMouseEvent* event) override;
+    void mouseReleaseEvent(QMouseEvent* event) override;
+    void wheelEvent(QWheelEvent* event) override;
+
+private:
+    void useSurface(Backend backend);
+    void setNotice(const QString& notice);
+
+    std::shared_ptr<const Volume> volume_;
+    std::uint64_t volumeGeneration_ = 0;
+    std::unique_ptr<CpuRayCaster> cpuCaster_;
+    std::uint64_t cpuCasterGeneration_ = 0;
+
+    TransferFunction transferFunction_;
+    Camera camera_;
+    RenderMode mode_ = RenderMode::Dvr;
+    double isoValue_ = 300.0;
+    ClipBox clip_;
+    SamplingSettings sampling_;
+    InteractiveQuality quality_;
+    QPointF pan_;
+
+    Backend backend_ = Backend::Cpu;
+    QWidget* surface_ = nullptr; // a child: VolumeGlSurface or VolumeCpuSurface
+    QString notice_;
+    QString glFailure_;
+    ImageRGBA8 lastFrame_;
+
+    Qt::MouseButton dragButton_ = Qt::NoButton;
+    QPointF dragStart_;
+    Camera dragCamera_;
+    QPointF dragPan_;
+};
+
+} // namespace lucent
