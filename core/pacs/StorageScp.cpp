@@ -41,6 +41,7 @@ struct StorageScp::Scp : DcmSCP {
     std::atomic<bool> stop{false};
     std::unique_ptr<StudyStore>
         store; // opened on the SCP's thread (Qt SQL connections are per thread)
+    std::filesystem::path root;
     std::atomic<int>* received = nullptr;
     std::atomic<int>* failed = nullptr;
 
@@ -54,6 +55,13 @@ struct StorageScp::Scp : DcmSCP {
         const OFCondition c = receiveSTORERequest(request, info.presentationContextID, raw);
         const std::unique_ptr<DcmDataset> dataset(raw);
         Uint16 status = kSuccess;
+        if (!store) { // the store could not be opened before: try again
+            try {
+                store = std::make_unique<StudyStore>(root);
+            } catch (const std::exception&) {
+                store.reset();
+            }
+        }
         if (c.bad() || !dataset || !store) {
             status = kOutOfResources;
             ++*failed;
@@ -80,6 +88,7 @@ StorageScp::StorageScp(const std::filesystem::path& storeRoot, const StorageScpS
         throw PacsError("storage SCP port " + std::to_string(settings.port) + " is not usable");
     }
     Scp& scp = *scp_;
+    scp.root = storeRoot;
     scp.received = &received_;
     scp.failed = &failed_;
     scp.setAETitle(settings.aeTitle.c_str());

@@ -156,7 +156,13 @@ void fetch(const DicomWebService& s, const QUrl& url, PartWriter& writer,
                               where);
                 parts->onPartBegin = [&] { writer.begin(); };
                 parts->onPartData = [&](const char* p, qsizetype n) { writer.data(p, n); };
-                parts->onPartEnd = [&] { writer.end(); };
+                parts->onPartEnd = [&] {
+                    writer.end();
+                    if (control.stop.stop_requested()) { // between instances, even in one read
+                        throw PacsError(s.baseUrl + ": retrieval of series " + seriesUid +
+                                        " cancelled");
+                    }
+                };
             }
             char buffer[1 << 16];
             for (qint64 n; (n = reply->read(buffer, sizeof buffer)) > 0;) {

@@ -2,13 +2,19 @@
 
 #include <atomic>
 #include <cctype>
+#include <chrono>
 #include <system_error>
+#include <thread>
 
 #include <QSqlDatabase>
 #include <QSqlError>
 #include <QSqlQuery>
 #include <QString>
 #include <QVariant>
+
+#include <cerrno>
+#include <csignal>
+#include <cstdlib>
 
 #include <unistd.h>
 
@@ -45,11 +51,24 @@ void run(QSqlQuery& query, const fs::path& root) {
     }
 }
 
+// True when a temporary file's name says a running process writes it
+// (incoming-<pid>-<store>-<n>.dcm).
+bool writerAlive(const std::string& name) {
+    const std::string prefix = "incoming-";
+    if (name.rfind(prefix, 0) != 0) {
+        return false;
+    }
+    const long pid = std::strtol(name.c_str() + prefix.size(), nullptr, 10);
+    return pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM);
+}
+
 } // namespace
 
 StudyStore::StudyStore(const fs::path& root) : root_(root) {
     static std::atomic<int> instances{0};
-    connection_ = "lucent-store-" + std::to_string(::getpid()) + "-" + std::to_string(++instances);
+    const std::string self = std::to_string(::getpid()) + "-" + std::to_string(++instances);
+    connection_ = "lucent-store-" + self;
+    tempPrefix_ = "incoming-" + self + "-";
     std::error_code ec;
     fs::create_directories(root_ / "files", ec);
     fs::create_directories(root_ / "tmp", ec);
@@ -58,8 +77,12 @@ StudyStore::StudyStore(const fs::path& root) : root_(root) {
                          ")");
     }
     // Leftovers of writes that never finished: never indexed, never in files/.
+    // Files of a process still running (this one included: the storage SCP, a
+    // retrieval) are being written now and stay.
     for (const auto& e : fs::directory_iterator(root_ / "tmp", ec)) {
-        fs::remove(e.path(), ec);
+        if (!writerAlive(e.path().filename().string())) {
+            fs::remove(e.path(), ec);
+        }
     }
     QSqlDatabase db = QSqlDatabase::addDatabase("QSQLITE", q(connection_));
     db.setDatabaseName(q((root_ / "index.sqlite").string()));
@@ -83,12 +106,17 @@ StudyStore::StudyStore(const fs::path& root) : root_(root) {
         "CREATE TABLE IF NOT EXISTS instances (sop_uid TEXT PRIMARY KEY, series_uid TEXT NOT NULL, "
         "path TEXT NOT NULL)");
     exec("CREATE INDEX IF NOT EXISTS instances_by_series ON instances(series_uid)");
-    // Stores from before the patients and studies tables: fill them from the series.
-    exec("INSERT OR IGNORE INTO patients (patient_key, patient_id, patient_name, birth_date) "
-         "SELECT patient_id || '|' || patient_name, patient_id, patient_name, '' FROM series");
-    exec("INSERT OR IGNORE INTO studies (study_uid, patient_key, study_date, study_description, "
-         "accession) SELECT study_uid, patient_id || '|' || patient_name, study_date, '', '' "
-         "FROM series");
+    // Stores from before the patients and studies tables (schema version 0):
+    // fill them from the series, once. Opening a current store writes nothing.
+    QSqlQuery version(QSqlDatabase::database(q(connection_)));
+    if (version.exec("PRAGMA user_version") && version.next() && version.value(0).toInt() < 1) {
+        exec("INSERT OR IGNORE INTO patients (patient_key, patient_id, patient_name, birth_date) "
+             "SELECT patient_id || '|' || patient_name, patient_id, patient_name, '' FROM series");
+        exec("INSERT OR IGNORE INTO studies (study_uid, patient_key, study_date, "
+             "study_description, accession) SELECT study_uid, patient_id || '|' || "
+             "patient_name, study_date, '', '' FROM series");
+        exec("PRAGMA user_version = 1");
+    }
 }
 
 StudyStore::~StudyStore() {
@@ -100,16 +128,26 @@ StudyStore::~StudyStore() {
 }
 
 void StudyStore::exec(const std::string& sql) const {
-    QSqlQuery query(QSqlDatabase::database(q(connection_)));
-    if (!query.exec(q(sql))) {
-        throw StoreError(root_.string() +
-                         "/index.sqlite: " + query.lastError().text().toStdString());
+    const QSqlDatabase db = QSqlDatabase::database(q(connection_));
+    for (int attempt = 0;; ++attempt) {
+        QSqlQuery query(db);
+        if (query.exec(q(sql))) {
+            return;
+        }
+        // Another connection creating or writing the same store (the storage
+        // SCP, a retrieval, the browser): some statements, such as switching to
+        // WAL, do not wait for it by themselves. Wait up to 5 s.
+        const QString error = query.lastError().text();
+        if (attempt < 250 && (error.contains("locked") || error.contains("busy"))) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+            continue;
+        }
+        throw StoreError(root_.string() + "/index.sqlite: " + error.toStdString());
     }
 }
 
 fs::path StudyStore::temporaryFile() {
-    return root_ / "tmp" /
-           ("incoming-" + std::to_string(::getpid()) + "-" + std::to_string(++counter_) + ".dcm");
+    return root_ / "tmp" / (tempPrefix_ + std::to_string(++counter_) + ".dcm");
 }
 
 bool StudyStore::contains(const std::string& sop) const {

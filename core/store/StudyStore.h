@@ -49,7 +49,9 @@ struct StoredSeries {
 // interrupted retrieval shows as incomplete and a new one fetches only the rest.
 class StudyStore {
 public:
-    // Opens or creates the store; removes leftovers of interrupted writes. Throws StoreError.
+    // Opens or creates the store; removes leftovers of interrupted writes (of
+    // processes no longer running). Several objects, threads and processes may
+    // use one store at once. Throws StoreError.
     explicit StudyStore(const std::filesystem::path& root);
     ~StudyStore();
     StudyStore(const StudyStore&) = delete;
@@ -102,6 +104,7 @@ private:
 
     std::filesystem::path root_;
     std::string connection_;
+    std::string tempPrefix_; // unique to this object: several may share a store
     std::uint64_t counter_ = 0;
 };
 

@@ -45,7 +45,7 @@ class TestRetrieveCancel : public QObject {
         try {
             retrieve(control);
             QFAIL("expected the retrieval to be cancelled");
-        } catch (const PacsError& e) {
+        } catch (const std::exception& e) {
             QVERIFY2(QString(e.what()).contains("cancelled"), e.what());
         }
     }
@@ -113,7 +113,13 @@ private slots:
     void cancelStopsCMove() {
         QTemporaryDir dir;
         const std::filesystem::path root = dir.path().toStdString();
-        StorageScp scp(root, {"LUCENT", scpPort_});
+        std::unique_ptr<StorageScp> listening;
+        try {
+            listening = std::make_unique<StorageScp>(root, StorageScpSettings{"LUCENT", scpPort_});
+        } catch (const std::exception& e) {
+            QFAIL(e.what());
+        }
+        const StorageScp& scp = *listening;
         StudyStore store(root);
         cancelAtTheFifth([&](const RetrieveControl& c) {
             moveSeries(node_, settings_, "LUCENT", kStudy, kSeries, store, c);
@@ -121,7 +127,12 @@ private slots:
         checkStopped(store, dir);
         QVERIFY2(scp.received() < kImages, qPrintable(QString::number(scp.received())));
         const std::size_t kept = store.instancesOf(kSeries).size();
-        const RetrieveResult rest = moveSeries(node_, settings_, "LUCENT", kStudy, kSeries, store);
+        RetrieveResult rest;
+        try {
+            rest = moveSeries(node_, settings_, "LUCENT", kStudy, kSeries, store);
+        } catch (const std::exception& e) {
+            QFAIL(e.what());
+        }
         QCOMPARE(rest.received, kImages - int(kept));
         QVERIFY(rest.complete);
     }

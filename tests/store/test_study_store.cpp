@@ -69,15 +69,25 @@ private slots:
 
     void reopeningKeepsTheIndexAndDropsUnfinishedWrites() {
         QTemporaryDir dir;
-        fs::path leftover;
+        const fs::path tmp = fs::path(dir.path().toStdString()) / "tmp";
         {
             StudyStore store(dir.path().toStdString());
             QVERIFY(store.add(incoming(store, "x"), record("1.2.3.4.9")));
-            leftover = incoming(store, "half written");
         }
+        // Left by a process that died (no pid is that large) and by an unknown writer.
+        const fs::path dead = tmp / "incoming-999999999-1-1.dcm";
+        const fs::path junk = tmp / "junk.part";
+        std::ofstream(dead) << "half written";
+        std::ofstream(junk) << "?";
+        StudyStore writer(dir.path().toStdString());
+        const fs::path inFlight = incoming(writer, "being written"); // a living writer's
         StudyStore reopened(dir.path().toStdString());
         QVERIFY(reopened.contains("1.2.3.4.9"));
-        QVERIFY(!fs::exists(leftover));
+        QVERIFY(!fs::exists(dead));
+        QVERIFY(!fs::exists(junk));
+        QVERIFY(fs::exists(inFlight));
+        // Two objects on one store never pick the same temporary name.
+        QVERIFY(writer.temporaryFile() != reopened.temporaryFile());
     }
 
     void twoStoresOpenAtOnce() {
