@@ -15,6 +15,7 @@
 
 #include "core/io/Catalog.h"
 #include "ui/MprCursor.h"
+#include "ui/PacsBrowser.h"
 #include "ui/SliceView.h"
 
 namespace lucent {
@@ -74,6 +75,10 @@ MainWindow::MainWindow(QWidget* parent)
     file->addAction(tr("&Open File..."), QKeySequence::Open, this, &MainWindow::openFileDialog);
     file->addSeparator();
     file->addAction(tr("&Quit"), QKeySequence::Quit, qApp, &QApplication::closeAllWindows);
+    // PACS query/retrieve and the local store in a dock; arrived series open here.
+    PacsBrowser* pacs = PacsBrowser::addDock(this, menuBar()->addMenu(tr("&PACS")));
+    connect(pacs, &PacsBrowser::openSeries, this,
+            [this](const QString& folder, const QString& series) { openPath(folder, series); });
     resize(1500, 600);
 }
 
