@@ -12,4 +12,10 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+// The driver refused memory (GL_OUT_OF_MEMORY): the caller may retry smaller.
+class GlOutOfMemory : public GlError {
+public:
+    using GlError::GlError;
+};
+
 } // namespace lucent

@@ -94,7 +94,7 @@ void checkGl(const std::string& what) {
     while (glGetError() != GL_NO_ERROR) {
     }
     if (e == GL_OUT_OF_MEMORY) {
-        throw GlError(what + ": the driver is out of memory");
+        throw GlOutOfMemory(what + ": the driver is out of memory");
     }
     throw GlError(what + ": GL error 0x" + [&] {
         char buf[16];

@@ -73,6 +73,7 @@ struct GpuRayCaster::State {
     RenderTarget target;
     std::unique_ptr<BrickPool> pool;
     std::tuple<int, bool> poolKind{0, false};
+    std::string poolNote; // why the pool is smaller than the budget, if it is
     GlTexture pageTable, cellCode, cellRange, table, preTable;
     std::optional<std::tuple<TransferFunction, double, double, double>> preKey;
 
@@ -165,12 +166,31 @@ GpuRenderResult GpuRayCaster::render(const RenderDescription& desc) {
             allLevel0 * texelsPerSlot * (format.gpuBytes + BrickPool::kGradientBytes) <= s.budget;
         const std::size_t slotBytes =
             texelsPerSlot * (format.gpuBytes + (gradients ? BrickPool::kGradientBytes : 0));
-        const std::size_t capacity = std::min(s.budget / slotBytes, allLevel0);
+        std::size_t capacity = std::min(s.budget / slotBytes, allLevel0);
         if (capacity == 0) {
             throw BudgetError("the GPU budget of " + std::to_string(s.budget >> 20) +
                               " MiB holds no brick of " + std::to_string(slotBytes >> 10) + " KiB");
         }
-        s.pool = std::make_unique<BrickPool>(slotSize, format, capacity, gradients);
+        // Where the driver refuses the memory: without the gradient cache, then
+        // half as many slots, until it accepts (coarser levels take the rest).
+        bool withGradients = gradients;
+        while (!s.pool) {
+            try {
+                s.pool = std::make_unique<BrickPool>(slotSize, format, capacity, withGradients);
+            } catch (const GlOutOfMemory& e) {
+                if (withGradients) {
+                    withGradients = false;
+                    capacity = std::min(s.budget / (texelsPerSlot * format.gpuBytes), allLevel0);
+                } else if (capacity > 1) {
+                    capacity /= 2;
+                } else {
+                    throw BudgetError(std::string(e.what()) + ", even for one brick");
+                }
+                s.poolNote = std::string("the driver refused the memory asked for; the pool "
+                                         "holds ") +
+                             std::to_string(capacity) + " bricks";
+            }
+        }
         s.poolKind = {brickSize, cubic};
     }
     BrickPool& pool = *s.pool;
@@ -191,13 +211,19 @@ GpuRenderResult GpuRayCaster::render(const RenderDescription& desc) {
     const auto visible =
         valueVisibility(desc, tLo, tHi, preintegrate ? kPreintegrationSize : kTableSize);
 
-    // The finest level whose bricks fit the pool.
+    // The finest level whose bricks in view fit the pool.
+    const VolumeGeometry& g = s.volume.geometry();
+    const ViewFrame frame = makeViewFrame(g, desc.camera, desc.width, desc.height);
+    const BoxTest inView = [&](const glm::dvec3& lo, const glm::dvec3& hi) {
+        return boxInView(g, frame, lo, hi);
+    };
     const bool neighbours = preintegrate || desc.mode == RenderMode::Isosurface;
     std::vector<const BrickGrid*> levels{&s.grid(brickSize, cubic, 0)};
     std::optional<ResidencyPlan> plan;
     for (;;) {
         try {
-            plan = planResidency(levels, visible, desc.clip, neighbours, pool.slots().capacity());
+            plan = planResidency(levels, visible, desc.clip, neighbours, pool.slots().capacity(),
+                                 inView);
             break;
         } catch (const BudgetError& e) {
             if (int(levels.size()) >= s.levelCount()) {
@@ -260,7 +286,7 @@ GpuRenderResult GpuRayCaster::render(const RenderDescription& desc) {
     out.gpu.bricksResident = pool.slots().resident();
     out.gpu.poolSlots = pool.slots().capacity();
     out.gpu.budgetBytes = s.budget;
-    out.gpu.budgetSource = s.budgetSource;
+    out.gpu.budgetSource = s.budgetSource + (s.poolNote.empty() ? "" : "; " + s.poolNote);
 
     // Page table and brick ranges of the level.
     const glm::ivec3 per = grid.bricksPerAxis();
@@ -335,8 +361,6 @@ GpuRenderResult GpuRayCaster::render(const RenderDescription& desc) {
     checkGl("transfer-function tables");
 
     // Uniforms: the CPU ray caster's setup, with the level's scale.
-    const VolumeGeometry& g = s.volume.geometry();
-    const ViewFrame frame = makeViewFrame(g, desc.camera, desc.width, desc.height);
     const glm::dmat3 linear(g.direction[0] * g.spacing.x, g.direction[1] * g.spacing.y,
                             g.direction[2] * g.spacing.z);
     const double dt =

@@ -43,4 +43,32 @@ std::pair<double, double> visibleValueRange(const TransferFunction& tf, double t
     return {lo - tableCell, hi + tableCell};
 }
 
+bool boxInView(const VolumeGeometry& g, const ViewFrame& f, const glm::dvec3& lo,
+               const glm::dvec3& hi) {
+    // Per side of the view: how many corners lie beyond it.
+    int left = 0, right = 0, below = 0, above = 0, behind = 0;
+    const double tx = f.tanHalfFov * f.aspect, ty = f.tanHalfFov;
+    for (int n = 0; n < 8; ++n) {
+        const glm::dvec3 c((n & 1) ? hi.x : lo.x, (n & 2) ? hi.y : lo.y, (n & 4) ? hi.z : lo.z);
+        const glm::dvec3 rel = g.toPatient(c) - f.eye;
+        const double z = glm::dot(rel, f.forward);
+        if (z <= 0.0) {
+            ++behind;
+            continue;
+        }
+        const double x = glm::dot(rel, f.right) / (z * tx), y = glm::dot(rel, f.up) / (z * ty);
+        left += x < -1.0;
+        right += x > 1.0;
+        below += y < -1.0;
+        above += y > 1.0;
+    }
+    if (behind == 8) {
+        return false;
+    }
+    if (behind > 0) {
+        return true; // the box reaches behind the eye: keep it
+    }
+    return left < 8 && right < 8 && below < 8 && above < 8;
+}
+
 } // namespace lucent

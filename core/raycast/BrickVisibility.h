@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "core/raycast/RenderDescription.h"
+#include "core/raycast/ViewFrame.h"
 
 namespace lucent {
 
@@ -20,5 +21,11 @@ valueVisibility(const RenderDescription& desc, double tableLo, double tableHi, i
 // The values outside which the transfer function's opacity is zero, widened
 // by `tableCell` (infinite where the opacity never drops to zero).
 std::pair<double, double> visibleValueRange(const TransferFunction& tf, double tableCell);
+
+// Whether any ray of the view can reach a box of voxel centres (index space,
+// closed): false only when the whole box lies behind the eye or beyond one edge
+// of the image.
+bool boxInView(const VolumeGeometry& geometry, const ViewFrame& frame, const glm::dvec3& lo,
+               const glm::dvec3& hi);
 
 } // namespace lucent

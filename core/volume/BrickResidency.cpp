@@ -4,6 +4,8 @@
 #include <cmath>
 #include <string>
 
+#include "core/volume/LodPyramid.h"
+
 namespace lucent {
 
 namespace {
@@ -32,12 +34,21 @@ int mirrorIndex(int i, int n) {
 
 ResidencyPlan planResidency(const std::vector<const BrickGrid*>& levels,
                             const std::function<bool(double, double)>& isVisible,
-                            const ClipBox& clip, bool withNeighbours, std::size_t slots) {
+                            const ClipBox& clip, bool withNeighbours, std::size_t slots,
+                            const BoxTest& inView) {
     std::vector<std::size_t> rejected;
     for (std::size_t n = 0; n < levels.size(); ++n) {
         const BrickGrid& grid = *levels[n];
-        const std::vector<std::uint32_t> needed =
+        std::vector<std::uint32_t> needed =
             visibleBricks(grid, isVisible, clipAtLevel(clip, int(n)));
+        if (inView) {
+            // A sample lies in the brick whose core holds it (half a voxel of slack).
+            std::erase_if(needed, [&](std::uint32_t id) {
+                const Brick& b = grid.bricks()[id];
+                return !inView(LodPyramid::toLevel0(glm::dvec3(b.first) - 0.5, int(n)),
+                               LodPyramid::toLevel0(glm::dvec3(b.last) - 0.5, int(n)));
+            });
+        }
         ResidencyPlan plan;
         plan.level = int(n);
         plan.needed = needed.size();

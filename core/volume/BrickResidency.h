@@ -37,10 +37,14 @@ struct ResidencyPlan {
 // levels: the brick grids of the LOD levels, finest first (level n's voxel
 // p_n = (p_0 - (2^n - 1) / 2) / 2^n). The finest level whose bricks fit
 // `slots` wins. isVisible and clip (in level-0 index space) as for
-// visibleBricks. Throws BudgetError when no level fits, naming the smallest need.
+// visibleBricks. inView, when given, says whether a box of voxel centres
+// (level-0 index space, closed) can be seen at all: bricks outside the view
+// are not needed. Throws BudgetError when no level fits, naming the smallest need.
+using BoxTest = std::function<bool(const glm::dvec3& lo, const glm::dvec3& hi)>;
 ResidencyPlan planResidency(const std::vector<const BrickGrid*>& levels,
                             const std::function<bool(double lo, double hi)>& isVisible,
-                            const ClipBox& clip, bool withNeighbours, std::size_t slots);
+                            const ClipBox& clip, bool withNeighbours, std::size_t slots,
+                            const BoxTest& inView = {});
 
 // The slots of a brick pool: which brick (level and id) sits in which slot.
 // A render's bricks are made resident together; bricks it does not use stay

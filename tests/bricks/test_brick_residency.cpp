@@ -73,6 +73,10 @@ private slots:
         QCOMPARE(shell.needed, std::size_t(32));
         QCOMPARE(shell.bricks.size(), std::size_t(48)); // one more column, leapt over
         QCOMPARE(std::count(shell.leapable.begin(), shell.leapable.end(), 1), 16);
+        // Only boxes left of i = 24 in view: the first column of bricks (its core ends at 16).
+        const BoxTest leftOnly = [](const glm::dvec3& lo, const glm::dvec3&) { return lo.x < 8.0; };
+        const ResidencyPlan seen = planResidency(levels, visible, ClipBox{}, false, 1000, leftOnly);
+        QCOMPARE(seen.needed, std::size_t(16));
         ClipBox clip;
         clip.lo = {40, 0, 0}; // nothing visible right of i = 40
         QCOMPARE(planResidency(levels, visible, clip, false, 1000).needed, std::size_t(0));

@@ -1,6 +1,7 @@
 // lucent-cli render --backend gl: the same image as the CPU backend, the
 // statistics the contract names plus the GPU's, the budget option, and a
 // clear refusal when the budget holds nothing.
+#include <QProcess>
 #include <QTemporaryDir>
 #include <QTest>
 
@@ -65,6 +66,26 @@ private slots:
         QVERIFY2(r.exitCode == 0, qPrintable(r.err));
         QVERIFY2(!r.out.contains("lod=0"), qPrintable(r.out));
         QVERIFY2(r.err.contains("rendered from level"), qPrintable(r.err));
+    }
+
+    // No GL at all (glvnd finds no EGL vendor): the CPU renders, and says so.
+    void withoutGlTheCpuRendersAndSaysSo() {
+        QTemporaryDir dir;
+        const QString vol = writeVolume(dir), png = dir.filePath("x.png");
+        QProcess p;
+        QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+        env.insert("__EGL_VENDOR_LIBRARY_FILENAMES", dir.filePath("no-vendor.json"));
+        p.setProcessEnvironment(env);
+        p.start(QString(LUCENT_BIN_DIR) + "/lucent-cli",
+                {"render", vol, "-o", png, "--backend", "gl", "--size", "32x32", "--stats"});
+        QVERIFY(p.waitForFinished(120000));
+        const QString out = QString::fromUtf8(p.readAllStandardOutput());
+        const QString err = QString::fromUtf8(p.readAllStandardError());
+        QCOMPARE(p.exitCode(), 0);
+        QVERIFY2(err.contains("GL backend is not available") && err.contains("CPU"),
+                 qPrintable(err));
+        QVERIFY2(out.contains("backend=cpu"), qPrintable(out));
+        QVERIFY(QFile::exists(png));
     }
 
     void budgetThatHoldsNothingIsRefused() {

@@ -60,6 +60,28 @@ private slots:
         QCOMPARE(gpu.render(d).gpu.bricksUploaded, std::size_t(0));
     }
 
+    // Zoomed in, only the bricks in view are resident, and the image is still
+    // the reference's.
+    void onlyBricksInViewAreResident() {
+        const Volume v = realOrMade();
+        GpuRayCaster gpu(v);
+        RenderDescription d = describe(v, loadPreset("ct-bone"), 96);
+        const std::size_t whole = gpu.render(d).frame.stats.bricksUsed;
+        GpuRayCaster zoomed(v);
+        d.camera.zoom = 4.0;
+        d.camera.azimuth = 20.0;
+        const GpuRenderResult r = zoomed.render(d);
+        QVERIFY2(r.frame.stats.bricksUsed * 2 < whole,
+                 qPrintable(
+                     QString("%1 bricks in view of %2").arg(r.frame.stats.bricksUsed).arg(whole)));
+        QCOMPARE(r.gpu.bricksUploaded, r.frame.stats.bricksUsed);
+        RenderDescription ref = d;
+        ref.sampling.precision = Precision::Double;
+        const double p =
+            comparedPsnr(r.frame.image, CpuRayCaster(v).render(ref).image, "zoomed", 40.0);
+        QVERIFY2(p >= 40.0, qPrintable(QString("zoomed: %1 dB").arg(p)));
+    }
+
     // A budget far below the volume still renders, from a coarser level, says
     // so, and looks like the full-resolution image.
     void smallBudgetRendersCoarserLevel() {
