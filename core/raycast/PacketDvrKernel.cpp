@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "core/raycast/InvisibleCells.h"
-#include "core/raycast/PacketMath.h"
+#include "core/raycast/PacketRays.h"
 
 namespace lucent {
 
@@ -131,52 +131,12 @@ struct Lighting {
     }
 };
 
-// Lanes 0-3 (h = 0) or 4-7 (h = 1) of v.
-LUCENT_AVX2 inline __m128i halfOf(int h, __m256i v) {
-    return h == 0 ? _mm256_castsi256_si128(v) : _mm256_extracti128_si256(v, 1);
-}
-
-// The eight rays' lattices in double, per axis: FastDvrKernel::Lattice.
-struct LeapLattice {
-    alignas(32) double entry[3][8]{}, stride[3][8]{}, inverse[3][8]{};
-};
-
-// FastDvrKernel::boxExit for eight lanes, cells lo .. hi of a level of cells
-// of `size` voxels, perAxis of them: the same double operations per lane.
-// Lanes 0-3 in exit[0], 4-7 in exit[1].
-LUCENT_AVX2 inline void boxExits(const __m256i lo[3], const __m256i hi[3], int size,
-                                 glm::ivec3 perAxis, const LeapLattice& l, __m256d exit[2]) {
-    exit[0] = exit[1] = _mm256_set1_pd(std::numeric_limits<double>::infinity());
-    const __m256i one = _mm256_set1_epi32(1), vSize = _mm256_set1_epi32(size);
-    for (int a = 0; a < 3; ++a) {
-        const __m256i up = _mm256_mullo_epi32(_mm256_add_epi32(hi[a], one), vSize);
-        const __m256i down = _mm256_mullo_epi32(lo[a], vSize);
-        const __m256i upOk = _mm256_cmpgt_epi32(_mm256_set1_epi32(perAxis[a] - 1), hi[a]);
-        const __m256i downOk = _mm256_cmpgt_epi32(lo[a], _mm256_setzero_si256());
-        for (int h = 0; h < 2; ++h) {
-            const __m256d st = _mm256_load_pd(&l.stride[a][4 * h]);
-            const __m256d pos = _mm256_cmp_pd(st, _mm256_set1_pd(1e-15), _CMP_GT_OQ);
-            const __m256d neg = _mm256_cmp_pd(st, _mm256_set1_pd(-1e-15), _CMP_LT_OQ);
-            const __m256d valid = _mm256_or_pd(
-                _mm256_and_pd(pos, _mm256_castsi256_pd(_mm256_cvtepi32_epi64(halfOf(h, upOk)))),
-                _mm256_and_pd(neg, _mm256_castsi256_pd(_mm256_cvtepi32_epi64(halfOf(h, downOk)))));
-            const __m256d bound = _mm256_blendv_pd(_mm256_cvtepi32_pd(halfOf(h, down)),
-                                                   _mm256_cvtepi32_pd(halfOf(h, up)), pos);
-            const __m256d t =
-                _mm256_mul_pd(_mm256_sub_pd(bound, _mm256_load_pd(&l.entry[a][4 * h])),
-                              _mm256_load_pd(&l.inverse[a][4 * h]));
-            exit[h] = _mm256_blendv_pd(exit[h], _mm256_min_pd(t, exit[h]), valid);
-        }
-    }
-}
-
 } // namespace
 
 template <class T>
 LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::dvec3* d,
                                                 const glm::dvec3* w, int count,
                                                 RayOutput* out) const {
-    using Lattice = typename FastDvrKernel<T>::Lattice;
     const FastDvrKernel<T>& k = fast_;
     const RaySetup<float>& s = k.s_;
     const Grid<float, T>& g = k.g_;
@@ -188,36 +148,10 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
     const int shift = k.fineShift_;
     const float stop = s.earlyTermination;
 
-    // Per ray: its lattice p(n) = entry + stride * n, in float as the scalar
-    // kernel has it and in double for leaping, and what it has gathered.
-    alignas(32) float ex[kWidth]{}, ey[kWidth]{}, ez[kWidth]{};
-    alignas(32) float sx[kWidth]{}, sy[kWidth]{}, sz[kWidth]{};
-    alignas(32) int n[kWidth]{}, nLast[kWidth]{}, checked[kWidth];
-    LeapLattice lattice;
-    alignas(32) float wx[kWidth]{}, wy[kWidth]{}, wz[kWidth]{};
-    int active = 0;
-    for (int r = 0; r < kWidth; ++r) {
-        checked[r] = -1;
-        RaySpan span;
-        if (r >= count || !raySpan(s, o, d[r], span) || span.nFirst > span.nLast) {
-            continue;
-        }
-        const glm::vec3 entry(o + d[r] * span.t0), stride(d[r] * s.dt);
-        ex[r] = entry.x, ey[r] = entry.y, ez[r] = entry.z;
-        sx[r] = stride.x, sy[r] = stride.y, sz[r] = stride.z;
-        const Lattice l{o + d[r] * span.t0, d[r] * s.dt, glm::dvec3(0.0)};
-        for (int a = 0; a < 3; ++a) {
-            const double st = l.stride[a];
-            lattice.entry[a][r] = l.entry[a];
-            lattice.stride[a][r] = st;
-            lattice.inverse[a][r] = std::abs(st) > 1e-15 ? 1.0 / st : 0.0;
-        }
-        n[r] = int(span.nFirst);
-        nLast[r] = int(span.nLast);
-        const glm::vec3 wr(w[r]);
-        wx[r] = wr.x, wy[r] = wr.y, wz[r] = wr.z;
-        active |= 1 << r;
-    }
+    PacketRays rays;
+    startRays(s, o, d, w, count, rays);
+    const LeapLattice& lattice = rays.lattice;
+    int active = rays.active;
 
     const HiddenCells hidden(s.invisibleCells);
     const TableLookup lookup{table, k.tableScale_, k.tableOffset_, k.tableMax_, int(k.lastEntry_)};
@@ -228,12 +162,15 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
                          float(s.light.specularPower),
                          k.integerSpecular_,
                          k.specularN_};
-    const __m256 dir[3] = {_mm256_load_ps(wx), _mm256_load_ps(wy), _mm256_load_ps(wz)};
+    const __m256 dir[3] = {_mm256_load_ps(rays.dir[0]), _mm256_load_ps(rays.dir[1]),
+                           _mm256_load_ps(rays.dir[2])};
     __m256 acc[4] = {_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_ps(),
                      _mm256_setzero_ps()};
 
-    const __m256 vex = _mm256_load_ps(ex), vey = _mm256_load_ps(ey), vez = _mm256_load_ps(ez);
-    const __m256 vsx = _mm256_load_ps(sx), vsy = _mm256_load_ps(sy), vsz = _mm256_load_ps(sz);
+    const __m256 vex = _mm256_load_ps(rays.entry[0]), vey = _mm256_load_ps(rays.entry[1]),
+                 vez = _mm256_load_ps(rays.entry[2]);
+    const __m256 vsx = _mm256_load_ps(rays.stride[0]), vsy = _mm256_load_ps(rays.stride[1]),
+                 vsz = _mm256_load_ps(rays.stride[2]);
     const __m256i lastIjk[3] = {_mm256_set1_epi32(lastI), _mm256_set1_epi32(lastJ),
                                 _mm256_set1_epi32(lastK)};
     const auto rowStep = std::ptrdiff_t(g.sy), sliceStep = std::ptrdiff_t(g.sz);
@@ -242,10 +179,10 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
     const __m256i cellsX = _mm256_set1_epi32(cells.x), cellsY = _mm256_set1_epi32(cells.y);
     const __m128i shiftCount = _mm_cvtsi32_si128(shift);
     const __m256 visibleLo = _mm256_set1_ps(k.visibleLo_), visibleHi = _mm256_set1_ps(k.visibleHi_);
-    __m256i vn = _mm256_load_si256(reinterpret_cast<const __m256i*>(n));
-    const __m256i vLast = _mm256_load_si256(reinterpret_cast<const __m256i*>(nLast));
-    __m256i vChecked = _mm256_load_si256(reinterpret_cast<const __m256i*>(checked));
-    int emptyBits = 0; // lanes whose checked cell can be leapt
+    __m256i vn = loadInts(rays.first);
+    const __m256i vLast = loadInts(rays.last);
+    __m256i vChecked = _mm256_set1_epi32(-1); // no cell checked yet
+    int emptyBits = 0;                        // lanes whose checked cell can be leapt
     // The cell rows last loaded (for the lanes' cells at `cellAt`), and the
     // gradient corner differences last computed (valid in the lanes
     // `cornersValid`, whose cells were at `cornersAt`): a sample in the same
