@@ -151,10 +151,6 @@ glm::dvec2 SlicePlane::pixelOf(const glm::dvec3& p) const {
             glm::dot(d, v) / pixelSize + 0.5 * (height - 1)};
 }
 
-glm::dvec3 volumeCentre(const VolumeGeometry& geometry) {
-    return geometry.toPatient(0.5 * glm::dvec3(geometry.dims - 1));
-}
-
 double fitPixelSize(const VolumeGeometry& geometry, const glm::dvec3& u, const glm::dvec3& v,
                     int width, int height) {
     double uMin = HUGE_VAL, uMax = -HUGE_VAL, vMin = HUGE_VAL, vMax = -HUGE_VAL;

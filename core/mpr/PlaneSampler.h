@@ -53,9 +53,6 @@ SlicePlane standardPlane(const VolumeGeometry& geometry, Orientation orientation
 double fitPixelSize(const VolumeGeometry& geometry, const glm::dvec3& u, const glm::dvec3& v,
                     int width, int height);
 
-// The centre of the volume's box (the midpoint of its first and last voxel centres), LPS mm.
-glm::dvec3 volumeCentre(const VolumeGeometry& geometry);
-
 // The distance along `normal` that moves one voxel: the step after which the index
 // along the volume axis most aligned with the normal has changed by one. For an
 // axis-aligned normal it is that axis's spacing.

@@ -6,10 +6,6 @@
 
 namespace lucent {
 
-glm::dvec3 volumeCentre(const VolumeGeometry& g) {
-    return g.toPatient(glm::dvec3(g.dims - 1) * 0.5);
-}
-
 double volumeRadius(const VolumeGeometry& g) {
     const glm::dvec3 c = volumeCentre(g);
     double r = 0.0;

@@ -34,8 +34,7 @@ struct ViewFrame {
 ViewFrame makeViewFrame(const VolumeGeometry& geometry, const Camera& camera, int width,
                         int height);
 
-// Centre and radius of the sphere around the voxel centres, in LPS mm.
-glm::dvec3 volumeCentre(const VolumeGeometry& geometry);
+// Radius of the sphere around the voxel centres (centred on volumeCentre), in LPS mm.
 double volumeRadius(const VolumeGeometry& geometry);
 
 } // namespace lucent

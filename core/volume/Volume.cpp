@@ -10,6 +10,10 @@
 
 namespace lucent {
 
+glm::dvec3 volumeCentre(const VolumeGeometry& g) {
+    return g.toPatient(0.5 * glm::dvec3(g.dims - 1));
+}
+
 std::size_t voxelSize(VoxelType type) {
     switch (type) {
     case VoxelType::Int16:

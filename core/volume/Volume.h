@@ -35,6 +35,10 @@ struct VolumeGeometry {
     std::size_t voxelCount() const;
 };
 
+// The centre of the volume's box (the midpoint of its first and last voxel
+// centres), in LPS mm.
+glm::dvec3 volumeCentre(const VolumeGeometry& geometry);
+
 // A scalar volume: voxels in one typed buffer, i fastest, then j, then k.
 // CT voxels hold Hounsfield units (rescale applied). Move-only: a volume can
 // be gigabytes and must never be copied by accident.
