@@ -10,6 +10,7 @@
 #include <tuple>
 
 #include "core/raycast/BSplinePrefilter.h"
+#include "core/raycast/CastImage.h"
 #include "core/raycast/FastDvrKernel.h"
 #include "core/raycast/InvisibleCells.h"
 #include "core/raycast/LeapReach.h"
@@ -54,80 +55,8 @@ namespace {
 
 constexpr int kTableSize = 4096;
 constexpr int kPreintegrationSize = 256;
-constexpr int kTile = 16;
-// Rays go in packets of 4 x 2 pixels: neighbours along both image axes read
-// the same cache lines (measured: 12% faster than 8 x 1 on the Philips CT).
-constexpr int kPacket = PacketDvrKernel<std::int16_t>::kWidth;
-constexpr int kPacketColumns = 4, kPacketRows = kPacket / kPacketColumns;
+static_assert(kPacket == PacketDvrKernel<std::int16_t>::kWidth);
 constexpr int kLeapCell = 8;
-
-// kernel: anything with RayOutput cast(origin, direction, unit direction), or
-// with castPacket over up to kPacket neighbouring rays.
-template <class Kernel>
-void castImage(const Kernel& kernel, const VolumeGeometry& g, const ViewFrame& frame,
-               const RenderDescription& desc, ImageRGBA8& image,
-               std::vector<glm::vec4>& premultiplied, std::size_t& samples) {
-    const glm::dmat3 toIndexLinear = glm::inverse(glm::dmat3(
-        g.direction[0] * g.spacing.x, g.direction[1] * g.spacing.y, g.direction[2] * g.spacing.z));
-    const glm::dvec3 origin = g.toIndex(frame.eye);
-    const int tilesX = (desc.width + kTile - 1) / kTile;
-    const int tilesY = (desc.height + kTile - 1) / kTile;
-    std::size_t total = 0;
-#pragma omp parallel for schedule(dynamic) reduction(+ : total)
-    for (int tile = 0; tile < tilesX * tilesY; ++tile) {
-        const int x0 = (tile % tilesX) * kTile, y0 = (tile / tilesX) * kTile;
-        const int xEnd = std::min(x0 + kTile, desc.width);
-        const int yEnd = std::min(y0 + kTile, desc.height);
-        for (int y1 = y0; y1 < yEnd; y1 += kPacketRows) {
-            for (int x1 = x0; x1 < xEnd; x1 += kPacketColumns) {
-                glm::ivec2 pixel[kPacket];
-                int count = 0;
-                for (int c = 0; c < kPacket; ++c) {
-                    const glm::ivec2 p(x1 + c % kPacketColumns, y1 + c / kPacketColumns);
-                    if (p.x < xEnd && p.y < yEnd) {
-                        pixel[count++] = p;
-                    }
-                }
-                glm::dvec3 d[kPacket], w[kPacket];
-                RayOutput r[kPacket];
-                // ViewFrame::rayDirection, its column and row terms computed once.
-                double sx[kPacketColumns], sy[kPacketRows];
-                for (int c = 0; c < kPacketColumns; ++c) {
-                    sx[c] = frame.screenX(x1 + c, desc.width);
-                }
-                for (int c = 0; c < kPacketRows; ++c) {
-                    sy[c] = frame.screenY(y1 + c, desc.height);
-                }
-                for (int c = 0; c < count; ++c) {
-                    w[c] = frame.direction(sx[pixel[c].x - x1], sy[pixel[c].y - y1]);
-                    d[c] = toIndexLinear * w[c];
-                }
-                if constexpr (requires { kernel.castPacket(origin, d, w, count, r); }) {
-                    kernel.castPacket(origin, d, w, count, r);
-                } else {
-                    for (int c = 0; c < count; ++c) {
-                        r[c] = kernel.cast(origin, d[c], w[c]);
-                    }
-                }
-                for (int c = 0; c < count; ++c) {
-                    const int x = pixel[c].x, y = pixel[c].y;
-                    total += r[c].samples;
-                    premultiplied[std::size_t(y) * desc.width + x] = glm::vec4(r[c].rgba);
-                    const glm::dvec3 rgb =
-                        glm::dvec3(r[c].rgba) + (1.0 - r[c].rgba.a) * desc.background;
-                    std::uint8_t* px = image.at(x, y);
-                    for (int ch = 0; ch < 3; ++ch) {
-                        // Rounds as lround does for values >= 0, without a libm call.
-                        px[ch] =
-                            static_cast<std::uint8_t>(std::clamp(rgb[ch], 0.0, 1.0) * 255.0 + 0.5);
-                    }
-                    px[3] = 255;
-                }
-            }
-        }
-    }
-    samples = total;
-}
 
 // SIMD packets where the CPU has them, unless LUCENT_NO_SIMD=1 (read once)
 // asks for the scalar kernels, e.g. to compare timings from the command line.

@@ -1,0 +1,147 @@
+#pragma once
+// The CPU ray caster's image loop: tiles over threads, packets of neighbouring
+// rays within a tile, and no rays at all for pixels whose rays cannot meet the
+// volume. Private to core/raycast.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "core/image/Image.h"
+#include "core/raycast/RaySetup.h"
+#include "core/raycast/ViewFrame.h"
+
+namespace lucent {
+
+constexpr int kTile = 16;
+// Rays go in packets of 4 x 2 pixels: neighbours along both image axes read
+// the same cache lines (measured: 12% faster than 8 x 1 on the Philips CT).
+constexpr int kPacket = 8;
+constexpr int kPacketColumns = 4, kPacketRows = kPacket / kPacketColumns;
+
+// Pixels x0 .. x1, y0 .. y1 (inclusive).
+struct PixelRect {
+    int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
+};
+
+// The pixels whose rays can meet the box lo .. hi (index space): the bounding
+// rectangle of its corners on screen, two pixels wider than rounding could
+// ever need; the whole image when a corner lies at or behind the eye.
+inline PixelRect pixelsOfBox(const VolumeGeometry& g, const ViewFrame& frame, glm::dvec3 lo,
+                             glm::dvec3 hi, int width, int height) {
+    const PixelRect all{0, 0, width - 1, height - 1};
+    double sxLo = HUGE_VAL, sxHi = -HUGE_VAL, syLo = HUGE_VAL, syHi = -HUGE_VAL;
+    for (int c = 0; c < 8; ++c) {
+        const glm::dvec3 corner((c & 1) != 0 ? hi.x : lo.x, (c & 2) != 0 ? hi.y : lo.y,
+                                (c & 4) != 0 ? hi.z : lo.z);
+        const glm::dvec3 v = g.toPatient(corner) - frame.eye;
+        const double depth = glm::dot(v, frame.forward);
+        if (!(depth > 1e-6 * glm::length(v))) {
+            return all;
+        }
+        const double sx = glm::dot(v, frame.right) / depth, sy = glm::dot(v, frame.up) / depth;
+        sxLo = std::min(sxLo, sx), sxHi = std::max(sxHi, sx);
+        syLo = std::min(syLo, sy), syHi = std::max(syHi, sy);
+    }
+    // ViewFrame::screenX and screenY solved for the pixel.
+    const double ax = frame.tanHalfFov * frame.aspect, ay = frame.tanHalfFov;
+    auto column = [&](double sx) { return (sx / ax + 1.0) * 0.5 * width - 0.5; };
+    auto row = [&](double sy) { return (1.0 - sy / ay) * 0.5 * height - 0.5; };
+    const double limit = 4.0 * double(std::max(width, height));
+    auto pixel = [&](double p) { return int(std::clamp(p, -limit, limit)); };
+    PixelRect r;
+    r.x0 = std::max(0, pixel(std::floor(column(sxLo))) - 2);
+    r.x1 = std::min(width - 1, pixel(std::ceil(column(sxHi))) + 2);
+    r.y0 = std::max(0, pixel(std::floor(row(syHi))) - 2);
+    r.y1 = std::min(height - 1, pixel(std::ceil(row(syLo))) + 2);
+    return r;
+}
+
+// kernel: anything with RayOutput cast(origin, direction, unit direction), or
+// with castPacket over up to kPacket neighbouring rays. Pixels outside
+// pixelsOfBox(clip box) get the background without a ray.
+template <class Kernel>
+void castImage(const Kernel& kernel, const VolumeGeometry& g, const ViewFrame& frame,
+               const RenderDescription& desc, ImageRGBA8& image,
+               std::vector<glm::vec4>& premultiplied, std::size_t& samples) {
+    const glm::dmat3 toIndexLinear = glm::inverse(glm::dmat3(
+        g.direction[0] * g.spacing.x, g.direction[1] * g.spacing.y, g.direction[2] * g.spacing.z));
+    const glm::dvec3 origin = g.toIndex(frame.eye);
+    const int tilesX = (desc.width + kTile - 1) / kTile;
+    const int tilesY = (desc.height + kTile - 1) / kTile;
+    const PixelRect covered =
+        pixelsOfBox(g, frame, glm::max(desc.clip.lo, glm::dvec3(0.0)),
+                    glm::min(desc.clip.hi, glm::dvec3(g.dims - 1)), desc.width, desc.height);
+    std::uint8_t background[3];
+    for (int ch = 0; ch < 3; ++ch) {
+        background[ch] =
+            static_cast<std::uint8_t>(std::clamp(desc.background[ch], 0.0, 1.0) * 255.0 + 0.5);
+    }
+    std::size_t total = 0;
+#pragma omp parallel for schedule(dynamic) reduction(+ : total)
+    for (int tile = 0; tile < tilesX * tilesY; ++tile) {
+        const int x0 = (tile % tilesX) * kTile, y0 = (tile / tilesX) * kTile;
+        const int xEnd = std::min(x0 + kTile, desc.width);
+        const int yEnd = std::min(y0 + kTile, desc.height);
+        for (int y1 = y0; y1 < yEnd; y1 += kPacketRows) {
+            for (int x1 = x0; x1 < xEnd; x1 += kPacketColumns) {
+                glm::ivec2 pixel[kPacket];
+                int count = 0;
+                for (int c = 0; c < kPacket; ++c) {
+                    const glm::ivec2 p(x1 + c % kPacketColumns, y1 + c / kPacketColumns);
+                    if (p.x < xEnd && p.y < yEnd) {
+                        pixel[count++] = p;
+                    }
+                }
+                if (x1 + kPacketColumns - 1 < covered.x0 || x1 > covered.x1 ||
+                    y1 + kPacketRows - 1 < covered.y0 || y1 > covered.y1) {
+                    for (int c = 0; c < count; ++c) {
+                        std::uint8_t* px = image.at(pixel[c].x, pixel[c].y);
+                        std::copy(background, background + 3, px);
+                        px[3] = 255;
+                    }
+                    continue;
+                }
+                glm::dvec3 d[kPacket], w[kPacket];
+                RayOutput r[kPacket];
+                // ViewFrame::rayDirection, its column and row terms computed once.
+                double sx[kPacketColumns], sy[kPacketRows];
+                for (int c = 0; c < kPacketColumns; ++c) {
+                    sx[c] = frame.screenX(x1 + c, desc.width);
+                }
+                for (int c = 0; c < kPacketRows; ++c) {
+                    sy[c] = frame.screenY(y1 + c, desc.height);
+                }
+                for (int c = 0; c < count; ++c) {
+                    w[c] = frame.direction(sx[pixel[c].x - x1], sy[pixel[c].y - y1]);
+                    d[c] = toIndexLinear * w[c];
+                }
+                if constexpr (requires { kernel.castPacket(origin, d, w, count, r); }) {
+                    kernel.castPacket(origin, d, w, count, r);
+                } else {
+                    for (int c = 0; c < count; ++c) {
+                        r[c] = kernel.cast(origin, d[c], w[c]);
+                    }
+                }
+                for (int c = 0; c < count; ++c) {
+                    const int x = pixel[c].x, y = pixel[c].y;
+                    total += r[c].samples;
+                    premultiplied[std::size_t(y) * desc.width + x] = glm::vec4(r[c].rgba);
+                    const glm::dvec3 rgb =
+                        glm::dvec3(r[c].rgba) + (1.0 - r[c].rgba.a) * desc.background;
+                    std::uint8_t* px = image.at(x, y);
+                    for (int ch = 0; ch < 3; ++ch) {
+                        // Rounds as lround does for values >= 0, without a libm call.
+                        px[ch] =
+                            static_cast<std::uint8_t>(std::clamp(rgb[ch], 0.0, 1.0) * 255.0 + 0.5);
+                    }
+                    px[3] = 255;
+                }
+            }
+        }
+    }
+    samples = total;
+}
+
+} // namespace lucent
