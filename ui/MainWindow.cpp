@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include <QApplication>
+#include <QDockWidget>
 #include <QFile>
 #include <QFileDialog>
 #include <QFileInfo>
@@ -12,11 +13,15 @@
 #include <QProgressDialog>
 #include <QSplitter>
 #include <QStatusBar>
+#include <QVBoxLayout>
 
 #include "core/io/Catalog.h"
 #include "ui/MprCursor.h"
 #include "ui/PacsBrowser.h"
 #include "ui/SliceView.h"
+#include "ui/TransferFunctionEditor.h"
+#include "ui/VolumeView.h"
+#include "ui/VolumeViewControls.h"
 
 namespace lucent {
 
@@ -56,15 +61,41 @@ QString describe(const Volume& v) {
 MainWindow::MainWindow(QWidget* parent)
     : QMainWindow(parent), cursor_(new MprCursor(this)), info_(new QLabel(this)) {
     setWindowTitle(QStringLiteral("Lucent"));
-    auto* splitter = new QSplitter(Qt::Horizontal, this);
-    splitter->setHandleWidth(2);
+    // 2x2: axial and coronal above, sagittal and the 3D view below.
+    auto* rows = new QSplitter(Qt::Vertical, this);
+    auto* top = new QSplitter(Qt::Horizontal, rows);
+    auto* bottom = new QSplitter(Qt::Horizontal, rows);
+    for (QSplitter* s : {rows, top, bottom}) {
+        s->setHandleWidth(2);
+    }
     const std::array<Orientation, 3> orientations{Orientation::Axial, Orientation::Coronal,
                                                   Orientation::Sagittal};
     for (std::size_t n = 0; n < views_.size(); ++n) {
-        views_[n] = new SliceView(orientations[n], cursor_, splitter);
-        splitter->addWidget(views_[n]);
+        QSplitter* row = n < 2 ? top : bottom;
+        views_[n] = new SliceView(orientations[n], cursor_, row);
+        row->addWidget(views_[n]);
     }
-    setCentralWidget(splitter);
+    volumeView_ = new VolumeView(bottom);
+    bottom->addWidget(volumeView_);
+    for (QSplitter* s : {rows, top, bottom}) {
+        s->setSizes({1000, 1000}); // four views of one size (scaled to fit)
+    }
+    setCentralWidget(rows);
+
+    // The 3D view's controls and the transfer-function editor in a dock.
+    tfEditor_ = new TransferFunctionEditor;
+    auto* panel = new QWidget;
+    auto* column = new QVBoxLayout(panel);
+    column->addWidget(new VolumeViewControls(volumeView_, panel));
+    column->addWidget(tfEditor_, 1);
+    auto* dock = new QDockWidget(tr("3D / Transfer function"), this);
+    dock->setObjectName(QStringLiteral("volumeDock"));
+    dock->setWidget(panel);
+    addDockWidget(Qt::RightDockWidgetArea, dock);
+    connect(tfEditor_, &TransferFunctionEditor::transferFunctionChanged, volumeView_,
+            &VolumeView::setTransferFunction);
+    connect(volumeView_, &VolumeView::transferFunctionChanged, tfEditor_,
+            &TransferFunctionEditor::setTransferFunction);
     statusBar()->addWidget(info_, 1);
     info_->setText(tr("No volume. Open a DICOM folder, a file or an InVesalius project."));
     info_->setTextInteractionFlags(Qt::TextSelectableByMouse);
@@ -79,7 +110,7 @@ MainWindow::MainWindow(QWidget* parent)
     PacsBrowser* pacs = PacsBrowser::addDock(this, menuBar()->addMenu(tr("&PACS")));
     connect(pacs, &PacsBrowser::openSeries, this,
             [this](const QString& folder, const QString& series) { openPath(folder, series); });
-    resize(1500, 600);
+    resize(1500, 1000);
 }
 
 MainWindow::~MainWindow() {
@@ -248,6 +279,8 @@ void MainWindow::setVolume(std::shared_ptr<const Volume> volume) {
     for (SliceView* view : views_) {
         view->setVolume(volume_);
     }
+    volumeView_->setVolume(volume_); // picks ct-bone or mr-default and tells the editor
+    tfEditor_->setVolume(volume_);   // the histogram
 }
 
 } // namespace lucent

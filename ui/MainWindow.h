@@ -20,6 +20,8 @@ namespace lucent {
 
 class MprCursor;
 class SliceView;
+class TransferFunctionEditor;
+class VolumeView;
 
 // The workstation window: axial, coronal and sagittal views side by side, linked
 // through one crosshair and window, and a status bar describing the volume.
@@ -53,6 +55,8 @@ private:
 
     MprCursor* cursor_;
     std::array<SliceView*, 3> views_{};
+    VolumeView* volumeView_ = nullptr;
+    TransferFunctionEditor* tfEditor_ = nullptr;
     QLabel* info_;
     QPointer<QProgressDialog> progress_;
     std::shared_ptr<const Volume> volume_;

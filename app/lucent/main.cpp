@@ -3,15 +3,19 @@
 #include <QCommandLineParser>
 #include <QFileInfo>
 #include <QMessageBox>
+#include <QSurfaceFormat>
 #include <QTimer>
 
 #include "ui/MainWindow.h"
+#include "ui/VolumeView.h"
 
 namespace {
 const QString kDemo = QStringLiteral("/usr/share/doc/invesalius-examples/examples/Cranium.inv3");
 }
 
 int main(int argc, char** argv) {
+    // Before the application: every GL context is then 4.3+ core (the 3D view's renderer needs it).
+    QSurfaceFormat::setDefaultFormat(lucent::VolumeView::surfaceFormat());
     QApplication app(argc, argv);
     QApplication::setApplicationName(QStringLiteral("Lucent"));
     QApplication::setApplicationVersion(QStringLiteral(LUCENT_VERSION));
