@@ -49,9 +49,7 @@ TransferFunction ballTransferFunction() {
     tf.name = "ball";
     tf.opacity = {{0.0, 0.0}, {200.0, 0.0}, {1000.0, 0.5}};
     tf.colour = {{0.0, {1.0, 0.5, 0.2}}, {1000.0, {1.0, 1.0, 1.0}}};
-    // Unshaded: the GPU ray caster's shading does not match the CPU reference's
-    // on this volume yet (render/'s business, not the view's).
-    tf.shading.enabled = false;
+    tf.shading.enabled = true;
     return tf;
 }
 
