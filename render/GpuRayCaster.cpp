@@ -345,6 +345,10 @@ GpuRenderResult GpuRayCaster::render(const RenderDescription& desc) {
     s.table = makeTexture(GL_TEXTURE_2D);
     glTextureStorage2D(s.table.get(), 1, GL_RGBA32F, kTableSize, 2);
     glTextureSubImage2D(s.table.get(), 0, 0, 0, kTableSize, 2, GL_RGBA, GL_FLOAT, rows.data());
+    glTextureParameteri(s.table.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(s.table.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(s.table.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(s.table.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     if (preintegrate) {
         auto key = std::tuple(desc.transferFunction, tLo, tHi, stepRatio);
         if (s.preKey != key) {

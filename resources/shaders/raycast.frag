@@ -171,9 +171,8 @@ vec3 gradientAt(vec3 q) {
 
 vec4 classify(float v, int row) {
     float x = clamp((v - uTableLo) * uTableScale, 0.0, float(uTableSize - 1));
-    int i = min(int(x), uTableSize - 2);
-    vec4 a = texelFetch(uTable, ivec2(i, row), 0), b = texelFetch(uTable, ivec2(i + 1, row), 0);
-    return a + (x - float(i)) * (b - a);
+    // One linearly filtered fetch between the two entries around x.
+    return texture(uTable, vec2((x + 0.5) / float(uTableSize), (float(row) + 0.5) * 0.5));
 }
 
 float correctedAlpha(float a, float stepRatio) {
