@@ -5,6 +5,7 @@
 #include "core/raycast/InteractiveQuality.h"
 #include "core/volume/BrickResidency.h"
 #include "render/GlError.h"
+#include "render/GlObjects.h"
 #include "tests/gl/GlTestSupport.h"
 #include "tests/raycast/RaycastScenes.h"
 
@@ -137,6 +138,45 @@ private slots:
         QVERIFY2(p > 20.0, qPrintable(QString("interactive vs still: %1 dB").arg(p)));
         QVERIFY_THROWS_EXCEPTION(std::invalid_argument,
                                  interactiveDescription(still, InteractiveQuality{0.5, 2}));
+    }
+
+    // Longer than one 3D texture may be (GL_MAX_3D_TEXTURE_SIZE, 2048 on llvmpipe):
+    // bricks make that no limit.
+    void volumeBeyondOneTextureRenders() {
+        GLint maxSize = 0;
+        glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSize);
+        const int length = std::max(2100, int(maxSize) + 50);
+        const Volume v = makeVolume(
+            {24, 20, length},
+            [length](int i, int j, int k) {
+                return (i - 12) * (i - 12) + (j - 10) * (j - 10) < 40 && k % 300 < 250
+                           ? 900.0 - k * 0.1
+                           : -1000.0 + k % 7;
+            },
+            VoxelType::Int16);
+        RenderDescription d = describe(v, loadPreset("ct-bone"), 64);
+        d.camera.azimuth = 90.0;
+        GpuRayCaster gpu(v);
+        const GpuRenderResult r = gpu.render(d);
+        QCOMPARE(r.frame.stats.lod, 0);
+        RenderDescription ref = d;
+        ref.sampling.precision = Precision::Double;
+        const double p =
+            comparedPsnr(r.frame.image, CpuRayCaster(v).render(ref).image, "long", 40.0);
+        QVERIFY2(p >= 40.0, qPrintable(QString("%1 slices: %2 dB").arg(length).arg(p)));
+    }
+
+    // A shader that does not compile is an error that names it and carries the log.
+    void shaderErrorsNameTheShader() {
+        try {
+            ShaderProgram broken("raycast.vert", "raycast.frag", "#error deliberately broken\n");
+            QFAIL("a broken shader compiled");
+        } catch (const GlError& e) {
+            const std::string what = e.what();
+            QVERIFY2(what.find("raycast") != std::string::npos &&
+                         what.find("deliberately") != std::string::npos,
+                     e.what());
+        }
     }
 
     void badSettingsAreRefusedByName() {
