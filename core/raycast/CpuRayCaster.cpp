@@ -46,7 +46,7 @@ struct CpuRayCaster::Cache {
     LevelData coarse, fine;
     std::vector<std::uint8_t> cellLeap, reach;
     std::vector<std::int32_t> leapReach; // cellLeap | reach << 8
-    // Cells no sample can see (packet kernel), and the bounds they were found for.
+    // Cells no sample can see (fast kernels), and the bounds they were found for.
     std::optional<std::pair<double, double>> invisibleBounds;
     InvisibleCells invisible;
 };
@@ -295,10 +295,10 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
     const double tableCell = exact ? 0.0 : (tHi - tLo) / double(kTableSize - 1);
     sf.visibleLo = sd.visibleLo = visLo - tableCell;
     sf.visibleHi = sd.visibleHi = visHi + tableCell;
-    // The packet kernel passes over samples in cells whose voxels all lie
-    // beyond the visible range by more than the float rounding of a trilinear
-    // sample (a table cell, or a few float ulps of the largest value).
-    if (fast && sampling.simd && simdAllowed() && (std::isfinite(visLo) || std::isfinite(visHi))) {
+    // The fast kernels pass over samples in cells whose voxels all lie beyond
+    // the visible range by more than the float rounding of a trilinear sample
+    // (a table cell, or a few float ulps of the largest value).
+    if (fast && (std::isfinite(visLo) || std::isfinite(visHi))) {
         const double margin = tableCell + 4e-6 * std::max(std::abs(tLo), std::abs(tHi));
         const std::pair bounds(sf.visibleLo - margin, sf.visibleHi + margin);
         if (cache.invisibleBounds != bounds) {

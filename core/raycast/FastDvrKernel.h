@@ -11,6 +11,7 @@
 #include <bit>
 #include <cmath>
 
+#include "core/raycast/InvisibleCells.h"
 #include "core/raycast/RaySetup.h"
 #include "core/raycast/VolumeFields.h"
 
@@ -27,6 +28,17 @@ inline float integerPower(float x, unsigned n) {
         n >>= 1u;
     }
     return r;
+}
+
+// How many samples after one in a cell of clearance c (InvisibleCells) a ray
+// with float lattice stride `stride` passes over, as skips[c]: those that stay
+// within c - 1 cells of it, with 0.01 voxel to spare for float rounding.
+inline void clearanceSkips(const glm::vec3& stride, int skips[4]) {
+    const double most =
+        std::max({std::abs(stride.x), std::abs(stride.y), std::abs(stride.z), 1e-6f});
+    skips[0] = skips[1] = 0;
+    skips[2] = int(0.99 / most);
+    skips[3] = int(1.99 / most);
 }
 
 template <class T> class PacketDvrKernel;
@@ -171,6 +183,9 @@ RayOutput FastDvrKernel<T>::cast(const glm::dvec3& o, const glm::dvec3& d,
     const double t0 = span.t0, dt = s_.dt;
     // The lattice: p(n) = entry + stride * n, the same formula as RayKernel.
     const glm::vec3 entry(o + d * t0), stride(d * dt), wf(w);
+    int skips[4];
+    clearanceSkips(stride, skips);
+    const InvisibleCells* invisible = s_.invisibleCells;
     Lattice lattice{o + d * t0, d * dt, glm::dvec3(0.0)};
     for (int a = 0; a < 3; ++a) {
         lattice.inverse[a] = std::abs(lattice.stride[a]) > 1e-15 ? 1.0 / lattice.stride[a] : 0.0;
@@ -224,6 +239,12 @@ RayOutput FastDvrKernel<T>::cast(const glm::dvec3& o, const glm::dvec3& d,
         i = std::min(i, lastI);
         j = std::min(j, lastJ);
         k = std::min(k, lastK);
+        if (invisible != nullptr) {
+            if (const int c = invisible->clearance({i, j, k}); c != 0) {
+                n += skips[c]; // transparent, and so are the next skips[c] samples
+                continue;
+            }
+        }
         const float fx = px - float(i), fy = py - float(j), fz = pz - float(k);
         const T* v = data + std::size_t(i) + sy * std::size_t(j) + sz * std::size_t(k);
         // The same operations, in the same order, as LinearField::valueInside.

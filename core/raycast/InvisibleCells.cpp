@@ -53,16 +53,31 @@ void shared(const Classify<T>& classify, const T* __restrict a, const T* __restr
     }
 }
 
-template <class T>
-void findCells(const T* data, glm::ivec3 n, double lo, double hi, InvisibleCells& out) {
+// One bit per cell, row by row: bit i % 64 of word (j + ny k) rowWords + i / 64.
+struct CellBits {
+    glm::ivec3 n{0};
+    int rowWords = 0;
+    std::vector<std::uint64_t> words;
+
+    explicit CellBits(glm::ivec3 dims)
+        : n(dims), rowWords((dims.x + 63) / 64),
+          words(std::size_t((dims.x + 63) / 64) * std::size_t(dims.y) * std::size_t(dims.z), 0) {}
+    std::uint64_t* row(int j, int k) {
+        return words.data() + (std::size_t(j) + std::size_t(n.y) * std::size_t(k)) * rowWords;
+    }
+    const std::uint64_t* row(int j, int k) const { return const_cast<CellBits*>(this)->row(j, k); }
+};
+
+template <class T> void findCells(const T* data, double lo, double hi, CellBits& out) {
     const Classify<T> classify(lo, hi);
+    const glm::ivec3 n = out.n;
     const std::size_t sy = std::size_t(n.x), sz = sy * std::size_t(n.y);
 #pragma omp parallel
     {
         // Per x, what the two voxels along z share in row j and in row j + 1,
         // then what the four of the column (y, z) .. (y + 1, z + 1) share.
         std::vector<std::uint8_t> rowJ(sy), rowNext(sy), column(sy);
-        std::vector<std::uint8_t> cell(std::size_t(out.blocks.x) * 8, 0);
+        std::vector<std::uint8_t> cell(std::size_t(out.rowWords) * 64, 0);
 #pragma omp for schedule(static)
         for (int k = 0; k < n.z - 2; ++k) {
             const T* slice = data + std::size_t(k) * sz;
@@ -80,21 +95,60 @@ void findCells(const T* data, glm::ivec3 n, double lo, double hi, InvisibleCells
                 for (int i = 0; i + 2 < n.x; ++i) {
                     cells[i] = (c[i] & c[i + 1]) != 0 ? 1 : 0;
                 }
-                // Eight 0/1 bytes to eight bits, lowest byte to lowest bit:
-                // the byte of row (j, k) in each block along x.
-                auto* bytes = reinterpret_cast<std::uint8_t*>(out.words.data());
-                const std::size_t first =
-                    InvisibleCells::wordOf({0, j, k}, out.blocks) * 4 + std::size_t(j & 3);
-                for (int b = 0; b < out.blocks.x; ++b) {
+                // Eight 0/1 bytes to eight bits, lowest byte to lowest bit.
+                auto* bytes = reinterpret_cast<std::uint8_t*>(out.row(j, k));
+                for (int byte = 0; byte < out.rowWords * 8; ++byte) {
                     std::uint64_t eight;
-                    std::memcpy(&eight, &cells[std::size_t(b) * 8], 8);
-                    bytes[first + std::size_t(b) * 64] =
-                        std::uint8_t((eight * 0x0102040810204080ull) >> 56);
+                    std::memcpy(&eight, &cells[std::size_t(byte) * 8], 8);
+                    bytes[byte] = std::uint8_t((eight * 0x0102040810204080ull) >> 56);
                 }
                 rowJ.swap(rowNext);
             }
         }
     }
+}
+
+// The cells whose 3 x 3 x 3 neighbourhood lies in `in` (cells beyond the
+// volume are not in it).
+CellBits erode(const CellBits& in) {
+    const glm::ivec3 n = in.n;
+    const int words = in.rowWords;
+    CellBits alongX(n), out(n);
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < n.z; ++k) {
+        for (int j = 0; j < n.y; ++j) {
+            const std::uint64_t* a = in.row(j, k);
+            std::uint64_t* o = alongX.row(j, k);
+            for (int w = 0; w < words; ++w) {
+                const std::uint64_t below = a[w] << 1 | (w > 0 ? a[w - 1] >> 63 : 0);
+                const std::uint64_t above = a[w] >> 1 | (w + 1 < words ? a[w + 1] << 63 : 0);
+                o[w] = a[w] & below & above;
+            }
+        }
+    }
+#pragma omp parallel for schedule(static)
+    for (int k = 1; k < n.z - 1; ++k) {
+        for (int j = 1; j < n.y - 1; ++j) {
+            std::uint64_t* o = out.row(j, k);
+            for (int w = 0; w < words; ++w) {
+                std::uint64_t m = ~0ull;
+                for (int dz = -1; dz <= 1; ++dz) {
+                    for (int dy = -1; dy <= 1; ++dy) {
+                        m &= alongX.row(j + dy, k + dz)[w];
+                    }
+                }
+                o[w] = m;
+            }
+        }
+    }
+    return out;
+}
+
+// Bits 0 .. 7 of x at bits 0, 2 .. 14.
+std::uint32_t spread(std::uint32_t x) {
+    x = (x | x << 4) & 0x0f0fu;
+    x = (x | x << 2) & 0x3333u;
+    return (x | x << 1) & 0x5555u;
 }
 
 } // namespace
@@ -103,9 +157,29 @@ InvisibleCells findInvisibleCells(const Volume& volume, double lo, double hi) {
     const glm::ivec3 n = volume.geometry().dims;
     InvisibleCells out;
     out.blocks = (n + 7) / 8;
-    out.words.assign(std::size_t(out.blocks.x) * out.blocks.y * out.blocks.z * 16, 0u);
-    if (n.x >= 3 && n.y >= 3 && n.z >= 3) {
-        visitVoxels(volume, [&](auto v) { findCells(v.data(), n, lo, hi, out); });
+    out.words.assign(std::size_t(out.blocks.x) * out.blocks.y * out.blocks.z * 32, 0u);
+    if (n.x < 3 || n.y < 3 || n.z < 3) {
+        return out;
+    }
+    CellBits invisible(n);
+    visitVoxels(volume, [&](auto v) { findCells(v.data(), lo, hi, invisible); });
+    const CellBits one = erode(invisible), two = erode(one);
+    // Clearance 1 + (in one) + (in two), the sets nested; eight cells along x
+    // make the 16 bits of their row in a block.
+    auto* halves = reinterpret_cast<std::uint16_t*>(out.words.data());
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < n.z; ++k) {
+        for (int j = 0; j < n.y; ++j) {
+            const auto* c0 = reinterpret_cast<const std::uint8_t*>(invisible.row(j, k));
+            const auto* c1 = reinterpret_cast<const std::uint8_t*>(one.row(j, k));
+            const auto* c2 = reinterpret_cast<const std::uint8_t*>(two.row(j, k));
+            const std::size_t first = InvisibleCells::wordOf({0, j, k}, out.blocks) * 2 + (j & 1);
+            for (int b = 0; b < out.blocks.x; ++b) {
+                const std::uint32_t low = (c0[b] & ~c1[b]) | c2[b], high = c1[b];
+                halves[first + std::size_t(b) * 64] =
+                    std::uint16_t(spread(low) | spread(high) << 1);
+            }
+        }
     }
     return out;
 }

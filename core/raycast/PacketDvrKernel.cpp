@@ -31,34 +31,35 @@ LUCENT_AVX2 inline __m256 laneMask(int bits) {
         _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(bits), lane), lane));
 }
 
-// Per lane in `lanes`, whether its cell (i, j, k) is one of InvisibleCells'.
-struct HiddenCells {
+// Per lane in `lanes`, InvisibleCells::clearance of its cell (i, j, k); 0 in
+// the other lanes.
+struct CellClearance {
     const int* words = nullptr;
     glm::ivec3 blocks{0};
-    explicit HiddenCells(const InvisibleCells* cells) {
+    explicit CellClearance(const InvisibleCells* cells) {
         if (cells != nullptr) {
             words = reinterpret_cast<const int*>(cells->words.data());
             blocks = cells->blocks;
         }
     }
-    // InvisibleCells::wordOf and bitOf for eight lanes.
-    LUCENT_AVX2 int operator()(__m256i i, __m256i j, __m256i k, int lanes) const {
-        const __m256i three = _mm256_set1_epi32(3), seven = _mm256_set1_epi32(7);
+    // InvisibleCells::wordOf and shiftOf for eight lanes.
+    LUCENT_AVX2 __m256i operator()(__m256i i, __m256i j, __m256i k, int lanes) const {
+        const __m256i one = _mm256_set1_epi32(1), seven = _mm256_set1_epi32(7);
         const __m256i row = _mm256_add_epi32(
             _mm256_srli_epi32(j, 3),
             _mm256_mullo_epi32(_mm256_set1_epi32(blocks.y), _mm256_srli_epi32(k, 3)));
         const __m256i block = _mm256_add_epi32(
             _mm256_srli_epi32(i, 3), _mm256_mullo_epi32(_mm256_set1_epi32(blocks.x), row));
-        const __m256i inBlock = _mm256_add_epi32(_mm256_srli_epi32(_mm256_and_si256(j, seven), 2),
-                                                 _mm256_slli_epi32(_mm256_and_si256(k, seven), 1));
-        const __m256i word = _mm256_add_epi32(_mm256_slli_epi32(block, 4), inBlock);
-        const __m256i bit = _mm256_add_epi32(_mm256_and_si256(i, seven),
-                                             _mm256_slli_epi32(_mm256_and_si256(j, three), 3));
+        const __m256i inBlock =
+            _mm256_srli_epi32(_mm256_add_epi32(_mm256_and_si256(j, seven),
+                                               _mm256_slli_epi32(_mm256_and_si256(k, seven), 3)),
+                              1);
+        const __m256i word = _mm256_add_epi32(_mm256_slli_epi32(block, 5), inBlock);
+        const __m256i shift = _mm256_add_epi32(_mm256_slli_epi32(_mm256_and_si256(i, seven), 1),
+                                               _mm256_slli_epi32(_mm256_and_si256(j, one), 4));
         const __m256i bits = _mm256_mask_i32gather_epi32(_mm256_setzero_si256(), words, word,
                                                          _mm256_castps_si256(laneMask(lanes)), 4);
-        const __m256i one = _mm256_set1_epi32(1);
-        const __m256i set = _mm256_and_si256(_mm256_srlv_epi32(bits, bit), one);
-        return lanes & maskBits(_mm256_cmpeq_epi32(set, one));
+        return _mm256_and_si256(_mm256_srlv_epi32(bits, shift), _mm256_set1_epi32(3));
     }
 };
 
@@ -153,7 +154,16 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
     const LeapLattice& lattice = rays.lattice;
     int active = rays.active;
 
-    const HiddenCells hidden(s.invisibleCells);
+    const CellClearance clearance(s.invisibleCells);
+    // Per lane, the samples it passes over beyond one in a cell of clearance 2 or 3.
+    alignas(32) int skips[2][kWidth]{};
+    for (int r = 0; r < kWidth; ++r) {
+        int lane[4];
+        clearanceSkips(glm::vec3(rays.stride[0][r], rays.stride[1][r], rays.stride[2][r]), lane);
+        skips[0][r] = lane[2];
+        skips[1][r] = lane[3];
+    }
+    const __m256i skip2 = loadInts(skips[0]), skip3 = loadInts(skips[1]);
     const TableLookup lookup{table, k.tableScale_, k.tableOffset_, k.tableMax_, int(k.lastEntry_)};
     const Lighting light{k.toWorld_,
                          float(s.light.ambient),
@@ -324,8 +334,13 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
             kk = clampInt(kk, lastIjk[2]);
             // A lane in a cell no sample can see is taken as transparent
             // without reading its voxels.
-            if (hidden.words != nullptr) {
-                sampling &= ~hidden(i, j, kk, sampling);
+            if (clearance.words != nullptr) {
+                const __m256i c = clearance(i, j, kk, sampling);
+                const __m256i skip = _mm256_blendv_epi8(
+                    _mm256_and_si256(skip2, _mm256_cmpeq_epi32(c, _mm256_set1_epi32(2))), skip3,
+                    _mm256_cmpeq_epi32(c, _mm256_set1_epi32(3)));
+                next = _mm256_add_epi32(next, skip);
+                sampling &= maskBits(_mm256_cmpeq_epi32(c, _mm256_setzero_si256()));
             }
         }
         if (sampling != 0) {
