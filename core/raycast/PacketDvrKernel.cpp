@@ -197,8 +197,11 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
     // gradient corner differences last computed (valid in the lanes
     // `cornersValid`, whose cells were at `cornersAt`): a sample in the same
     // cell as before reads the same voxels, so they are reused as they are.
+    // Where every sampling lane lies off the first and last cell along x, the
+    // rows are loaded as quads, which hold the gradient's x neighbours too.
     Cell cell;
-    __m256i cellAt = _mm256_set1_epi32(-1), cornersAt = cellAt;
+    RowQuads quads;
+    __m256i cellAt = _mm256_set1_epi32(-1), cornersAt = cellAt, quadsAt = cellAt;
     int cornersValid = 0;
     __m256 corners[24];
     std::size_t samples = 0;
@@ -362,12 +365,22 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
                 base[r] = data + offset[r];
             }
             if ((sampling & ~maskBits(_mm256_cmpeq_epi32(o00, cellAt))) != 0) {
-                for (int r = 0; r < 4; ++r) {
-                    cell.row[r] =
-                        pairAt(base, ((r & 1) != 0 ? rowStep : 0) + ((r & 2) != 0 ? sliceStep : 0));
-                }
                 cellAt =
                     _mm256_or_si256(o00, _mm256_andnot_si256(samplingLanes, _mm256_set1_epi32(-1)));
+                const int offX =
+                    maskBits(_mm256_and_si256(_mm256_cmpgt_epi32(i, _mm256_setzero_si256()),
+                                              _mm256_cmpgt_epi32(lastIjk[0], i)));
+                if ((sampling & ~offX) == 0) {
+                    loadRowQuads(base, rowStep, sliceStep, quads);
+                    cellOf(quads, cell);
+                    quadsAt = cellAt;
+                } else {
+                    for (int r = 0; r < 4; ++r) {
+                        cell.row[r] = pairAt(base, ((r & 1) != 0 ? rowStep : 0) +
+                                                       ((r & 2) != 0 ? sliceStep : 0));
+                    }
+                    quadsAt = _mm256_set1_epi32(-1);
+                }
             }
             // The same operations, in the same order, as FastDvrKernel's.
             const __m256 c00 = lerp(cell.row[0].a, cell.row[0].b, fx);
@@ -409,7 +422,11 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
                             for (int r = 0; r < kWidth; ++r) {
                                 at[r] = (valid >> r & 1) != 0 ? base[r] : some;
                             }
-                            gradientCorners(at, cell, rowStep, sliceStep, corners);
+                            if ((valid & ~maskBits(_mm256_cmpeq_epi32(o00, quadsAt))) != 0) {
+                                loadRowQuads(at, rowStep, sliceStep, quads);
+                                quadsAt = _mm256_set1_epi32(-1); // not the cells' rows
+                            }
+                            gradientCorners(at, cell, quads, rowStep, sliceStep, corners);
                             cornersAt = o00;
                             cornersValid = valid;
                         }

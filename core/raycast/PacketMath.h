@@ -119,19 +119,41 @@ LUCENT_AVX2 inline __m256 blendCorners(const __m256 c[8], __m256 fx, __m256 fy, 
     return lerp(c0, c1, fz);
 }
 
-// The corner differences of FastDvrKernel::gradientInside for eight lanes
-// whose cells start at base[n] (all neighbours inside the volume) and whose
-// cell rows are `cell`: c[8 a .. 8 a + 7] along axis a, before the blend.
+// The four cell rows of eight lanes (row[y + 2 z] as in Cell) as voxel quads
+// x - 1 .. x + 2: (x - 1, x) in lo, (x + 1, x + 2) in hi. Lanes must not lie
+// on the first or last cell along x.
+struct RowQuads {
+    Pair lo[4], hi[4];
+};
+
 template <class T>
-LUCENT_AVX2 inline void gradientCorners(const T* const base[8], const Cell& cell, std::ptrdiff_t sy,
-                                        std::ptrdiff_t sz, __m256 c[24]) {
-    // x: value(x + 1) - value(x - 1) along the four rows.
+LUCENT_AVX2 inline void loadRowQuads(const T* const base[8], std::ptrdiff_t sy, std::ptrdiff_t sz,
+                                     RowQuads& q) {
     for (int r = 0; r < 4; ++r) {
         const std::ptrdiff_t o = ((r & 1) != 0 ? sy : 0) + ((r & 2) != 0 ? sz : 0);
-        Pair minus, plus;
-        rowQuads(base, o - 1, minus, plus);
-        c[2 * r] = _mm256_sub_ps(plus.a, minus.a);
-        c[2 * r + 1] = _mm256_sub_ps(plus.b, minus.b);
+        rowQuads(base, o - 1, q.lo[r], q.hi[r]);
+    }
+}
+
+// The cell rows (x, x + 1) within the quads.
+LUCENT_AVX2 inline void cellOf(const RowQuads& q, Cell& cell) {
+    for (int r = 0; r < 4; ++r) {
+        cell.row[r] = Pair{q.lo[r].b, q.hi[r].a};
+    }
+}
+
+// The corner differences of FastDvrKernel::gradientInside for eight lanes
+// whose cells start at base[n] (all neighbours inside the volume), whose cell
+// rows are `cell` and row quads `quads`: c[8 a .. 8 a + 7] along axis a,
+// before the blend.
+template <class T>
+LUCENT_AVX2 inline void gradientCorners(const T* const base[8], const Cell& cell,
+                                        const RowQuads& quads, std::ptrdiff_t sy, std::ptrdiff_t sz,
+                                        __m256 c[24]) {
+    // x: value(x + 1) - value(x - 1) along the four rows.
+    for (int r = 0; r < 4; ++r) {
+        c[2 * r] = _mm256_sub_ps(quads.hi[r].a, quads.lo[r].a);
+        c[2 * r + 1] = _mm256_sub_ps(quads.hi[r].b, quads.lo[r].b);
     }
     // y: rows y - 1 and y + 2 beside the cell's rows, in both slices.
     __m256* cy = c + 8;
