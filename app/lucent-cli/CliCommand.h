@@ -15,5 +15,6 @@ int runConvert(const QStringList& args);
 int runCompare(const QStringList& args);
 int runRender(const QStringList& args);
 int runPacs(const QStringList& args); // exit 4: the PACS or the network failed
+int runBench(const QStringList& args);
 
 } // namespace lucent::cli

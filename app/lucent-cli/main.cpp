@@ -1,5 +1,8 @@
 #include <QCoreApplication>
+#include <QGuiApplication>
+
 #include <QTextStream>
+#include <memory>
 
 #include "CliCommand.h"
 
@@ -12,6 +15,8 @@ const char* kUsageText =
     "  render PATH -o OUT.png [options]     volume rendering (CPU ray caster); --help lists "
     "options\n"
     "  compare A.png B.png                  print psnr_db=<x> ssim=<y> for two images\n"
+    "  bench quality PATH [--backend cpu|gl] [--csv OUT.csv] [--plot OUT.png]\n"
+    "                                       time against PSNR/SSIM of every sampling setting\n"
     "PATH: a DICOM folder (searched recursively), a DICOM file, a DICOMDIR,\n"
     "      or a .mhd/.mha, .nii/.nii.gz or InVesalius .inv3 volume.\n"
     "  pacs echo|find|get --pacs AET@HOST:PORT ...  C-ECHO, C-FIND, C-GET into the study store\n"
@@ -20,7 +25,14 @@ const char* kUsageText =
 } // namespace
 
 int main(int argc, char** argv) {
-    QCoreApplication app(argc, argv);
+    // The bench draws a plot with text: fonts need a GUI application (offscreen, no display).
+    const bool gui = argc > 1 && std::string_view(argv[1]) == "bench";
+    if (gui && qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) {
+        qputenv("QT_QPA_PLATFORM", "offscreen");
+    }
+    const std::unique_ptr<QCoreApplication> app =
+        gui ? std::make_unique<QGuiApplication>(argc, argv)
+            : std::make_unique<QCoreApplication>(argc, argv);
     QCoreApplication::setApplicationName("lucent-cli");
     QCoreApplication::setApplicationVersion(LUCENT_VERSION);
     QStringList args = QCoreApplication::arguments();
@@ -49,6 +61,9 @@ int main(int argc, char** argv) {
     }
     if (command == "render") {
         return lucent::cli::runRender(args);
+    }
+    if (command == "bench") {
+        return lucent::cli::runBench(args);
     }
     if (command == "compare") {
         return lucent::cli::runCompare(args);

@@ -1,0 +1,216 @@
+// lucent-cli bench quality PATH: the speed/accuracy sweep (issue "measure the
+// trade"): time, samples, PSNR and SSIM of every sampling setting against the
+// reference, the front, a CSV and a plot.
+#include <QCommandLineParser>
+#include <QElapsedTimer>
+#include <QFile>
+#include <QTextStream>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <memory>
+
+#include "CliCommand.h"
+#include "QualityPlot.h"
+#include "TerminalProgress.h"
+#include "core/image/ImageMetrics.h"
+#include "core/io/Catalog.h"
+#include "core/raycast/CpuRayCaster.h"
+#include "core/raycast/QualityFront.h"
+#include "render/GlError.h"
+#include "render/GpuRayCaster.h"
+#include "render/OffscreenContext.h"
+
+namespace lucent::cli {
+namespace {
+
+double medianOf(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+QString csvLine(const QualityPoint& p) {
+    return QStringLiteral("%1,%2,%3,%4,%5,%6,%7,%8,%9,%10\n")
+        .arg(p.setting.step)
+        .arg(interpolationName(p.setting.interpolation))
+        .arg(QString::fromStdString(p.setting.classificationName()))
+        .arg(p.setting.shading ? 1 : 0)
+        .arg(p.setting.brickSize)
+        .arg(p.ms, 0, 'f', 2)
+        .arg(p.samples)
+        .arg(std::isinf(p.psnrDb) ? QStringLiteral("inf") : QString::number(p.psnrDb, 'f', 2))
+        .arg(p.ssim, 0, 'f', 4)
+        .arg(p.pareto ? 1 : 0);
+}
+
+} // namespace
+
+int runBench(const QStringList& args) {
+    QCommandLineParser parser;
+    parser.setApplicationDescription("bench quality PATH: time against accuracy for every sampling "
+                                     "setting, measured against the reference (double, tricubic, "
+                                     "step 1/16 voxel, no early termination).");
+    parser.addPositionalArgument("quality", "The bench to run (quality).");
+    parser.addPositionalArgument("PATH", "DICOM folder, file or DICOMDIR, or a volume file");
+    parser.addOptions({
+        {"series", "Series id or UID (default: the largest volume).", "UID"},
+        {"size", "Image size (default 256x256).", "WxH", "256x256"},
+        {"preset", "Transfer function preset (default ct-bone, or mr-default).", "NAME"},
+        {"backend", "cpu or gl.", "NAME", "cpu"},
+        {"csv", "Write every point as CSV.", "OUT.csv"},
+        {"plot", "Draw time against PSNR with the front.", "OUT.png"},
+        {"frames", "Frames timed per setting (median; default 3).", "N", "3"},
+        {"steps", "Steps in voxels (default 2,1,0.5,0.25,0.125).", "LIST", "2,1,0.5,0.25,0.125"},
+        {"bricks", "Brick sizes (default 64).", "LIST", "64"},
+    });
+    parser.addHelpOption();
+    QTextStream err(stderr), out(stdout);
+    if (!parser.parse(args)) {
+        err << "lucent-cli bench: " << parser.errorText() << "\n";
+        return kUsage;
+    }
+    if (parser.isSet("help")) {
+        out << parser.helpText();
+        return kOk;
+    }
+    const QStringList pos = parser.positionalArguments();
+    if (pos.size() != 2 || pos[0] != "quality") {
+        err << "lucent-cli bench: expected 'quality PATH'\n";
+        return kUsage;
+    }
+    const QString backend = parser.value("backend");
+    bool okW = false, okH = false, okF = false;
+    const QStringList wh = parser.value("size").split('x');
+    const int width = wh.size() == 2 ? wh[0].toInt(&okW) : 0;
+    const int height = wh.size() == 2 ? wh[1].toInt(&okH) : 0;
+    const int frames = parser.value("frames").toInt(&okF);
+    std::vector<double> steps;
+    std::vector<int> bricks;
+    bool listsOk = true;
+    for (const QString& s : parser.value("steps").split(',')) {
+        bool ok = false;
+        steps.push_back(s.toDouble(&ok));
+        listsOk = listsOk && ok && steps.back() > 0.0;
+    }
+    for (const QString& s : parser.value("bricks").split(',')) {
+        bool ok = false;
+        bricks.push_back(s.toInt(&ok));
+        listsOk = listsOk && ok && bricks.back() > 0;
+    }
+    if (!okW || !okH || width < 1 || height < 1 || !okF || frames < 1 || !listsOk ||
+        (backend != "cpu" && backend != "gl")) {
+        err << "lucent-cli bench: bad --size, --frames, --steps, --bricks or --backend\n";
+        return kUsage;
+    }
+
+    Volume volume;
+    try {
+        const TerminalProgress progress;
+        volume = loadPath(pos[1].toStdString(), parser.value("series").toStdString(),
+                          progress.control());
+        progress.finish();
+    } catch (const std::exception& e) {
+        err << "lucent-cli bench: " << e.what() << "\n";
+        return kBadInput;
+    }
+    try {
+        RenderDescription base;
+        base.volume = &volume;
+        base.width = width;
+        base.height = height;
+        const std::string preset = parser.isSet("preset")    ? parser.value("preset").toStdString()
+                                   : volume.modality == "CT" ? "ct-bone"
+                                                             : "mr-default";
+        base.transferFunction = loadPreset(preset);
+
+        CpuRayCaster cpu(volume);
+        std::unique_ptr<OffscreenContext> context;
+        std::unique_ptr<GpuRayCaster> gpu;
+        if (backend == "gl") {
+            context = OffscreenContext::create();
+            gpu = std::make_unique<GpuRayCaster>(volume);
+        }
+        const std::function<RenderResult(const RenderDescription&)> render =
+            [&](const RenderDescription& d) { return gpu ? gpu->render(d).frame : cpu.render(d); };
+
+        QElapsedTimer timer;
+        timer.start();
+        // The reference, once per shading state (shading is part of what is compared).
+        const ImageRGBA8 refShaded = cpu.render(qualityReference(base)).image;
+        RenderDescription flat = base;
+        flat.transferFunction.shading.enabled = false;
+        const ImageRGBA8 refFlat = cpu.render(qualityReference(flat)).image;
+        err << "reference rendered in " << timer.elapsed() << " ms\n";
+
+        std::vector<QualityPoint> points;
+        for (const QualitySetting& setting : qualitySweep(steps, bricks)) {
+            const RenderDescription d = setting.applyTo(base);
+            QualityPoint p;
+            p.setting = setting;
+            RenderResult first = render(d); // warms tables and uploads
+            std::vector<double> ms;
+            for (int n = 0; n < frames; ++n) {
+                timer.restart();
+                first = render(d);
+                ms.push_back(double(timer.nsecsElapsed()) / 1e6);
+            }
+            p.ms = medianOf(ms);
+            p.samples = first.stats.samples;
+            const ImageRGBA8& ref = setting.shading ? refShaded : refFlat;
+            p.psnrDb = psnr(first.image, ref);
+            p.ssim = ssim(first.image, ref);
+            points.push_back(p);
+            err << "." << Qt::flush;
+        }
+        err << "\n";
+        markParetoFront(points);
+        const QString header =
+            "step,interp,classification,shading,brick,ms,samples,psnr_db,ssim,pareto\n";
+        if (parser.isSet("csv")) {
+            QFile f(parser.value("csv"));
+            if (!f.open(QIODevice::WriteOnly | QIODevice::Truncate)) {
+                err << "lucent-cli bench: cannot write " << parser.value("csv") << "\n";
+                return kBadInput;
+            }
+            QTextStream csv(&f);
+            csv << header;
+            for (const QualityPoint& p : points) {
+                csv << csvLine(p);
+            }
+        }
+        if (parser.isSet("plot")) {
+            writeQualityPlot(
+                points, parser.value("plot"),
+                QStringLiteral("%1, %2, %3x%4, %5")
+                    .arg(QString::fromStdString(volume.description.empty() ? pos[1].toStdString()
+                                                                           : volume.description))
+                    .arg(QString::fromStdString(preset))
+                    .arg(width)
+                    .arg(height)
+                    .arg(backend));
+        }
+        out << "front ("
+            << std::count_if(points.begin(), points.end(),
+                             [](const QualityPoint& p) { return p.pareto; })
+            << " of " << points.size() << " settings, " << backend << "):\n"
+            << header;
+        std::vector<QualityPoint> front;
+        std::copy_if(points.begin(), points.end(), std::back_inserter(front),
+                     [](const QualityPoint& p) { return p.pareto; });
+        std::sort(front.begin(), front.end(),
+                  [](const QualityPoint& a, const QualityPoint& b) { return a.ms < b.ms; });
+        for (const QualityPoint& p : front) {
+            out << csvLine(p);
+        }
+    } catch (const GlError& e) {
+        err << "lucent-cli bench: GL: " << e.what() << "\n";
+        return kBadInput;
+    } catch (const std::exception& e) {
+        err << "lucent-cli bench: " << e.what() << "\n";
+        return kBadInput;
+    }
+    return kOk;
+}
+
+} // namespace lucent::cli

@@ -1,0 +1,61 @@
+#pragma once
+// The speed/accuracy trade, measured: a sweep of sampling settings, each with
+// its time per frame and its error against the reference, and the settings on
+// the front (none faster and more accurate at once). Renderer-agnostic: the
+// caller renders.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/raycast/RenderDescription.h"
+
+namespace lucent {
+
+struct QualitySetting {
+    double step = 0.5;
+    Interpolation interpolation = Interpolation::Linear;
+    Classification classification = Classification::Post;
+    bool preintegrate = false;
+    bool shading = true;
+    int brickSize = 64;
+
+    // "post", "pre" or "preintegrated".
+    std::string classificationName() const;
+    // The description with these settings (shading switches the TF's shading).
+    RenderDescription applyTo(const RenderDescription& d) const;
+};
+
+struct QualityPoint {
+    QualitySetting setting;
+    double ms = 0.0; // median time per frame
+    std::size_t samples = 0;
+    double psnrDb = 0.0;
+    double ssim = 0.0;
+    bool pareto = false;
+};
+
+// The sweep of the quality bench: every step in `steps` x nearest/linear/cubic
+// x post/pre/pre-integrated x shading on/off x every brick size.
+// Pre-classification is swept with trilinear interpolation only: nearest
+// classifies the voxel it picks anyway, and the renderers define it for the
+// trilinear neighbourhood.
+std::vector<QualitySetting> qualitySweep(const std::vector<double>& steps,
+                                         const std::vector<int>& brickSizes);
+
+// The reference every point is measured against: double precision, tricubic,
+// step 1/16 voxel, no early termination.
+RenderDescription qualityReference(const RenderDescription& d);
+
+// Sets `pareto` on the points no other point with the same shading beats in
+// both time (lower) and PSNR (higher); ties in both keep both. Shaded and
+// unshaded images are measured against different references, so each has its
+// own front.
+void markParetoFront(std::vector<QualityPoint>& points);
+
+// The most accurate point of the front (of that shading) within `ms` per
+// frame; the fastest point when none is that fast; nullopt for no points.
+std::optional<QualityPoint> bestWithin(const std::vector<QualityPoint>& points, double ms,
+                                       bool shading);
+
+} // namespace lucent
