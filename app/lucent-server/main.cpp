@@ -1,32 +1,61 @@
-// lucent-server: the headless render server. This build checks its
-// configuration and indexes the studies it would serve (--check); the render
-// session protocol is not part of it yet.
+// lucent-server: the headless render server. Serves the volumes of its study
+// store and of --data over WebSocket (protocol v1, docs/protocol.md) to
+// clients that present a token from --token-file; renders on one render
+// thread with the GPU ray caster (EGL) or the CPU ray caster.
 #include <QCommandLineParser>
 #include <QCoreApplication>
 #include <QFileInfo>
+#include <QHostAddress>
 #include <QTextStream>
 
-#include "core/io/Catalog.h"
+#include <optional>
+
+#include "server/RenderServer.h"
+#include "server/ServedSeries.h"
+
+namespace {
+
+constexpr int kUsage = 2;
+constexpr int kBadInput = 3;
+
+bool parseListen(const QString& text, QHostAddress* address, quint16* port) {
+    const int colon = text.lastIndexOf(':');
+    if (colon < 0) {
+        return false;
+    }
+    bool ok = false;
+    const uint p = text.mid(colon + 1).toUInt(&ok);
+    QString host = text.left(colon);
+    if (host == "localhost") {
+        host = "127.0.0.1";
+    }
+    return ok && p <= 65535 && address->setAddress(host) && ((*port = quint16(p)), true);
+}
+
+} // namespace
 
 int main(int argc, char** argv) {
     QCoreApplication app(argc, argv);
     QCoreApplication::setApplicationName("lucent-server");
     QCoreApplication::setApplicationVersion(LUCENT_VERSION);
     QCommandLineParser parser;
-    parser.setApplicationDescription("Lucent render server.");
+    parser.setApplicationDescription("Lucent render server (WebSocket protocol v1).");
     parser.addHelpOption();
     parser.addVersionOption();
     parser.addOptions({
-        {"listen", "Address to listen on.", "HOST:PORT", "127.0.0.1:8765"},
+        {"listen", "Address and port to listen on (port 0: any free one).", "HOST:PORT",
+         "127.0.0.1:8765"},
         {"store", "Folder of the server's study store.", "DIR"},
-        {"data", "Studies to index at start (DICOM folder or volume file).", "PATH"},
-        {"token-file", "File holding the access token.", "FILE"},
-        {"check", "Check the configuration, list the studies, and exit."},
+        {"data", "Studies to serve besides the store's (DICOM folder or volume file).", "PATH"},
+        {"token-file", "File of access tokens, one a line.", "FILE"},
+        {"backend", "gl (EGL; the CPU where there is none) or cpu.", "NAME", "gl"},
+        {"max-clients", "Clients served at once.", "N", "64"},
+        {"check", "Check the configuration, list the series, and exit."},
     });
     QTextStream err(stderr);
     if (!parser.parse(QCoreApplication::arguments())) {
         err << "lucent-server: " << parser.errorText() << "\n";
-        return 2;
+        return kUsage;
     }
     if (parser.isSet("help")) {
         parser.showHelp(0);
@@ -34,28 +63,53 @@ int main(int argc, char** argv) {
     if (parser.isSet("version")) {
         parser.showVersion();
     }
-    if (parser.isSet("token-file") && !QFileInfo(parser.value("token-file")).isReadable()) {
-        err << "lucent-server: token file " << parser.value("token-file") << " is not readable\n";
-        return 3;
+    lucent::remote::ServerOptions options;
+    if (!parseListen(parser.value("listen"), &options.address, &options.port)) {
+        err << "lucent-server: --listen: '" << parser.value("listen") << "' is not HOST:PORT\n";
+        return kUsage;
+    }
+    const QString backend = parser.value("backend");
+    if (backend != "gl" && backend != "cpu") {
+        err << "lucent-server: --backend: '" << backend << "' is not gl or cpu\n";
+        return kUsage;
+    }
+    options.backend = backend == "gl" ? lucent::remote::Backend::Gl : lucent::remote::Backend::Cpu;
+    bool ok = false;
+    options.maxClients = parser.value("max-clients").toInt(&ok);
+    if (!ok || options.maxClients < 1) {
+        err << "lucent-server: --max-clients must be a positive number\n";
+        return kUsage;
+    }
+    if (!parser.isSet("store") || !parser.isSet("token-file")) {
+        err << "lucent-server: --store DIR and --token-file FILE are required\n";
+        return kUsage;
+    }
+    lucent::remote::ServedSeries served;
+    try {
+        options.tokens = lucent::remote::readTokenFile(parser.value("token-file"));
+        std::optional<std::filesystem::path> data;
+        if (parser.isSet("data")) {
+            data = parser.value("data").toStdString();
+        }
+        served = lucent::remote::scanServedSeries(parser.value("store").toStdString(), data);
+    } catch (const std::exception& e) {
+        err << "lucent-server: " << e.what() << "\n";
+        return kBadInput;
     }
     QTextStream out(stdout);
-    if (parser.isSet("data")) {
-        try {
-            const lucent::Catalog catalog = lucent::scanPath(parser.value("data").toStdString());
-            for (const lucent::SeriesEntry& e : catalog.series) {
-                out << lucent::seriesKindName(e.kind) << " " << QString::fromStdString(e.id) << " "
-                    << QString::fromStdString(e.description) << "\n";
-            }
-            out << catalog.series.size() << " series, " << catalog.skipped.size()
-                << " file(s) skipped\n";
-        } catch (const std::exception& e) {
-            err << "lucent-server: " << e.what() << "\n";
-            return 3;
-        }
-    }
+    // Counts only: series descriptions may identify a patient and stay out of logs.
+    out << served.volumes.size() << " series, " << served.skippedFiles << " file(s) skipped\n";
+    out.flush();
     if (parser.isSet("check")) {
         return 0;
     }
-    err << "lucent-server: this build has no render session protocol yet; use --check\n";
-    return 1;
+    lucent::remote::RenderServer server(options, std::move(served.volumes));
+    QString error;
+    if (!server.listen(&error)) {
+        err << "lucent-server: " << error << "\n";
+        return kBadInput;
+    }
+    out << "listening on " << options.address.toString() << ":" << server.port() << "\n";
+    out.flush();
+    return QCoreApplication::exec();
 }

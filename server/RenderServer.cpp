@@ -1,0 +1,141 @@
+#include "server/RenderServer.h"
+
+#include <QFile>
+#include <QLoggingCategory>
+#include <QMetaObject>
+
+#include <stdexcept>
+
+#include "server/ClientConnection.h"
+
+namespace lucent::remote {
+namespace {
+
+Q_LOGGING_CATEGORY(lcServer, "lucent.server")
+
+// Compares every byte, not stopping at the first difference (no timing hint
+// about the contents; the length is not secret).
+bool sameToken(const std::string& a, const std::string& b) {
+    if (a.size() != b.size()) {
+        return false;
+    }
+    unsigned difference = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        difference |= static_cast<unsigned char>(a[i]) ^ static_cast<unsigned char>(b[i]);
+    }
+    return difference == 0;
+}
+
+} // namespace
+
+std::vector<std::string> readTokenFile(const QString& path) {
+    QFile file(path);
+    if (!file.open(QIODevice::ReadOnly | QIODevice::Text)) {
+        throw std::runtime_error("token file " + path.toStdString() + " cannot be read");
+    }
+    std::vector<std::string> tokens;
+    while (!file.atEnd()) {
+        const QByteArray line = file.readLine().trimmed();
+        if (!line.isEmpty() && !line.startsWith('#')) {
+            tokens.emplace_back(line.constData(), std::size_t(line.size()));
+        }
+    }
+    if (tokens.empty()) {
+        throw std::runtime_error("token file " + path.toStdString() + " holds no token");
+    }
+    return tokens;
+}
+
+RenderServer::RenderServer(ServerOptions options,
+                           std::vector<std::shared_ptr<const SeriesEntry>> series, QObject* parent)
+    : QObject(parent), options_(std::move(options)), series_(std::move(series)),
+      socketServer_(new QWebSocketServer("lucent-server", QWebSocketServer::NonSecureMode, this)),
+      worker_(std::make_unique<RenderWorker>(options_.backend)) {
+    qRegisterMetaType<lucent::remote::RenderedFrame>();
+    worker_->moveToThread(&renderThread_);
+    renderThread_.setObjectName("lucent-render");
+    connect(worker_.get(), &RenderWorker::frameRendered, this, &RenderServer::onFrameRendered);
+    connect(socketServer_, &QWebSocketServer::newConnection, this, &RenderServer::onNewConnection);
+}
+
+RenderServer::~RenderServer() {
+    socketServer_->close();
+    for (const auto& client : std::as_const(clients_)) {
+        if (client) {
+            QObject::disconnect(client, nullptr, this, nullptr); // they go with this object
+        }
+    }
+    if (renderThread_.isRunning()) {
+        QMetaObject::invokeMethod(
+            worker_.get(), [worker = worker_.get()] { worker->stop(); },
+            Qt::BlockingQueuedConnection);
+        renderThread_.quit();
+        renderThread_.wait();
+    }
+}
+
+bool RenderServer::listen(QString* error) {
+    renderThread_.start();
+    QMetaObject::invokeMethod(
+        worker_.get(), [this] { backendDescription_ = worker_->start(); },
+        Qt::BlockingQueuedConnection);
+    qCInfo(lcServer) << "rendering with" << backendDescription_;
+    if (!socketServer_->listen(options_.address, options_.port)) {
+        *error = "cannot listen on " + options_.address.toString() + ":" +
+                 QString::number(options_.port) + ": " + socketServer_->errorString();
+        return false;
+    }
+    return true;
+}
+
+quint16 RenderServer::port() const {
+    return socketServer_->serverPort();
+}
+
+bool RenderServer::acceptsToken(const std::string& token) const {
+    bool accepted = false;
+    for (const std::string& known : options_.tokens) {
+        accepted |= sameToken(token, known);
+    }
+    return accepted;
+}
+
+std::shared_ptr<const SeriesEntry> RenderServer::findSeries(const std::string& uid) const {
+    for (const auto& s : series_) {
+        if (s->id == uid) {
+            return s;
+        }
+    }
+    return nullptr;
+}
+
+void RenderServer::submit(const RenderJob& job) {
+    QMetaObject::invokeMethod(
+        worker_.get(), [worker = worker_.get(), job] { worker->render(job); },
+        Qt::QueuedConnection);
+}
+
+void RenderServer::onNewConnection() {
+    while (QWebSocket* socket = socketServer_->nextPendingConnection()) {
+        const quint64 id = nextClientId_++;
+        auto* client = new ClientConnection(id, socket, *this); // child of this server
+        qCInfo(lcServer) << "client" << id << "connected from" << socket->peerAddress().toString();
+        if (clients_.size() >= options_.maxClients) {
+            client->sendError("busy", "the server has no room for another client", true);
+        }
+        clients_.insert(id, client);
+        connect(client, &ClientConnection::closed, this, [this](quint64 closedId) {
+            if (const QPointer<ClientConnection> c = clients_.take(closedId)) {
+                c->deleteLater();
+            }
+        });
+    }
+}
+
+void RenderServer::onFrameRendered(const RenderedFrame& frame) {
+    if (const QPointer<ClientConnection> client = clients_.value(frame.client)) {
+        client->deliver(frame);
+    }
+}
+
+} // namespace lucent::remote
