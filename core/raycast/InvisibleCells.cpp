@@ -44,12 +44,12 @@ template <class T> struct Classify {
     }
 };
 
-// What the voxels of rows a and b share, per x.
+// classify(v) of each voxel of a slice.
 template <class T>
-void shared(const Classify<T>& classify, const T* __restrict a, const T* __restrict b, int n,
-            std::uint8_t* __restrict out) {
-    for (int i = 0; i < n; ++i) {
-        out[i] = classify(a[i]) & classify(b[i]);
+void classifySlice(const Classify<T>& classify, const T* __restrict v, std::size_t n,
+                   std::uint8_t* __restrict out) {
+    for (std::size_t i = 0; i < n; ++i) {
+        out[i] = classify(v[i]);
     }
 }
 
@@ -74,19 +74,32 @@ template <class T> void findCells(const T* data, double lo, double hi, CellBits&
     const std::size_t sy = std::size_t(n.x), sz = sy * std::size_t(n.y);
 #pragma omp parallel
     {
-        // Per x, what the two voxels along z share in row j and in row j + 1,
-        // then what the four of the column (y, z) .. (y + 1, z + 1) share.
-        std::vector<std::uint8_t> rowJ(sy), rowNext(sy), column(sy);
+        // The classes of slices k and k + 1 (each slice classified once per
+        // thread), what the two share along z, then per x what the four voxels
+        // of the column (y, z) .. (y + 1, z + 1) share.
+        std::vector<std::uint8_t> here(sz), next(sz), pair(sz), column(sy);
         std::vector<std::uint8_t> cell(std::size_t(out.rowWords) * 64, 0);
+        int classified = -1; // the slice in `next`
 #pragma omp for schedule(static)
         for (int k = 0; k < n.z - 2; ++k) {
-            const T* slice = data + std::size_t(k) * sz;
-            shared(classify, slice, slice + sz, n.x, rowJ.data());
+            if (classified == k) {
+                here.swap(next);
+            } else {
+                classifySlice(classify, data + std::size_t(k) * sz, sz, here.data());
+            }
+            classifySlice(classify, data + std::size_t(k + 1) * sz, sz, next.data());
+            classified = k + 1;
+            {
+                const std::uint8_t* __restrict a = here.data();
+                const std::uint8_t* __restrict b = next.data();
+                std::uint8_t* __restrict p = pair.data();
+                for (std::size_t i = 0; i < sz; ++i) {
+                    p[i] = a[i] & b[i];
+                }
+            }
             for (int j = 0; j < n.y - 2; ++j) {
-                const T* next = slice + std::size_t(j + 1) * sy;
-                shared(classify, next, next + sz, n.x, rowNext.data());
-                const std::uint8_t* __restrict a = rowJ.data();
-                const std::uint8_t* __restrict b = rowNext.data();
+                const std::uint8_t* __restrict a = pair.data() + std::size_t(j) * sy;
+                const std::uint8_t* __restrict b = a + sy;
                 std::uint8_t* __restrict c = column.data();
                 for (int i = 0; i < n.x; ++i) {
                     c[i] = a[i] & b[i];
@@ -102,7 +115,6 @@ template <class T> void findCells(const T* data, double lo, double hi, CellBits&
                     std::memcpy(&eight, &cells[std::size_t(byte) * 8], 8);
                     bytes[byte] = std::uint8_t((eight * 0x0102040810204080ull) >> 56);
                 }
-                rowJ.swap(rowNext);
             }
         }
     }
