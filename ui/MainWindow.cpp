@@ -1,25 +1,27 @@
 #include "ui/MainWindow.h"
 
-#include <filesystem>
-
+#include <QActionGroup>
 #include <QApplication>
+#include <QCloseEvent>
+#include <QDir>
 #include <QDockWidget>
-#include <QFile>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QLabel>
 #include <QMenuBar>
 #include <QMessageBox>
-#include <QProgressDialog>
-#include <QSplitter>
+#include <QSettings>
+#include <QStandardPaths>
 #include <QStatusBar>
 #include <QVBoxLayout>
 
-#include "core/io/Catalog.h"
 #include "ui/MprCursor.h"
 #include "ui/PacsBrowser.h"
+#include "ui/ScreenshotExport.h"
 #include "ui/SliceView.h"
 #include "ui/TransferFunctionEditor.h"
+#include "ui/ViewLayout.h"
+#include "ui/VolumeLoader.h"
 #include "ui/VolumeView.h"
 #include "ui/VolumeViewControls.h"
 
@@ -56,31 +58,24 @@ QString describe(const Volume& v) {
     return parts.join(QStringLiteral("   |   "));
 }
 
+QString folderOf(const QString& path) {
+    const QFileInfo info(path);
+    return info.isDir() ? info.absoluteFilePath() : info.absolutePath();
+}
+
 } // namespace
 
 MainWindow::MainWindow(QWidget* parent)
     : QMainWindow(parent), cursor_(new MprCursor(this)), info_(new QLabel(this)) {
     setWindowTitle(QStringLiteral("Lucent"));
-    // 2x2: axial and coronal above, sagittal and the 3D view below.
-    auto* rows = new QSplitter(Qt::Vertical, this);
-    auto* top = new QSplitter(Qt::Horizontal, rows);
-    auto* bottom = new QSplitter(Qt::Horizontal, rows);
-    for (QSplitter* s : {rows, top, bottom}) {
-        s->setHandleWidth(2);
-    }
     const std::array<Orientation, 3> orientations{Orientation::Axial, Orientation::Coronal,
                                                   Orientation::Sagittal};
     for (std::size_t n = 0; n < views_.size(); ++n) {
-        QSplitter* row = n < 2 ? top : bottom;
-        views_[n] = new SliceView(orientations[n], cursor_, row);
-        row->addWidget(views_[n]);
+        views_[n] = new SliceView(orientations[n], cursor_, this);
     }
-    volumeView_ = new VolumeView(bottom);
-    bottom->addWidget(volumeView_);
-    for (QSplitter* s : {rows, top, bottom}) {
-        s->setSizes({1000, 1000}); // four views of one size (scaled to fit)
-    }
-    setCentralWidget(rows);
+    volumeView_ = new VolumeView(this);
+    layout_ = new ViewLayout({views_[0], views_[1], views_[2], volumeView_}, this);
+    setCentralWidget(layout_);
 
     // The 3D view's controls and the transfer-function editor in a dock.
     tfEditor_ = new TransferFunctionEditor;
@@ -97,6 +92,13 @@ MainWindow::MainWindow(QWidget* parent)
     connect(volumeView_, &VolumeView::transferFunctionChanged, tfEditor_,
             &TransferFunctionEditor::setTransferFunction);
     statusBar()->addWidget(info_, 1);
+    loader_ = new VolumeLoader(this);
+    connect(loader_, &VolumeLoader::loaded, this,
+            [this](std::shared_ptr<Volume> volume) { setVolume(std::move(volume)); });
+    connect(loader_, &VolumeLoader::finished, this, &MainWindow::loadFinished);
+    connect(loader_, &VolumeLoader::status, this, [this](const QString& message, int timeoutMs) {
+        statusBar()->showMessage(message, timeoutMs);
+    });
     info_->setText(tr("No volume. Open a DICOM folder, a file or an InVesalius project."));
     info_->setTextInteractionFlags(Qt::TextSelectableByMouse);
 
@@ -105,27 +107,127 @@ MainWindow::MainWindow(QWidget* parent)
                     &MainWindow::openFolderDialog);
     file->addAction(tr("&Open File..."), QKeySequence::Open, this, &MainWindow::openFileDialog);
     file->addSeparator();
+    file->addAction(tr("Save Screenshot of Active &View..."), QKeySequence(tr("Ctrl+Shift+E")),
+                    this, [this] { screenshotDialog(ScreenshotScope::ActiveView); });
+    file->addAction(tr("Save Screenshot of &Layout..."), QKeySequence(tr("Ctrl+Alt+E")), this,
+                    [this] { screenshotDialog(ScreenshotScope::Layout); });
+    file->addSeparator();
     file->addAction(tr("&Quit"), QKeySequence::Quit, qApp, &QApplication::closeAllWindows);
     // PACS query/retrieve and the local store in a dock; arrived series open here.
     PacsBrowser* pacs = PacsBrowser::addDock(this, menuBar()->addMenu(tr("&PACS")));
     connect(pacs, &PacsBrowser::openSeries, this,
             [this](const QString& folder, const QString& series) { openPath(folder, series); });
+    addViewMenu();
     resize(1500, 1000);
+    restoreSettings();
 }
 
-MainWindow::~MainWindow() {
-    if (worker_.joinable()) {
-        worker_.request_stop();
-        worker_.join();
+void MainWindow::addViewMenu() {
+    QMenu* menu = menuBar()->addMenu(tr("&View"));
+    layoutActions_ = new QActionGroup(this);
+    const std::array<std::pair<ViewLayout::Arrangement, QString>, 3> layouts{{
+        {ViewLayout::Arrangement::Grid2x2, tr("&2 x 2: Axial, Coronal, Sagittal, 3D")},
+        {ViewLayout::Arrangement::Row1x3, tr("1 x &3: Axial, Coronal, Sagittal")},
+        {ViewLayout::Arrangement::Single, tr("1 x &1: Active View")},
+    }};
+    int key = Qt::Key_1;
+    for (const auto& [arrangement, text] : layouts) {
+        QAction* action = menu->addAction(text);
+        action->setShortcut(QKeySequence(Qt::CTRL | static_cast<Qt::Key>(key++)));
+        action->setCheckable(true);
+        action->setChecked(arrangement == layout_->arrangement());
+        action->setData(ViewLayout::name(arrangement));
+        layoutActions_->addAction(action);
+        connect(action, &QAction::triggered, layout_,
+                [this, arrangement] { layout_->setArrangement(arrangement); });
+    }
+    connect(layout_, &ViewLayout::arrangementChanged, this,
+            [this](ViewLayout::Arrangement arrangement) {
+                for (QAction* action : layoutActions_->actions()) {
+                    action->setChecked(action->data().toString() == ViewLayout::name(arrangement));
+                }
+            });
+    menu->addAction(tr("&Maximize or Restore Active View"), QKeySequence(tr("Ctrl+0")), layout_,
+                    [this] {
+                        if (layout_->maximized()) {
+                            layout_->restore();
+                        } else {
+                            layout_->maximize(layout_->activeView());
+                        }
+                    });
+    menu->addSeparator();
+    for (QDockWidget* dock : findChildren<QDockWidget*>()) {
+        menu->addAction(dock->toggleViewAction());
     }
 }
+
+void MainWindow::saveSettings() const {
+    QSettings settings;
+    settings.setValue(QStringLiteral("window/geometry"), saveGeometry());
+    settings.setValue(QStringLiteral("window/state"), saveState());
+    // A maximized view is saved as 1x1 of that view.
+    settings.setValue(QStringLiteral("view/layout"), ViewLayout::name(layout_->arrangement()));
+    settings.setValue(QStringLiteral("view/active"), layout_->activeIndex());
+    settings.setValue(QStringLiteral("files/lastFolder"), lastFolder_);
+}
+
+void MainWindow::restoreSettings() {
+    const QSettings settings;
+    restoreGeometry(settings.value(QStringLiteral("window/geometry")).toByteArray());
+    restoreState(settings.value(QStringLiteral("window/state")).toByteArray());
+    const int active = settings.value(QStringLiteral("view/active"), 0).toInt();
+    if (active >= 0 && active < ViewLayout::kViewCount) {
+        layout_->setActiveView(layout_->views()[static_cast<std::size_t>(active)]);
+    }
+    const auto arrangement =
+        ViewLayout::fromName(settings.value(QStringLiteral("view/layout")).toString());
+    layout_->setArrangement(arrangement.value_or(ViewLayout::Arrangement::Grid2x2));
+    lastFolder_ = settings.value(QStringLiteral("files/lastFolder")).toString();
+}
+
+void MainWindow::closeEvent(QCloseEvent* event) {
+    saveSettings();
+    QMainWindow::closeEvent(event);
+}
+
+bool MainWindow::saveScreenshot(const QString& file, ScreenshotScope scope, QString* error) {
+    const QImage image =
+        scope == ScreenshotScope::ActiveView ? grabView(layout_->activeView()) : grabArea(layout_);
+    return writePng(image, file, error);
+}
+
+void MainWindow::screenshotDialog(ScreenshotScope scope) {
+    const QString folder =
+        QStandardPaths::writableLocation(QStandardPaths::PicturesLocation).isEmpty()
+            ? lastFolder_
+            : QStandardPaths::writableLocation(QStandardPaths::PicturesLocation);
+    const QString name = scope == ScreenshotScope::ActiveView ? QStringLiteral("lucent-view.png")
+                                                              : QStringLiteral("lucent-layout.png");
+    QString file = QFileDialog::getSaveFileName(this, tr("Save screenshot"),
+                                                QDir(folder).filePath(name), tr("PNG (*.png)"));
+    if (file.isEmpty()) {
+        return;
+    }
+    if (!file.endsWith(QStringLiteral(".png"), Qt::CaseInsensitive)) {
+        file += QStringLiteral(".png");
+    }
+    QString error;
+    if (saveScreenshot(file, scope, &error)) {
+        statusBar()->showMessage(tr("Saved %1").arg(file), 5000);
+    } else {
+        QMessageBox::warning(this, tr("Screenshot"), tr("Could not save %1: %2").arg(file, error));
+    }
+}
+
+MainWindow::~MainWindow() = default;
 
 SliceView* MainWindow::view(Orientation orientation) const {
     return views_[static_cast<std::size_t>(orientation)];
 }
 
 void MainWindow::openFolderDialog() {
-    const QString dir = QFileDialog::getExistingDirectory(this, tr("Open DICOM folder"));
+    const QString dir =
+        QFileDialog::getExistingDirectory(this, tr("Open DICOM folder"), lastFolder_);
     if (!dir.isEmpty()) {
         openPath(dir);
     }
@@ -133,7 +235,7 @@ void MainWindow::openFolderDialog() {
 
 void MainWindow::openFileDialog() {
     const QString file = QFileDialog::getOpenFileName(
-        this, tr("Open volume"), {},
+        this, tr("Open volume"), lastFolder_,
         tr("Volumes (*.dcm *.DCM *.mhd *.nii *.nii.gz *.inv3 DICOMDIR);;All files (*)"));
     if (!file.isEmpty()) {
         openPath(file);
@@ -141,115 +243,11 @@ void MainWindow::openFileDialog() {
 }
 
 void MainWindow::openPath(const QString& path, const QString& series) {
-    // A new jthread replaces the old one only after stopping and joining it.
-    worker_ = std::jthread();
-    const std::uint64_t id = ++loadId_;
-    loadingPath_ = path;
-    {
-        const std::lock_guard lock(progressMutex_);
-        latestProgress_ = {};
-        progressPosted_ = false;
+    if (QFileInfo::exists(path)) {
+        lastFolder_ = folderOf(path);
+        QSettings().setValue(QStringLiteral("files/lastFolder"), lastFolder_);
     }
-    if (progress_) {
-        progress_->disconnect(this);
-        progress_->reset();
-        progress_->hide();
-        progress_->deleteLater();
-    }
-    progress_ = new QProgressDialog(tr("Opening %1").arg(QFileInfo(path).fileName()), tr("Cancel"),
-                                    0, 0, this);
-    progress_->setWindowTitle(tr("Opening"));
-    progress_->setWindowModality(Qt::WindowModal);
-    progress_->setAutoReset(false);
-    progress_->setAutoClose(false);
-    progress_->setMinimumDuration(300);
-    progress_->setValue(0);
-    statusBar()->showMessage(tr("Opening %1 ...").arg(path));
-
-    const std::filesystem::path file(QFile::encodeName(path).toStdString());
-    const std::string wanted = series.toStdString();
-    worker_ = std::jthread([this, id, file, wanted](std::stop_token stop) {
-        LoadControl control;
-        control.stop = stop;
-        control.onProgress = [this](const LoadProgress& p) {
-            const std::lock_guard lock(progressMutex_);
-            latestProgress_ = p;
-            if (!progressPosted_) {
-                progressPosted_ = true;
-                QMetaObject::invokeMethod(this, &MainWindow::showProgress, Qt::QueuedConnection);
-            }
-        };
-        std::shared_ptr<Volume> volume;
-        QString error;
-        bool cancelled = false;
-        try {
-            volume = std::make_shared<Volume>(loadPath(file, wanted, control));
-        } catch (const LoadCancelled&) {
-            cancelled = true;
-        } catch (const std::exception& e) {
-            error = QString::fromStdString(e.what());
-        }
-        QMetaObject::invokeMethod(
-            this,
-            [this, id, volume, error, cancelled] { finishLoad(id, volume, error, cancelled); },
-            Qt::QueuedConnection);
-    });
-    // The dialog's cancel asks the worker's stop_source to stop.
-    connect(progress_, &QProgressDialog::canceled, this, [this, id] {
-        if (id == loadId_) {
-            worker_.request_stop();
-            statusBar()->showMessage(tr("Cancelling ..."));
-        }
-    });
-}
-
-void MainWindow::showProgress() {
-    LoadProgress p;
-    {
-        const std::lock_guard lock(progressMutex_);
-        p = latestProgress_;
-        progressPosted_ = false;
-    }
-    if (!progress_ || progress_->wasCanceled()) {
-        return;
-    }
-    const QString stage = QString::fromStdString(p.stage);
-    progress_->setLabelText(tr("Opening %1\n%2").arg(QFileInfo(loadingPath_).fileName(), stage));
-    // QProgressDialog counts in int; scale large totals down.
-    const std::size_t scale = p.total > 1'000'000 ? p.total / 1'000'000 : 1;
-    progress_->setMaximum(static_cast<int>(p.total / scale));
-    progress_->setValue(static_cast<int>(std::min(p.done, p.total) / scale));
-}
-
-void MainWindow::finishLoad(std::uint64_t id, std::shared_ptr<Volume> volume, const QString& error,
-                            bool cancelled) {
-    if (id != loadId_) {
-        return; // a load that was replaced by a newer one
-    }
-    if (progress_) {
-        // reset() also stops the timer that would show the dialog after minimumDuration.
-        // Deleted later: this may run inside the dialog's own setValue().
-        QProgressDialog* dialog = progress_;
-        progress_ = nullptr;
-        dialog->disconnect(this);
-        dialog->reset();
-        dialog->hide();
-        dialog->deleteLater();
-    }
-    if (volume) {
-        statusBar()->clearMessage();
-        setVolume(std::move(volume));
-        emit loadFinished(true);
-        return;
-    }
-    if (cancelled) {
-        statusBar()->showMessage(tr("Opening %1 was cancelled").arg(loadingPath_), 5000);
-    } else {
-        statusBar()->clearMessage();
-        QMessageBox::critical(this, tr("Cannot open"),
-                              tr("Could not open %1:\n\n%2").arg(loadingPath_, error));
-    }
-    emit loadFinished(false);
+    loader_->load(path, series);
 }
 
 void MainWindow::setVolume(std::shared_ptr<const Volume> volume) {

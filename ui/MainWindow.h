@@ -1,30 +1,30 @@
 #pragma once
 
 #include <array>
-#include <cstdint>
 #include <memory>
-#include <mutex>
-#include <thread>
 
 #include <QMainWindow>
-#include <QPointer>
 
-#include "core/io/LoadControl.h"
 #include "core/mpr/PlaneSampler.h"
 #include "core/volume/Volume.h"
 
+class QActionGroup;
 class QLabel;
-class QProgressDialog;
 
 namespace lucent {
 
 class MprCursor;
 class SliceView;
 class TransferFunctionEditor;
+class ViewLayout;
+class VolumeLoader;
 class VolumeView;
 
-// The workstation window: axial, coronal and sagittal views side by side, linked
-// through one crosshair and window, and a status bar describing the volume.
+// The workstation window: axial, coronal and sagittal views and the 3D view in a
+// ViewLayout (2x2, 1x3, 1x1; View menu, Ctrl+1/2/3), linked through one crosshair
+// and window, a status bar describing the volume, screenshots (File menu) and
+// settings that persist (QSettings of the application: layout, last folder,
+// window geometry and dock state; restored by the constructor, saved on close).
 class MainWindow : public QMainWindow {
     Q_OBJECT
 
@@ -32,44 +32,51 @@ public:
     explicit MainWindow(QWidget* parent = nullptr);
     ~MainWindow() override;
 
-    // Loads a DICOM folder/file/DICOMDIR, .mhd, .nii(.gz) or .inv3 on a worker
-    // thread with a cancellable progress dialog; series picks one (id or UID).
-    // Errors are shown in a message box. A load still running is cancelled.
+    // Loads a DICOM folder/file/DICOMDIR, .mhd, .nii(.gz) or .inv3 with VolumeLoader
+    // (worker thread, progress with cancel, errors in a dialog with details);
+    // series picks one (id or UID). A load still running is cancelled.
     void openPath(const QString& path, const QString& series = {});
     void setVolume(std::shared_ptr<const Volume> volume);
     const std::shared_ptr<const Volume>& volume() const { return volume_; }
 
     SliceView* view(Orientation orientation) const;
+    VolumeView* volumeView() const { return volumeView_; }
+    ViewLayout* viewLayout() const { return layout_; }
     MprCursor* cursor() const { return cursor_; }
+
+    enum class ScreenshotScope { ActiveView, Layout };
+    // Writes a PNG of the active view or of the whole view area; on failure
+    // returns false with the reason in error.
+    bool saveScreenshot(const QString& file, ScreenshotScope scope, QString* error = nullptr);
+
+    // The folder of the last path opened (settings key "files/lastFolder").
+    const QString& lastFolder() const { return lastFolder_; }
+    void saveSettings() const;
+    void restoreSettings();
 
 signals:
     // After every load attempt: ok is false on error or cancel.
     void loadFinished(bool ok);
 
+protected:
+    void closeEvent(QCloseEvent* event) override;
+
 private:
+    void addViewMenu();
     void openFolderDialog();
     void openFileDialog();
-    void showProgress();
-    void finishLoad(std::uint64_t id, std::shared_ptr<Volume> volume, const QString& error,
-                    bool cancelled);
+    void screenshotDialog(ScreenshotScope scope);
 
     MprCursor* cursor_;
     std::array<SliceView*, 3> views_{};
     VolumeView* volumeView_ = nullptr;
+    ViewLayout* layout_ = nullptr;
+    QActionGroup* layoutActions_ = nullptr;
     TransferFunctionEditor* tfEditor_ = nullptr;
     QLabel* info_;
-    QPointer<QProgressDialog> progress_;
+    VolumeLoader* loader_ = nullptr;
+    QString lastFolder_;
     std::shared_ptr<const Volume> volume_;
-    QString loadingPath_;
-
-    // Written by the worker, read on the GUI thread.
-    std::mutex progressMutex_;
-    LoadProgress latestProgress_;
-    bool progressPosted_ = false;
-    std::uint64_t loadId_ = 0;
-
-    // Last, so that it is joined (after a stop request) before anything else goes.
-    std::jthread worker_;
 };
 
 } // namespace lucent

@@ -17,6 +17,8 @@ int main(int argc, char** argv) {
     // Before the application: every GL context is then 4.3+ core (the 3D view's renderer needs it).
     QSurfaceFormat::setDefaultFormat(lucent::VolumeView::surfaceFormat());
     QApplication app(argc, argv);
+    // The window's settings (layout, last folder, geometry, docks): ~/.config/lucent/Lucent.conf
+    QApplication::setOrganizationName(QStringLiteral("lucent"));
     QApplication::setApplicationName(QStringLiteral("Lucent"));
     QApplication::setApplicationVersion(QStringLiteral(LUCENT_VERSION));
 
