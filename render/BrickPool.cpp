@@ -79,4 +79,41 @@ void BrickPool::upload(std::uint32_t slot, const void* texels) {
                         GL_RED, format_.uploadType, texels);
 }
 
+std::size_t BrickPool::uploadBricks(const std::vector<BrickSlots::Upload>& uploads,
+                                    const BrickGrid& grid, const Volume& source, BrickEdge edge,
+                                    double gradientUnit) {
+    constexpr std::size_t kBatch = 16; // bricks extracted at once: a few tens of MB of staging
+    const int overlap = grid.overlap();
+    const std::size_t texels = std::size_t(slotSize_) * slotSize_ * slotSize_;
+    const std::size_t batch = std::min(uploads.size(), kBatch);
+    std::vector<std::byte> staging(batch * texels * format_.clientBytes);
+    std::vector<std::int16_t> gradients(hasGradients() ? batch * texels * 4 : 0);
+    for (std::size_t first = 0; first < uploads.size(); first += kBatch) {
+        const std::size_t count = std::min(kBatch, uploads.size() - first);
+        visitVoxels(source, [&](auto voxels) {
+            using T = std::remove_const_t<typename decltype(voxels)::element_type>;
+            T* dst = reinterpret_cast<T*>(staging.data());
+#pragma omp parallel for schedule(dynamic)
+            for (std::size_t n = 0; n < count; ++n) {
+                const Brick& b = grid.bricks()[std::uint32_t(uploads[first + n].key)];
+                extractBrick<T>(voxels.data(), source.dims(), b.first, overlap, slotSize_, edge,
+                                dst + n * texels);
+                if (hasGradients()) {
+                    extractGradientBrick<T>(voxels.data(), source.dims(), b.first, overlap,
+                                            slotSize_, gradientUnit,
+                                            gradients.data() + n * texels * 4);
+                }
+            }
+        });
+        for (std::size_t n = 0; n < count; ++n) {
+            upload(uploads[first + n].slot, staging.data() + n * texels * format_.clientBytes);
+            if (hasGradients()) {
+                uploadGradients(uploads[first + n].slot, gradients.data() + n * texels * 4);
+            }
+        }
+        checkGl("uploading bricks");
+    }
+    return uploads.size() * texels * (format_.clientBytes + (hasGradients() ? kGradientBytes : 0));
+}
+
 } // namespace lucent

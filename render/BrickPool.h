@@ -44,6 +44,12 @@ public:
     // Four int16 per texel (x, y, z, 0).
     void uploadGradients(std::uint32_t slot, const std::int16_t* texels);
 
+    // Extracts each brick (ids in `grid`, with `overlap` = (slotSize - brick) / 2)
+    // from `source` and its gradient (when the pool keeps them, in units of
+    // gradientUnit), in parallel batches, and uploads them. Returns the bytes sent.
+    std::size_t uploadBricks(const std::vector<BrickSlots::Upload>& uploads, const BrickGrid& grid,
+                             const Volume& source, BrickEdge edge, double gradientUnit);
+
 private:
     int slotSize_;
     TexelFormat format_;

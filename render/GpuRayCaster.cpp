@@ -17,6 +17,7 @@
 #include "render/GlObjects.h"
 #include "render/GpuBudget.h"
 #include "render/RenderTarget.h"
+#include "render/SceneTextures.h"
 
 namespace lucent {
 
@@ -26,7 +27,6 @@ constexpr int kTableSize = 4096; // as the CPU ray caster's float path
 constexpr int kPreintegrationSize = 256;
 constexpr int kOverlap = 3;
 constexpr int kCellSize = 8; // the finer leaping level, as on the CPU
-constexpr int kUploadBatch = 16;
 
 TexelFormat texelFormat(VoxelType type, bool coefficients, bool half) {
     if (coefficients || type == VoxelType::Float32) {
@@ -74,8 +74,7 @@ struct GpuRayCaster::State {
     std::unique_ptr<BrickPool> pool;
     std::tuple<int, bool> poolKind{0, false};
     std::string poolNote; // why the pool is smaller than the budget, if it is
-    GlTexture pageTable, cellCode, cellRange, table, preTable;
-    std::optional<std::tuple<TransferFunction, double, double, double>> preKey;
+    SceneTextures scene;
 
     State(const Volume& v, GpuOptions o) : volume(v), options(o) {}
 
@@ -248,121 +247,50 @@ GpuRenderResult GpuRayCaster::render(const RenderDescription& desc) {
         keys.push_back(BrickSlots::key(level, id));
     }
     const std::vector<BrickSlots::Upload> uploads = pool.slots().acquire(keys);
-    const Volume& src = s.source(level, cubic);
-    const std::size_t texels = std::size_t(slotSize) * slotSize * slotSize;
-    const std::size_t batch = std::min<std::size_t>(uploads.size(), kUploadBatch);
-    std::vector<std::byte> staging(batch * texels * format.clientBytes);
-    std::vector<std::int16_t> gradientStaging(pool.hasGradients() ? batch * texels * 4 : 0);
     const double gradientUnit = std::max(s.valueHi - s.valueLo, 1e-30) / 2.0 / 32767.0;
-    for (std::size_t first = 0; first < uploads.size(); first += kUploadBatch) {
-        const std::size_t count = std::min<std::size_t>(kUploadBatch, uploads.size() - first);
-        visitVoxels(src, [&](auto voxels) {
-            using T = std::remove_const_t<typename decltype(voxels)::element_type>;
-            T* dst = reinterpret_cast<T*>(staging.data());
-#pragma omp parallel for schedule(dynamic)
-            for (std::size_t n = 0; n < count; ++n) {
-                const Brick& b = grid.bricks()[std::uint32_t(uploads[first + n].key)];
-                extractBrick<T>(voxels.data(), src.dims(), b.first, kOverlap, slotSize,
-                                cubic ? BrickEdge::Mirror : BrickEdge::Clamp, dst + n * texels);
-                if (pool.hasGradients()) {
-                    extractGradientBrick<T>(voxels.data(), src.dims(), b.first, kOverlap, slotSize,
-                                            gradientUnit, gradientStaging.data() + n * texels * 4);
-                }
-            }
-        });
-        for (std::size_t n = 0; n < count; ++n) {
-            pool.upload(uploads[first + n].slot, staging.data() + n * texels * format.clientBytes);
-            if (pool.hasGradients()) {
-                pool.uploadGradients(uploads[first + n].slot,
-                                     gradientStaging.data() + n * texels * 4);
-            }
-        }
-        checkGl("uploading bricks");
-    }
+    const std::size_t bytes =
+        pool.uploadBricks(uploads, grid, s.source(level, cubic),
+                          cubic ? BrickEdge::Mirror : BrickEdge::Clamp, gradientUnit);
     out.gpu.bricksUploaded = uploads.size();
-    out.gpu.bytesUploaded =
-        uploads.size() * texels * (format.clientBytes + (pool.hasGradients() ? 8 : 0));
+    out.gpu.bytesUploaded = bytes;
     out.gpu.gradientsCached = pool.hasGradients();
     out.gpu.bricksResident = pool.slots().resident();
     out.gpu.poolSlots = pool.slots().capacity();
     out.gpu.budgetBytes = s.budget;
     out.gpu.budgetSource = s.budgetSource + (s.poolNote.empty() ? "" : "; " + s.poolNote);
 
-    // Page table and brick ranges of the level.
-    const glm::ivec3 per = grid.bricksPerAxis();
-    std::vector<glm::u16vec4> page(grid.count(), glm::u16vec4(0));
-    for (std::size_t n = 0; n < plan->bricks.size(); ++n) {
-        const glm::ivec3 o = pool.slotOrigin(*pool.slots().slotOf(keys[n]));
-        page[plan->bricks[n]] = glm::u16vec4(o, plan->leapable[n] != 0 ? 2 : 1);
-    }
-    s.pageTable = makeTexture(GL_TEXTURE_3D);
-    glTextureStorage3D(s.pageTable.get(), 1, GL_RGBA16UI, per.x, per.y, per.z);
-    glTextureSubImage3D(s.pageTable.get(), 0, 0, 0, 0, per.x, per.y, per.z, GL_RGBA_INTEGER,
-                        GL_UNSIGNED_SHORT, page.data());
-
-    // Leaping cells: their codes under this transfer function and residency, and their ranges.
+    // Page table, leaping cells and tables: rebuilt only when they change.
     const BrickGrid& cells = s.grid(kCellSize, cubic, level);
-    const glm::ivec3 cellsPer = cells.bricksPerAxis();
-    std::vector<std::uint8_t> codes(cells.count(), 0);
-    std::vector<glm::vec2> ranges(cells.count());
-    const bool decided = desc.mode == RenderMode::Dvr || desc.mode == RenderMode::Isosurface;
-#pragma omp parallel for schedule(static)
-    for (std::size_t n = 0; n < cells.count(); ++n) {
-        const Brick& c = cells.bricks()[n];
-        const glm::ivec3 lo = c.first / brickSize, hi = (c.last - 1) / brickSize;
-        const std::uint16_t brickState = page[grid.idOf(lo)].w;
-        if (lo == hi && (brickState == 0 || (decided && brickState == 2))) {
-            codes[n] = 2;
-        } else if (decided && !visible(c.minValue, c.maxValue)) {
-            codes[n] = 1;
-        }
-        const double margin =
-            cubic ? 1e-5 * (std::abs(c.minValue) + std::abs(c.maxValue) + 1.0) : 0.0;
-        ranges[n] = glm::vec2(float(c.minValue - margin), float(c.maxValue + margin));
+    SceneTextures::Bricks bricks;
+    bricks.grid = &grid;
+    bricks.cells = &cells;
+    bricks.plan = &*plan;
+    for (const std::uint64_t k : keys) {
+        bricks.slotOrigins.push_back(pool.slotOrigin(*pool.slots().slotOf(k)));
     }
-    s.cellCode = makeTexture(GL_TEXTURE_3D);
-    glTextureStorage3D(s.cellCode.get(), 1, GL_R8UI, cellsPer.x, cellsPer.y, cellsPer.z);
-    glTextureSubImage3D(s.cellCode.get(), 0, 0, 0, 0, cellsPer.x, cellsPer.y, cellsPer.z,
-                        GL_RED_INTEGER, GL_UNSIGNED_BYTE, codes.data());
-    s.cellRange = makeTexture(GL_TEXTURE_3D);
-    glTextureStorage3D(s.cellRange.get(), 1, GL_RG32F, cellsPer.x, cellsPer.y, cellsPer.z);
-    glTextureSubImage3D(s.cellRange.get(), 0, 0, 0, 0, cellsPer.x, cellsPer.y, cellsPer.z, GL_RG,
-                        GL_FLOAT, ranges.data());
-
-    // Transfer-function tables, as the CPU's float path bakes them.
+    bricks.visible = visible;
+    bricks.decides = desc.mode == RenderMode::Dvr || desc.mode == RenderMode::Isosurface;
+    bricks.cubic = cubic;
+    // Everything the codes depend on besides the plan: the TF through its table, mode, iso.
+    std::vector<double> signature{double(level),
+                                  double(shaderMode(desc.mode)),
+                                  desc.isoValue,
+                                  double(brickSize),
+                                  cubic ? 1.0 : 0.0,
+                                  tLo,
+                                  tHi,
+                                  preintegrate ? 1.0 : 0.0};
+    for (const OpacityPoint& o : desc.transferFunction.opacity) {
+        signature.push_back(o.value);
+        signature.push_back(o.opacity);
+    }
+    s.scene.updateBricks(bricks, signature);
     const double levelFactor = std::ldexp(1.0, level);
     const double stepRatio = sampling.step * levelFactor;
-    std::vector<glm::vec4> rows = bakeTable(desc.transferFunction, tLo, tHi, kTableSize).rgba;
-    rows.resize(2 * kTableSize);
-    for (int n = 0; n < kTableSize; ++n) {
-        glm::vec4 raw = rows[std::size_t(n)];
-        rows[std::size_t(kTableSize + n)] = raw;
-        raw.a = raw.a <= 0.0f
-                    ? 0.0f
-                    : float(1.0 - std::pow(1.0 - std::min(double(raw.a), 1.0), stepRatio));
-        rows[std::size_t(n)] = raw;
-    }
-    s.table = makeTexture(GL_TEXTURE_2D);
-    glTextureStorage2D(s.table.get(), 1, GL_RGBA32F, kTableSize, 2);
-    glTextureSubImage2D(s.table.get(), 0, 0, 0, kTableSize, 2, GL_RGBA, GL_FLOAT, rows.data());
-    glTextureParameteri(s.table.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(s.table.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(s.table.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(s.table.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    if (preintegrate) {
-        auto key = std::tuple(desc.transferFunction, tLo, tHi, stepRatio);
-        if (s.preKey != key) {
-            const PreintegrationTable pre = buildPreintegrationTable(
-                desc.transferFunction, tLo, tHi, kPreintegrationSize, stepRatio);
-            s.preTable = makeTexture(GL_TEXTURE_2D);
-            glTextureStorage2D(s.preTable.get(), 1, GL_RGBA32F, kPreintegrationSize,
-                               kPreintegrationSize);
-            glTextureSubImage2D(s.preTable.get(), 0, 0, 0, kPreintegrationSize, kPreintegrationSize,
-                                GL_RGBA, GL_FLOAT, pre.rgba.data());
-            s.preKey = std::move(key);
-        }
-    }
-    checkGl("transfer-function tables");
+    s.scene.updateTables(desc.transferFunction, tLo, tHi, stepRatio, preintegrate, kTableSize,
+                         kPreintegrationSize);
+    const glm::ivec3 per = grid.bricksPerAxis();
+    const glm::ivec3 cellsPer = s.scene.cellsPerAxis();
 
     // Uniforms: the CPU ray caster's setup, with the level's scale.
     const glm::dmat3 linear(g.direction[0] * g.spacing.x, g.direction[1] * g.spacing.y,
@@ -434,12 +362,12 @@ GpuRenderResult GpuRayCaster::render(const RenderDescription& desc) {
     p.set("uCellsPerAxis", cellsPer);
     // Texture units, in the order of the samplers' names.
     const std::pair<const char*, GLuint> units[] = {
-        {"uPageTable", s.pageTable.get()},
-        {"uCellCode", s.cellCode.get()},
-        {"uCellRange", s.cellRange.get()},
+        {"uPageTable", s.scene.pageTable()},
+        {"uCellCode", s.scene.cellCode()},
+        {"uCellRange", s.scene.cellRange()},
         {"uPool", pool.texture()},
-        {"uTable", s.table.get()},
-        {"uPreTable", preintegrate ? s.preTable.get() : s.table.get()},
+        {"uTable", s.scene.table()},
+        {"uPreTable", preintegrate ? s.scene.preintegrationTable() : s.scene.table()},
         {"uGradientPool", pool.hasGradients() ? pool.gradientTexture() : pool.texture()},
     };
     for (int u = 0; u < int(std::size(units)); ++u) {

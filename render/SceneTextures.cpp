@@ -1,0 +1,93 @@
+#include "render/SceneTextures.h"
+
+#include <cmath>
+
+namespace lucent {
+
+namespace {
+
+GlTexture texture3d(GLenum format, glm::ivec3 size, GLenum clientFormat, GLenum type,
+                    const void* data) {
+    GlTexture t = makeTexture(GL_TEXTURE_3D);
+    glTextureStorage3D(t.get(), 1, format, size.x, size.y, size.z);
+    glTextureSubImage3D(t.get(), 0, 0, 0, 0, size.x, size.y, size.z, clientFormat, type, data);
+    return t;
+}
+
+} // namespace
+
+void SceneTextures::updateBricks(const Bricks& b, const std::vector<double>& signature) {
+    auto key = std::tuple(signature, b.plan->bricks, b.plan->leapable, b.slotOrigins);
+    if (bricksKey_ == key) {
+        return;
+    }
+    const BrickGrid& grid = *b.grid;
+    const BrickGrid& cells = *b.cells;
+    std::vector<glm::u16vec4> page(grid.count(), glm::u16vec4(0));
+    for (std::size_t n = 0; n < b.plan->bricks.size(); ++n) {
+        page[b.plan->bricks[n]] = glm::u16vec4(b.slotOrigins[n], b.plan->leapable[n] != 0 ? 2 : 1);
+    }
+    pageTable_ = texture3d(GL_RGBA16UI, grid.bricksPerAxis(), GL_RGBA_INTEGER, GL_UNSIGNED_SHORT,
+                           page.data());
+
+    const int brickSize = grid.brickSize();
+    std::vector<std::uint8_t> codes(cells.count(), 0);
+    std::vector<glm::vec2> ranges(cells.count());
+#pragma omp parallel for schedule(static)
+    for (std::size_t n = 0; n < cells.count(); ++n) {
+        const Brick& c = cells.bricks()[n];
+        const glm::ivec3 lo = c.first / brickSize, hi = (c.last - 1) / brickSize;
+        const std::uint16_t state = page[grid.idOf(lo)].w;
+        if (lo == hi && (state == 0 || (b.decides && state == 2))) {
+            codes[n] = 2;
+        } else if (b.decides && !b.visible(c.minValue, c.maxValue)) {
+            codes[n] = 1;
+        }
+        const double margin =
+            b.cubic ? 1e-5 * (std::abs(c.minValue) + std::abs(c.maxValue) + 1.0) : 0.0;
+        ranges[n] = glm::vec2(float(c.minValue - margin), float(c.maxValue + margin));
+    }
+    cellsPerAxis_ = cells.bricksPerAxis();
+    cellCode_ = texture3d(GL_R8UI, cellsPerAxis_, GL_RED_INTEGER, GL_UNSIGNED_BYTE, codes.data());
+    cellRange_ = texture3d(GL_RG32F, cellsPerAxis_, GL_RG, GL_FLOAT, ranges.data());
+    checkGl("page table and leaping cells");
+    bricksKey_ = std::move(key);
+}
+
+void SceneTextures::updateTables(const TransferFunction& tf, double lo, double hi, double stepRatio,
+                                 bool preintegrate, int tableSize, int preintegrationSize) {
+    auto key = std::tuple(tf, lo, hi, stepRatio);
+    if (tableKey_ != key) {
+        std::vector<glm::vec4> rows = bakeTable(tf, lo, hi, tableSize).rgba;
+        rows.resize(2 * std::size_t(tableSize));
+        for (int n = 0; n < tableSize; ++n) {
+            glm::vec4 raw = rows[std::size_t(n)];
+            rows[std::size_t(tableSize + n)] = raw;
+            raw.a = raw.a <= 0.0f
+                        ? 0.0f
+                        : float(1.0 - std::pow(1.0 - std::min(double(raw.a), 1.0), stepRatio));
+            rows[std::size_t(n)] = raw;
+        }
+        table_ = makeTexture(GL_TEXTURE_2D);
+        glTextureStorage2D(table_.get(), 1, GL_RGBA32F, tableSize, 2);
+        glTextureSubImage2D(table_.get(), 0, 0, 0, tableSize, 2, GL_RGBA, GL_FLOAT, rows.data());
+        // The shader's one fetch per lookup interpolates between entries.
+        glTextureParameteri(table_.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTextureParameteri(table_.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTextureParameteri(table_.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(table_.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        tableKey_ = key;
+    }
+    if (preintegrate && preKey_ != key) {
+        const PreintegrationTable pre =
+            buildPreintegrationTable(tf, lo, hi, preintegrationSize, stepRatio);
+        preTable_ = makeTexture(GL_TEXTURE_2D);
+        glTextureStorage2D(preTable_.get(), 1, GL_RGBA32F, preintegrationSize, preintegrationSize);
+        glTextureSubImage2D(preTable_.get(), 0, 0, 0, preintegrationSize, preintegrationSize,
+                            GL_RGBA, GL_FLOAT, pre.rgba.data());
+        preKey_ = std::move(key);
+    }
+    checkGl("transfer-function tables");
+}
+
+} // namespace lucent
