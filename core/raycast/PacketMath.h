@@ -2,7 +2,7 @@
 // AVX2 pieces of PacketDvrKernel: eight samples per vector, each lane doing
 // FastDvrKernel's float operations in FastDvrKernel's order, so that the
 // packet kernel rounds as the scalar kernel does (built with
-// -ffp-contract=off). Included by PacketDvrKernel.cpp only.
+// -ffp-contract=off). Included by the packet kernel's files only.
 
 #include <immintrin.h>
 
@@ -41,6 +41,13 @@ LUCENT_AVX2 inline void loadPairs(const float* const at[8], __m256& a, __m256& b
                        at[7][0]);
     b = _mm256_setr_ps(at[0][1], at[1][1], at[2][1], at[3][1], at[4][1], at[5][1], at[6][1],
                        at[7][1]);
+}
+
+// Lanes in `bits` as a vector mask.
+LUCENT_AVX2 inline __m256 laneMask(int bits) {
+    const __m256i lane = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    return _mm256_castsi256_ps(
+        _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(bits), lane), lane));
 }
 
 // a + f * (b - a)
