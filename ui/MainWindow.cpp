@@ -19,6 +19,7 @@
 #include "ui/PacsBrowser.h"
 #include "ui/ScreenshotExport.h"
 #include "ui/SliceView.h"
+#include "ui/StudyBrowser.h"
 #include "ui/TransferFunctionEditor.h"
 #include "ui/ViewLayout.h"
 #include "ui/VolumeLoader.h"
@@ -93,8 +94,18 @@ MainWindow::MainWindow(QWidget* parent)
             &TransferFunctionEditor::setTransferFunction);
     statusBar()->addWidget(info_, 1);
     loader_ = new VolumeLoader(this);
-    connect(loader_, &VolumeLoader::loaded, this,
-            [this](std::shared_ptr<Volume> volume) { setVolume(std::move(volume)); });
+    // The series opened in this session, with thumbnails; a click opens one again.
+    auto* studyDock = new QDockWidget(tr("Opened series"), this);
+    auto* studies = new StudyBrowser(studyDock);
+    studyDock->setObjectName(QStringLiteral("studyDock"));
+    studyDock->setWidget(studies);
+    addDockWidget(Qt::LeftDockWidgetArea, studyDock);
+    connect(studies, &StudyBrowser::openRequested, this,
+            [this](const QString& path, const QString& series) { openPath(path, series); });
+    connect(loader_, &VolumeLoader::loaded, this, [this, studies](std::shared_ptr<Volume> volume) {
+        studies->addSeries(loader_->path(), *volume);
+        setVolume(std::move(volume));
+    });
     connect(loader_, &VolumeLoader::finished, this, &MainWindow::loadFinished);
     connect(loader_, &VolumeLoader::status, this, [this](const QString& message, int timeoutMs) {
         statusBar()->showMessage(message, timeoutMs);

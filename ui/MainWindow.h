@@ -22,7 +22,8 @@ class VolumeView;
 
 // The workstation window: axial, coronal and sagittal views and the 3D view in a
 // ViewLayout (2x2, 1x3, 1x1; View menu, Ctrl+1/2/3), linked through one crosshair
-// and window, a status bar describing the volume, screenshots (File menu) and
+// and window, a status bar describing the volume, the series opened in this
+// session in a dock (StudyBrowser, "studyDock"), screenshots (File menu) and
 // settings that persist (QSettings of the application: layout, last folder,
 // window geometry and dock state; restored by the constructor, saved on close).
 class MainWindow : public QMainWindow {

@@ -5,6 +5,7 @@
 #include <QApplication>
 #include <QDockWidget>
 #include <QFile>
+#include <QListWidget>
 #include <QMessageBox>
 #include <QPushButton>
 #include <QSettings>
@@ -19,6 +20,7 @@
 #include "core/formats/MetaImage.h"
 #include "ui/MainWindow.h"
 #include "ui/SliceView.h"
+#include "ui/StudyBrowser.h"
 #include "ui/ViewLayout.h"
 #include "ui/VolumeView.h"
 
@@ -87,6 +89,7 @@ private slots:
     void screenshotOfViewAndLayout();
     void settingsRoundTrip();
     void nothingLoadableShowsErrorAndWindowStaysUsable();
+    void studyBrowserListsOpenedSeries();
 
 private:
     void makeWindow();
@@ -323,6 +326,62 @@ void TestMainWindow::nothingLoadableShowsErrorAndWindowStaysUsable() {
     QVERIFY(window_->volume() != ball_);
     QCOMPARE(window_->volume()->dims(), ball_->dims());
     QVERIFY(visibleMessageBox() == nullptr);
+}
+
+void TestMainWindow::studyBrowserListsOpenedSeries() {
+    auto* studies = window_->findChild<StudyBrowser*>();
+    QVERIFY(studies != nullptr);
+    QCOMPARE(studies->count(), 0); // setVolume alone is no opened series
+
+    // A second series: the ball's left half only (other dimensions).
+    VolumeGeometry halfGeometry = ball_->geometry();
+    halfGeometry.dims.x = 24;
+    Volume half(halfGeometry, VoxelType::Int16);
+    auto voxels = half.voxels<std::int16_t>();
+    for (int k = 0; k < halfGeometry.dims.z; ++k) {
+        for (int j = 0; j < halfGeometry.dims.y; ++j) {
+            for (int i = 0; i < halfGeometry.dims.x; ++i) {
+                voxels[half.linearIndex(i, j, k)] =
+                    static_cast<std::int16_t>(ball_->value(i, j, k));
+            }
+        }
+    }
+    half.modality = "CT";
+    half.description = "half";
+    const QString halfFile = dataDir_.filePath(QStringLiteral("half.mhd"));
+    writeMetaImage(half, QFile::encodeName(halfFile).toStdString());
+
+    QSignalSpy finished(window_.get(), &MainWindow::loadFinished);
+    window_->openPath(ballFile_);
+    QTRY_COMPARE_WITH_TIMEOUT(finished.count(), 1, 20000);
+    window_->openPath(halfFile);
+    QTRY_COMPARE_WITH_TIMEOUT(finished.count(), 2, 20000);
+    QCOMPARE(studies->count(), 2);
+    QListWidget* list = studies->list();
+    QVERIFY2(list->item(0)->text().contains(QStringLiteral("24 x 48 x 40")),
+             qPrintable(list->item(0)->text())); // newest first
+    QVERIFY2(list->item(1)->text().contains(QStringLiteral("ball")),
+             qPrintable(list->item(1)->text()));
+    QVERIFY(list->item(1)->text().contains(QStringLiteral("48 x 48 x 40")));
+
+    // The thumbnail: the ball's middle slice, a bright disc on black.
+    const QImage thumb = StudyBrowser::thumbnail(*ball_);
+    QCOMPARE(thumb.size(), QSize(StudyBrowser::kThumbnailSize, StudyBrowser::kThumbnailSize));
+    QVERIFY(thumb.pixelColor(thumb.width() / 2, thumb.height() / 2).value() > 200);
+    QCOMPARE(thumb.pixelColor(2, 2).value(), 0);
+    QVERIFY(!list->item(1)->icon().isNull());
+
+    // A click on the ball opens it again, and it moves to the top.
+    auto* dock = window_->findChild<QDockWidget*>(QStringLiteral("studyDock"));
+    QVERIFY(dock != nullptr && dock->isVisible());
+    list->scrollToItem(list->item(1));
+    QTest::mouseClick(list->viewport(), Qt::LeftButton, {},
+                      list->visualItemRect(list->item(1)).center());
+    QTRY_COMPARE_WITH_TIMEOUT(finished.count(), 3, 20000);
+    QCOMPARE(finished.at(2).at(0).toBool(), true);
+    QCOMPARE(window_->volume()->dims(), ball_->dims());
+    QCOMPARE(studies->count(), 2);
+    QVERIFY(list->item(0)->text().contains(QStringLiteral("ball")));
 }
 
 int main(int argc, char** argv) {
