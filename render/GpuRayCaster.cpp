@@ -204,9 +204,7 @@ GpuRenderResult GpuRayCaster::render(const RenderDescription& desc) {
             tHi = std::max(tHi, double(b.maxValue));
         }
     }
-    if (!(tHi > tLo)) {
-        tHi = tLo + 1.0;
-    }
+    std::tie(tLo, tHi) = tableRange(tLo, tHi);
     const auto visible =
         valueVisibility(desc, tLo, tHi, preintegrate ? kPreintegrationSize : kTableSize);
 

@@ -1,5 +1,6 @@
 #include "core/raycast/BrickVisibility.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -20,6 +21,13 @@ std::function<bool(double, double)> valueVisibility(const RenderDescription& des
         }
         return tf.maxOpacity(a - widen, b + widen) > 0.0;
     };
+}
+
+std::pair<double, double> tableRange(double lo, double hi) {
+    if (hi > lo) {
+        return {lo, hi};
+    }
+    return {lo, lo + std::max(1.0, std::abs(lo) * 1e-6)};
 }
 
 std::pair<double, double> visibleValueRange(const TransferFunction& tf, double tableCell) {

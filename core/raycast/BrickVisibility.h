@@ -18,6 +18,11 @@ namespace lucent {
 std::function<bool(double lo, double hi)>
 valueVisibility(const RenderDescription& desc, double tableLo, double tableHi, int tableSize);
 
+// The range the classification tables cover: [lo, hi], or for a constant
+// volume a range around lo wide enough to differ from it in double precision
+// (lo + 1 is lo again for lo = 1e30).
+std::pair<double, double> tableRange(double lo, double hi);
+
 // The values outside which the transfer function's opacity is zero, widened
 // by `tableCell` (infinite where the opacity never drops to zero).
 std::pair<double, double> visibleValueRange(const TransferFunction& tf, double tableCell);
