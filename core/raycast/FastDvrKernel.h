@@ -30,15 +30,21 @@ inline float integerPower(float x, unsigned n) {
     return r;
 }
 
-// How many samples after one in a cell of clearance c (InvisibleCells) a ray
-// with float lattice stride `stride` passes over, as skips[c]: those that stay
-// within c - 1 cells of it, with 0.01 voxel to spare for float rounding.
-inline void clearanceSkips(const glm::vec3& stride, int skips[4]) {
-    const double most =
-        std::max({std::abs(stride.x), std::abs(stride.y), std::abs(stride.z), 1e-6f});
-    skips[0] = skips[1] = 0;
-    skips[2] = int(0.99 / most);
-    skips[3] = int(1.99 / most);
+// How many lattice samples after one at p, in cell `cell` of clearance c >= 1
+// (InvisibleCells), stay within c - 1 cells of it with 0.01 voxel to spare for
+// float rounding: the ray passes over them. inverse[a] = 1 / |stride[a]|.
+inline int clearanceSkip(const glm::vec3& p, const glm::ivec3& cell, int c, const glm::vec3& stride,
+                         const glm::vec3& inverse) {
+    float steps = 1e6f;
+    const int r = c - 1;
+    for (int a = 0; a < 3; ++a) {
+        if (stride[a] > 0.0f) {
+            steps = std::min(steps, ((float(cell[a] + r + 1) - p[a]) - 0.01f) * inverse[a]);
+        } else if (stride[a] < 0.0f) {
+            steps = std::min(steps, ((p[a] - float(cell[a] - r)) - 0.01f) * inverse[a]);
+        }
+    }
+    return steps > 0.0f ? int(steps) : 0;
 }
 
 template <class T> class PacketDvrKernel;
@@ -183,8 +189,7 @@ RayOutput FastDvrKernel<T>::cast(const glm::dvec3& o, const glm::dvec3& d,
     const double t0 = span.t0, dt = s_.dt;
     // The lattice: p(n) = entry + stride * n, the same formula as RayKernel.
     const glm::vec3 entry(o + d * t0), stride(d * dt), wf(w);
-    int skips[4];
-    clearanceSkips(stride, skips);
+    const glm::vec3 inverseStride = 1.0f / glm::abs(stride);
     const InvisibleCells* invisible = s_.invisibleCells;
     Lattice lattice{o + d * t0, d * dt, glm::dvec3(0.0)};
     for (int a = 0; a < 3; ++a) {
@@ -241,7 +246,9 @@ RayOutput FastDvrKernel<T>::cast(const glm::dvec3& o, const glm::dvec3& d,
         k = std::min(k, lastK);
         if (invisible != nullptr) {
             if (const int c = invisible->clearance({i, j, k}); c != 0) {
-                n += skips[c]; // transparent, and so are the next skips[c] samples
+                // Transparent, and so are the samples that follow in cells as clear.
+                n += clearanceSkip(glm::vec3(px, py, pz), glm::ivec3(i, j, k), c, stride,
+                                   inverseStride);
                 continue;
             }
         }

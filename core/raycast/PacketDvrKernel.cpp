@@ -43,15 +43,15 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
     int active = rays.active;
 
     const CellClearance clearance(s.invisibleCells);
-    // Per lane, the samples it passes over beyond one in a cell of clearance 2 or 3.
-    alignas(32) int skips[2][kWidth]{};
+    // Per lane and axis, 1 / |stride| (clearanceSkip's inverse).
+    alignas(32) float inverse[3][kWidth];
     for (int r = 0; r < kWidth; ++r) {
-        int lane[4];
-        clearanceSkips(glm::vec3(rays.stride[0][r], rays.stride[1][r], rays.stride[2][r]), lane);
-        skips[0][r] = lane[2];
-        skips[1][r] = lane[3];
+        const glm::vec3 v =
+            1.0f / glm::abs(glm::vec3(rays.stride[0][r], rays.stride[1][r], rays.stride[2][r]));
+        for (int a = 0; a < 3; ++a) {
+            inverse[a][r] = v[a];
+        }
     }
-    const __m256i skip2 = loadInts(skips[0]), skip3 = loadInts(skips[1]);
     const TableLookup lookup{table, k.tableScale_, k.tableOffset_, k.tableMax_, int(k.lastEntry_)};
     const Lighting light{k.toWorld_,
                          float(s.light.ambient),
@@ -227,11 +227,37 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
             // without reading its voxels.
             if (clearance.words != nullptr) {
                 const __m256i c = clearance(i, j, kk, sampling);
-                const __m256i skip = _mm256_blendv_epi8(
-                    _mm256_and_si256(skip2, _mm256_cmpeq_epi32(c, _mm256_set1_epi32(2))), skip3,
-                    _mm256_cmpeq_epi32(c, _mm256_set1_epi32(3)));
-                next = _mm256_add_epi32(next, skip);
-                sampling &= maskBits(_mm256_cmpeq_epi32(c, _mm256_setzero_si256()));
+                const __m256i clear = _mm256_cmpgt_epi32(c, _mm256_setzero_si256());
+                if (maskBits(clear) != 0) {
+                    // clearanceSkip for eight lanes.
+                    const __m256i r = _mm256_sub_epi32(c, _mm256_set1_epi32(1));
+                    const __m256i cellIjk[3] = {i, j, kk};
+                    const __m256 q[3] = {qx, qy, qz}, s[3] = {vsx, vsy, vsz};
+                    const __m256 spare = _mm256_set1_ps(0.01f);
+                    __m256 steps = _mm256_set1_ps(1e6f);
+                    for (int a = 0; a < 3; ++a) {
+                        const __m256 up = _mm256_sub_ps(
+                            _mm256_sub_ps(
+                                _mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_add_epi32(cellIjk[a], r),
+                                                                    _mm256_set1_epi32(1))),
+                                q[a]),
+                            spare);
+                        const __m256 down = _mm256_sub_ps(
+                            _mm256_sub_ps(q[a],
+                                          _mm256_cvtepi32_ps(_mm256_sub_epi32(cellIjk[a], r))),
+                            spare);
+                        const __m256 ahead = _mm256_cmp_ps(s[a], _mm256_setzero_ps(), _CMP_GT_OQ);
+                        const __m256 moving = _mm256_cmp_ps(s[a], _mm256_setzero_ps(), _CMP_NEQ_OQ);
+                        const __m256 room = _mm256_mul_ps(_mm256_blendv_ps(down, up, ahead),
+                                                          _mm256_load_ps(inverse[a]));
+                        steps = _mm256_blendv_ps(steps, _mm256_min_ps(room, steps), moving);
+                    }
+                    const __m256i skip = _mm256_and_si256(
+                        _mm256_and_si256(_mm256_cvttps_epi32(steps), clear),
+                        _mm256_castps_si256(_mm256_cmp_ps(steps, _mm256_setzero_ps(), _CMP_GT_OQ)));
+                    next = _mm256_add_epi32(next, skip);
+                    sampling &= ~maskBits(clear);
+                }
             }
         }
         if (sampling != 0) {
