@@ -1,13 +1,18 @@
 #pragma once
 
+#include <array>
+
 #include <QObject>
 
 #include <glm/glm.hpp>
 
+#include "core/mpr/PlaneSampler.h"
+
 namespace lucent {
 
 // What the linked MPR views share: the crosshair point (LPS mm), through which
-// every view's plane passes, and the window/level of the grey mapping.
+// every view's plane passes, the window/level of the grey mapping, and each
+// orientation's rotation (oblique planes: the standard plane's axes turned by it).
 class MprCursor : public QObject {
     Q_OBJECT
 
@@ -25,15 +30,27 @@ public:
     double windowStep() const { return windowStep_; }
     void setWindowStep(double step) { windowStep_ = step; }
 
+    // The rotation applied to the standard plane of an orientation (identity: not oblique).
+    const glm::dmat3& rotation(Orientation orientation) const;
+    void setRotation(Orientation orientation, const glm::dmat3& rotation);
+    void resetRotations();
+    // The plane axes of an orientation after its rotation: u (screen right), v (screen
+    // down) and the normal u x v, in LPS.
+    glm::dvec3 planeU(Orientation orientation) const;
+    glm::dvec3 planeV(Orientation orientation) const;
+    glm::dvec3 planeNormal(Orientation orientation) const;
+
 signals:
     void pointChanged();
     void windowChanged();
+    void rotationChanged();
 
 private:
     glm::dvec3 point_{0.0};
     double center_ = 40.0;
     double width_ = 400.0;
     double windowStep_ = 1.0;
+    std::array<glm::dmat3, 3> rotations_{glm::dmat3(1.0), glm::dmat3(1.0), glm::dmat3(1.0)};
 };
 
 } // namespace lucent

@@ -5,9 +5,13 @@
 
 #include <QMouseEvent>
 #include <QPainter>
+#include <QTimer>
 #include <QWheelEvent>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "ui/MprCursor.h"
+#include "ui/SliceOverlay.h"
 
 namespace lucent {
 
@@ -18,46 +22,28 @@ int dominantAxis(const glm::dvec3& d) {
     return a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
 }
 
-// Each orientation has its colour; a crosshair line shows the plane of that colour.
-QColor orientationColour(Orientation orientation) {
-    switch (orientation) {
-    case Orientation::Axial:
-        return {230, 80, 80};
-    case Orientation::Coronal:
-        return {90, 200, 90};
-    case Orientation::Sagittal:
-        return {230, 200, 60};
-    }
-    return Qt::white;
-}
-
-// The standard orientation whose plane is normal to the patient axis closest to d.
-Orientation planeNormalTo(const glm::dvec3& d) {
-    switch (dominantAxis(d)) {
-    case 0:
-        return Orientation::Sagittal;
-    case 1:
-        return Orientation::Coronal;
-    default:
-        return Orientation::Axial;
-    }
-}
-
 bool samePlane(const SlicePlane& a, const SlicePlane& b) {
     return a.centre == b.centre && a.u == b.u && a.v == b.v && a.pixelSize == b.pixelSize &&
            a.width == b.width && a.height == b.height && a.slabThickness == b.slabThickness &&
            a.slabMode == b.slabMode;
 }
 
+constexpr int kClickSlop = 3; // pixels a press may move and still count as a click
+
 } // namespace
 
 SliceView::SliceView(Orientation orientation, MprCursor* cursor, QWidget* parent)
-    : QWidget(parent), orientation_(orientation), cursor_(cursor) {
+    : QWidget(parent), orientation_(orientation), cursor_(cursor), cine_(new QTimer(this)) {
     setAttribute(Qt::WA_OpaquePaintEvent);
     setFocusPolicy(Qt::WheelFocus);
+    setMouseTracking(true);
+    // The menu opens on a right-click without a drag (right-drag is window/level).
     setContextMenuPolicy(Qt::PreventContextMenu);
     connect(cursor_, &MprCursor::pointChanged, this, qOverload<>(&QWidget::update));
     connect(cursor_, &MprCursor::windowChanged, this, qOverload<>(&QWidget::update));
+    connect(cursor_, &MprCursor::rotationChanged, this, qOverload<>(&QWidget::update));
+    cine_->setInterval(66); // about 15 slices a second
+    connect(cine_, &QTimer::timeout, this, &SliceView::nextCineFrame);
 }
 
 void SliceView::setVolume(std::shared_ptr<const Volume> volume) {
@@ -65,19 +51,25 @@ void SliceView::setVolume(std::shared_ptr<const Volume> volume) {
     samplesValid_ = false;
     imageValid_ = false;
     samples_.clear();
+    measurements_.clear();
     update();
 }
 
 SlicePlane SliceView::plane() const {
-    if (!volume_ || volume_->empty()) {
-        return standardPlane({}, orientation_, cursor_->point(), width(), height());
-    }
-    const VolumeGeometry& g = volume_->geometry();
-    const glm::dvec3 mid = volumeCentre(g);
+    const bool none = !volume_ || volume_->empty();
+    const VolumeGeometry g = none ? VolumeGeometry{} : volume_->geometry();
+    const glm::dvec3 mid = none ? cursor_->point() : volumeCentre(g);
+    // The pixel size fits the unrotated plane: turning a plane does not zoom it.
     SlicePlane p = standardPlane(g, orientation_, mid, width(), height());
-    // Through the crosshair point along the normal, centred on the volume within the plane.
+    const glm::dmat3& rotation = cursor_->rotation(orientation_);
+    p.u = rotation * p.u;
+    p.v = rotation * p.v;
+    p.pixelSize /= zoom_;
+    p.slabThickness = slabThickness_;
+    p.slabMode = slabMode_;
+    // Through the crosshair point along the normal, centred on the volume (plus the pan).
     const glm::dvec3 n = p.normal();
-    p.centre = mid + n * glm::dot(cursor_->point() - mid, n);
+    p.centre = mid + n * glm::dot(cursor_->point() - mid, n) + p.u * pan_.x + p.v * pan_.y;
     return p;
 }
 
@@ -97,9 +89,9 @@ double SliceView::slicePosition() const {
     return glm::dot(cursor_->point(), positiveNormal());
 }
 
-void SliceView::moveSlices(double slices) {
+bool SliceView::moveSlices(double slices) {
     if (!volume_ || volume_->empty()) {
-        return;
+        return false;
     }
     const VolumeGeometry& g = volume_->geometry();
     const glm::dvec3 n = plane().normal();
@@ -115,6 +107,7 @@ void SliceView::moveSlices(double slices) {
     const double now = glm::dot(point - mid, n);
     const double wanted = std::clamp(now + slices * sliceStep(), -reach, reach);
     cursor_->setPoint(point + n * (wanted - now));
+    return std::abs(wanted - now) > 1e-9;
 }
 
 void SliceView::setCrosshair(const QPointF& pos) {
@@ -122,6 +115,46 @@ void SliceView::setCrosshair(const QPointF& pos) {
         return;
     }
     cursor_->setPoint(plane().pointAt(pos.x(), pos.y()));
+}
+
+void SliceView::setZoom(double zoom, const QPointF& anchor) {
+    zoom = std::clamp(zoom, 0.05, 64.0);
+    const SlicePlane before = plane();
+    // The plane point under the anchor stays: the centre moves by the anchor's offset
+    // times the change of pixel size.
+    const double oldSize = before.pixelSize;
+    const double newSize = oldSize * zoom_ / zoom;
+    pan_.x += (anchor.x() - 0.5 * (before.width - 1)) * (oldSize - newSize);
+    pan_.y += (anchor.y() - 0.5 * (before.height - 1)) * (oldSize - newSize);
+    zoom_ = zoom;
+    update();
+}
+
+void SliceView::resetZoomAndPan() {
+    zoom_ = 1.0;
+    pan_ = glm::dvec2(0.0);
+    update();
+}
+
+void SliceView::setSlab(double thicknessMm, SlabMode mode) {
+    slabThickness_ = std::max(0.0, thicknessMm);
+    slabMode_ = mode;
+    if (slabThickness_ > 0.0) {
+        lastSlabThickness_ = slabThickness_;
+    }
+    update();
+}
+
+void SliceView::setTool(Tool tool) {
+    tool_ = tool;
+    measurements_.cancel();
+    setCursor(tool == Tool::Crosshair ? Qt::ArrowCursor : Qt::CrossCursor);
+    update();
+}
+
+void SliceView::clearMeasurements() {
+    measurements_.clear();
+    update();
 }
 
 QImage SliceView::image() {
@@ -154,6 +187,32 @@ QImage SliceView::image() {
     return image_;
 }
 
+double SliceView::valueAt(const QPointF& pos) {
+    if (image().isNull()) {
+        return std::nan("");
+    }
+    const int x = static_cast<int>(std::floor(pos.x()));
+    const int y = static_cast<int>(std::floor(pos.y()));
+    if (x < 0 || y < 0 || x >= sampledPlane_.width || y >= sampledPlane_.height) {
+        return std::nan("");
+    }
+    return samples_[static_cast<std::size_t>(y) * sampledPlane_.width + x];
+}
+
+QString SliceView::sliceText() const {
+    const glm::dvec3 n = positiveNormal();
+    const char axis = "xyz"[dominantAxis(n)];
+    QString where = QStringLiteral("%1 = %2 mm").arg(QChar(axis)).arg(slicePosition(), 0, 'f', 1);
+    const VolumeGeometry& g = volume_->geometry();
+    for (int a = 0; a < 3; ++a) {
+        if (std::abs(glm::dot(glm::dvec3(g.direction[a]), n)) > 0.999) {
+            const long index = std::lround(g.toIndex(cursor_->point())[a]);
+            where = QStringLiteral("Slice %1/%2  ").arg(index + 1).arg(g.dims[a]) + where;
+        }
+    }
+    return where;
+}
+
 void SliceView::paintEvent(QPaintEvent*) {
     QPainter painter(this);
     painter.fillRect(rect(), Qt::black);
@@ -166,106 +225,146 @@ void SliceView::paintEvent(QPaintEvent*) {
     }
     const SlicePlane p = plane();
     painter.drawImage(0, 0, image());
-    paintOverlay(painter, p);
-}
 
-void SliceView::paintOverlay(QPainter& painter, const SlicePlane& p) {
-    // Crosshair: the line along u is the plane normal to v, the line along v the one normal to u.
-    const glm::dvec2 c = p.pixelOf(cursor_->point());
-    const double cx = std::floor(c.x) + 0.5;
-    const double cy = std::floor(c.y) + 0.5;
-    const double gap = 12.0;
-    QColor horizontal = orientationColour(planeNormalTo(p.v));
-    QColor vertical = orientationColour(planeNormalTo(p.u));
-    horizontal.setAlpha(170);
-    vertical.setAlpha(170);
-    painter.setPen(QPen(horizontal, 1.0));
-    painter.drawLine(QPointF(0.0, cy), QPointF(cx - gap, cy));
-    painter.drawLine(QPointF(cx + gap, cy), QPointF(width(), cy));
-    painter.setPen(QPen(vertical, 1.0));
-    painter.drawLine(QPointF(cx, 0.0), QPointF(cx, cy - gap));
-    painter.drawLine(QPointF(cx, cy + gap), QPointF(cx, height()));
-
-    // A frame in the view's own colour.
-    painter.setPen(QPen(orientationColour(orientation_), 1.0));
-    painter.drawRect(QRectF(0.5, 0.5, width() - 1.0, height() - 1.0));
-
-    // Orientation letters at the middle of each edge.
-    QFont font = painter.font();
-    font.setBold(true);
-    painter.setFont(font);
-    painter.setPen(QColor(255, 210, 120));
-    const QRect inner = rect().adjusted(6, 4, -6, -4);
-    auto label = [](const glm::dvec3& d) { return QString::fromStdString(directionLabel(d)); };
-    painter.drawText(inner, Qt::AlignLeft | Qt::AlignVCenter, label(-p.u));
-    painter.drawText(inner, Qt::AlignRight | Qt::AlignVCenter, label(p.u));
-    painter.drawText(inner, Qt::AlignTop | Qt::AlignHCenter, label(-p.v));
-    painter.drawText(inner, Qt::AlignBottom | Qt::AlignHCenter, label(p.v));
-
-    // Name, slice and window in the corners.
-    font.setBold(false);
-    painter.setFont(font);
-    painter.setPen(QColor(220, 220, 220));
-    painter.drawText(inner, Qt::AlignTop | Qt::AlignLeft,
-                     QString::fromLatin1(orientationName(orientation_)));
-    const glm::dvec3 n = positiveNormal();
-    const char axis = "xyz"[dominantAxis(n)];
-    QString where = QStringLiteral("%1 = %2 mm").arg(QChar(axis)).arg(slicePosition(), 0, 'f', 1);
-    const VolumeGeometry& g = volume_->geometry();
-    for (int a = 0; a < 3; ++a) {
-        if (std::abs(glm::dot(glm::dvec3(g.direction[a]), n)) > 0.999) {
-            const long index = std::lround(g.toIndex(cursor_->point())[a]);
-            where = QStringLiteral("Slice %1/%2  ").arg(index + 1).arg(g.dims[a]) + where;
-        }
+    SliceOverlay overlay;
+    overlay.orientation = orientation_;
+    overlay.plane = p;
+    overlay.crosshair = cursor_->point();
+    for (const Orientation o : {Orientation::Axial, Orientation::Coronal, Orientation::Sagittal}) {
+        overlay.normals[static_cast<std::size_t>(o)] = cursor_->planeNormal(o);
     }
-    painter.drawText(inner, Qt::AlignBottom | Qt::AlignLeft, where);
-    painter.drawText(inner, Qt::AlignBottom | Qt::AlignRight,
-                     QStringLiteral("W %1  L %2")
-                         .arg(cursor_->windowWidth(), 0, 'g', 5)
-                         .arg(cursor_->windowCenter(), 0, 'g', 5));
+    overlay.topLeft << QString::fromLatin1(orientationName(orientation_));
+    if (cursor_->rotation(orientation_) != glm::dmat3(1.0)) {
+        overlay.topLeft.back() += QStringLiteral(" (oblique)");
+    }
+    if (slabThickness_ > 0.0) {
+        const char* modes[] = {"MIP", "MinIP", "Average"};
+        overlay.topLeft << QStringLiteral("%1 %2 mm")
+                               .arg(QString::fromLatin1(modes[static_cast<int>(slabMode_)]))
+                               .arg(slabThickness_, 0, 'g', 4);
+    }
+    if (zoom_ != 1.0) {
+        overlay.topLeft << QStringLiteral("Zoom %1x").arg(zoom_, 0, 'f', 2);
+    }
+    if (cine_->isActive()) {
+        overlay.topLeft << QStringLiteral("Cine");
+    }
+    overlay.topRight = seriesOverlayLines(*volume_);
+    overlay.bottomLeft = sliceText();
+    overlay.bottomRight = QStringLiteral("W %1  L %2")
+                              .arg(cursor_->windowWidth(), 0, 'g', 5)
+                              .arg(cursor_->windowCenter(), 0, 'g', 5);
+    paintSliceOverlay(painter, rect(), overlay);
+    const QString unit = volume_->modality == "CT" ? QStringLiteral("HU") : QString();
+    measurements_.paint(painter, p, 0.5 * sliceStep() + 0.5 * slabThickness_, unit);
 }
 
 void SliceView::wheelEvent(QWheelEvent* event) {
-    // One notch is 120; finer wheels add up until they make a whole slice.
+    // One notch is 120; finer wheels add up until they make a whole notch.
     wheelRemainder_ += event->angleDelta().y();
-    const int slices = wheelRemainder_ / 120;
-    wheelRemainder_ -= slices * 120;
-    if (slices != 0) {
-        moveSlices(slices);
+    const int notches = wheelRemainder_ / 120;
+    wheelRemainder_ -= notches * 120;
+    if (notches != 0) {
+        if (event->modifiers() & Qt::ControlModifier) {
+            setZoom(zoom_ * std::pow(zoomStepFactor(), notches), event->position());
+        } else {
+            moveSlices(notches);
+        }
     }
     event->accept();
 }
 
+void SliceView::rotateOthers(const QPointF& pos) {
+    const glm::dvec2 c = plane().pixelOf(cursor_->point());
+    const double angle = std::atan2(pos.y() - c.y, pos.x() - c.x);
+    // Screen angles grow from u towards v: a right-handed turn about n = u x v.
+    const glm::dmat3 turn(
+        glm::rotate(glm::dmat4(1.0), angle - dragAngle_, cursor_->planeNormal(orientation_)));
+    for (const Orientation o : {Orientation::Axial, Orientation::Coronal, Orientation::Sagittal}) {
+        if (o != orientation_) {
+            cursor_->setRotation(o, turn * dragRotations_[static_cast<std::size_t>(o)]);
+        }
+    }
+}
+
 void SliceView::mousePressEvent(QMouseEvent* event) {
     dragStart_ = event->position().toPoint();
-    if (event->button() == Qt::LeftButton) {
+    const bool canMeasure = volume_ && !volume_->empty();
+    if (event->button() == Qt::LeftButton && (event->modifiers() & Qt::ShiftModifier)) {
+        drag_ = Drag::Rotate;
+        const glm::dvec2 c = plane().pixelOf(cursor_->point());
+        dragAngle_ = std::atan2(event->position().y() - c.y, event->position().x() - c.x);
+        for (const Orientation o :
+             {Orientation::Axial, Orientation::Coronal, Orientation::Sagittal}) {
+            dragRotations_[static_cast<std::size_t>(o)] = cursor_->rotation(o);
+        }
+    } else if (event->button() == Qt::LeftButton && tool_ != Tool::Crosshair && canMeasure) {
+        drag_ = Drag::Measure;
+        const glm::dvec3 p = plane().pointAt(event->position().x(), event->position().y());
+        measureBegan_ = !measurements_.drawing();
+        if (measureBegan_) {
+            measurements_.begin(
+                tool_ == Tool::Distance ? MeasurementKind::Distance : MeasurementKind::Ellipse, p);
+        }
+        update();
+    } else if (event->button() == Qt::LeftButton) {
         drag_ = Drag::Crosshair;
         setCrosshair(event->position());
     } else if (event->button() == Qt::RightButton) {
         drag_ = Drag::Window;
         dragCenter_ = cursor_->windowCenter();
         dragWidth_ = cursor_->windowWidth();
+    } else if (event->button() == Qt::MiddleButton) {
+        drag_ = Drag::Pan;
+        dragPan_ = pan_;
     }
     event->accept();
 }
 
 void SliceView::mouseMoveEvent(QMouseEvent* event) {
+    const QPoint d = event->position().toPoint() - dragStart_;
     if (drag_ == Drag::Crosshair) {
         setCrosshair(event->position());
     } else if (drag_ == Drag::Window) {
-        const QPoint d = event->position().toPoint() - dragStart_;
         const double step = cursor_->windowStep();
         cursor_->setWindow(dragCenter_ + d.y() * step, dragWidth_ + d.x() * step);
+    } else if (drag_ == Drag::Pan) {
+        // The image follows the mouse: the centre moves the other way.
+        pan_ = dragPan_ - glm::dvec2(d.x(), d.y()) * plane().pixelSize;
+        update();
+    } else if (drag_ == Drag::Rotate) {
+        rotateOthers(event->position());
+    } else if (measurements_.drawing()) {
+        measurements_.moveTo(plane().pointAt(event->position().x(), event->position().y()));
+        update();
     }
     event->accept();
 }
 
 void SliceView::mouseReleaseEvent(QMouseEvent* event) {
-    if ((drag_ == Drag::Crosshair && event->button() == Qt::LeftButton) ||
-        (drag_ == Drag::Window && event->button() == Qt::RightButton)) {
-        mouseMoveEvent(event);
-        drag_ = Drag::None;
+    const bool click = (event->position().toPoint() - dragStart_).manhattanLength() <= kClickSlop;
+    const bool ends = (event->button() == Qt::RightButton && drag_ == Drag::Window) ||
+                      (event->button() == Qt::MiddleButton && drag_ == Drag::Pan) ||
+                      (event->button() == Qt::LeftButton && drag_ != Drag::Window &&
+                       drag_ != Drag::Pan && drag_ != Drag::None);
+    if (!ends) {
+        event->accept();
+        return;
     }
+    if (drag_ == Drag::Measure) {
+        // A drag ends the measurement here; a click leaves it open for the second click.
+        const glm::dvec3 p = plane().pointAt(event->position().x(), event->position().y());
+        if (!click || !measureBegan_) {
+            measurements_.finish(p, *volume_, plane());
+        }
+        update();
+    } else if (drag_ == Drag::Window && click) {
+        cursor_->setWindow(dragCenter_, dragWidth_);
+        showContextMenu(event->globalPosition().toPoint());
+    } else {
+        mouseMoveEvent(event);
+    }
+    drag_ = Drag::None;
     event->accept();
 }
 
