@@ -52,6 +52,11 @@ BrickPool::BrickPool(int slotSize, const TexelFormat& format, std::size_t capaci
     }
 }
 
+std::size_t BrickPool::slotBytes() const {
+    return std::size_t(slotSize_) * slotSize_ * slotSize_ *
+           (format_.gpuBytes + (withGradients_ ? kGradientBytes : 0));
+}
+
 std::size_t BrickPool::bytes() const {
     const glm::ivec3 s = textureSize();
     return std::size_t(s.x) * std::size_t(s.y) * std::size_t(s.z) *

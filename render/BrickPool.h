@@ -38,6 +38,7 @@ public:
     glm::ivec3 slotOrigin(std::uint32_t slot) const; // in slots
     BrickSlots& slots() { return slots_; }
     std::size_t bytes() const;
+    std::size_t slotBytes() const; // one slot's texels, values and gradients
 
     // Copies one brick's texels (slotSize^3 of the client type) into a slot.
     void upload(std::uint32_t slot, const void* texels);

@@ -253,6 +253,7 @@ GpuRenderResult GpuRayCaster::render(const RenderDescription& desc) {
     out.gpu.bytesUploaded = bytes;
     out.gpu.gradientsCached = pool.hasGradients();
     out.gpu.bricksResident = pool.slots().resident();
+    out.gpu.residentBytes = pool.slots().resident() * pool.slotBytes();
     out.gpu.poolSlots = pool.slots().capacity();
     out.gpu.budgetBytes = s.budget;
     out.gpu.budgetSource = s.budgetSource + (s.poolNote.empty() ? "" : "; " + s.poolNote);

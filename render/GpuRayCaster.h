@@ -15,10 +15,12 @@ struct GpuOptions {
     std::size_t budgetBytes = 0;
     // The B-spline coefficients in 32-bit floats (exact) or 16-bit floats (half the memory).
     bool halfFloatCoefficients = false;
-    // Keep each brick's gradient next to its voxels (8 more bytes a voxel) when
-    // every brick of the full-resolution level fits the budget that way:
-    // shading then reads one texel instead of six (nearest and trilinear).
-    bool gradientCache = true;
+    // Keep each brick's gradient next to its voxels (8 more bytes a voxel,
+    // five times the memory of int16 voxels) when every brick of the
+    // full-resolution level fits the budget that way: shading then reads one
+    // texel instead of six (nearest and trilinear). Off by default: the pool
+    // holds only what the scene needs.
+    bool gradientCache = false;
 };
 
 // What a GPU frame did beyond the common statistics.
@@ -26,6 +28,7 @@ struct GpuFrameStats {
     std::size_t bricksUploaded = 0; // this frame
     std::size_t bytesUploaded = 0;  // this frame
     std::size_t bricksResident = 0;
+    std::size_t residentBytes = 0; // GPU memory the resident bricks take (values and gradients)
     std::size_t poolSlots = 0;
     std::size_t budgetBytes = 0;
     bool gradientsCached = false;

@@ -11,6 +11,7 @@
 #include "core/image/PngIO.h"
 #include "core/io/Catalog.h"
 #include "core/raycast/CpuRayCaster.h"
+#include "core/raycast/SceneCost.h"
 #include "core/volume/BrickResidency.h"
 #include "render/GlError.h"
 #include "render/GpuRayCaster.h"
@@ -142,6 +143,7 @@ int runRender(const QStringList& args) {
         {"no-leaping", "Switch empty-space leaping off."},
         {"brick", "Brick size in voxels (default 64).", "N"},
         {"gpu-budget", "GPU memory budget (GPU backend).", "MiB"},
+        {"gradient-cache", "GPU: keep each brick's gradient (8 bytes a voxel) for faster shading."},
         {"stats", "Print timing and sampling figures."},
         {"repeat", "Render N frames turning 5 degrees each; render_ms is their median.", "N"},
     });
@@ -177,6 +179,7 @@ int runRender(const QStringList& args) {
             throw UsageError("--gpu-budget must be a number of MiB above 0");
         }
         gpuOptions.budgetBytes = std::size_t(budget * 1024.0 * 1024.0);
+        gpuOptions.gradientCache = parser.isSet("gradient-cache");
     } catch (const UsageError& e) {
         err << "lucent-cli render: " << e.what() << "\n";
         return kUsage;
@@ -199,6 +202,7 @@ int runRender(const QStringList& args) {
 
     try {
         RenderDescription desc = describe(parser, volume);
+        const RenderDescription firstDesc = desc; // the frame whose figures --stats prints
         desc.validate();
         // The GL backend needs an EGL context; without one the CPU renders, and says so.
         std::unique_ptr<OffscreenContext> context;
@@ -233,7 +237,13 @@ int runRender(const QStringList& args) {
                                " resident=" + std::to_string(gs.bricksResident) +
                                " pool_slots=" + std::to_string(gs.poolSlots) +
                                " budget_mib=" + std::to_string(gs.budgetBytes >> 20) +
-                               " gradients=" + (gs.gradientsCached ? "cached" : "computed");
+                               " gradients=" + (gs.gradientsCached ? "cached" : "computed") +
+                               " resident_mib=" +
+                               QString::number(double(gs.residentBytes) / 1048576.0, 'f', 1)
+                                   .toStdString() +
+                               " volume_mib=" +
+                               QString::number(double(volume.byteCount()) / 1048576.0, 'f', 1)
+                                   .toStdString();
                     if (!gs.lodReason.empty()) {
                         err << "lucent-cli render: rendered from level " << r.stats.lod << ": "
                             << QString::fromStdString(gs.lodReason) << "\n";
@@ -268,7 +278,8 @@ int runRender(const QStringList& args) {
             }
             out << " render_ms=" << QString::number(median(frames), 'f', 1)
                 << " samples=" << s.samples << " bricks_total=" << s.bricksTotal
-                << " bricks_used=" << s.bricksUsed << " lod=" << s.lod << " frames=" << repeat
+                << " bricks_used=" << s.bricksUsed << " lod=" << s.lod
+                << " brute_samples=" << bruteForceSamples(firstDesc) << " frames=" << repeat
                 << QString::fromStdString(gpuExtra) << "\n";
         }
     } catch (const UsageError& e) {

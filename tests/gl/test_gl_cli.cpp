@@ -46,7 +46,8 @@ private slots:
         QVERIFY2(g.exitCode == 0, qPrintable(g.err));
         for (const char* key :
              {"render_ms=", "first_ms=", "samples=", "bricks_total=", "bricks_used=", "lod=0",
-              "backend=gl", "uploads=", "uploads_after_first=0", "budget_mib="}) {
+              "backend=gl", "uploads=", "uploads_after_first=0",
+              "budget_mib=", "resident_mib=", "volume_mib=", "brute_samples="}) {
             QVERIFY2(g.out.contains(key), qPrintable(g.out));
         }
         const test::CliRun c =

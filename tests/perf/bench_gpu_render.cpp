@@ -105,11 +105,15 @@ private slots:
 
     void philipsCtBone_data() {
         QTest::addColumn<double>("unitMm");
-        QTest::newRow("opacity-per-voxel") << 0.0;
-        QTest::newRow("opacity-per-mm") << 1.0;
+        QTest::addColumn<bool>("gradientCache");
+        QTest::newRow("opacity-per-voxel") << 0.0 << false;
+        QTest::newRow("opacity-per-mm") << 1.0 << false;
+        QTest::newRow("opacity-per-voxel-gradient-cache") << 0.0 << true;
+        QTest::newRow("opacity-per-mm-gradient-cache") << 1.0 << true;
     }
     void philipsCtBone() {
         QFETCH(double, unitMm);
+        QFETCH(bool, gradientCache);
         if (!std::filesystem::exists(philips())) {
             QSKIP("real test data not found: ../shared/data/dcm_qa_ct/Philips_S21570/S2020");
         }
@@ -119,7 +123,9 @@ private slots:
         d.transferFunction = boneTf(volume, unitMm);
         d.width = benchSize().x;
         d.height = benchSize().y;
-        GpuRayCaster gpu(volume);
+        GpuOptions options;
+        options.gradientCache = gradientCache;
+        GpuRayCaster gpu(volume, options);
         std::vector<double> ms;
         GpuRenderResult first;
         double firstMs = 0.0, uploadedMib = 0.0;
@@ -142,7 +148,8 @@ private slots:
         converged.sampling.step = 1.0 / 16.0;
         converged.sampling.interpolation = Interpolation::Cubic;
         const RenderResult truth = cpu.render(converged);
-        const std::string tag = unitMm > 0.0 ? "_per_mm" : "";
+        const std::string tag =
+            std::string(unitMm > 0.0 ? "_per_mm" : "") + (gradientCache ? "_gradient_cache" : "");
         writePng(first.frame.image, std::filesystem::path(LUCENT_BIN_DIR) / ".." /
                                         ("bench_gpu_render" + tag + ".png"));
         qInfo("gpu_render%s: render_ms=%.1f (median of 6, %dx%d) first_ms=%.1f samples=%zu "
