@@ -1,0 +1,213 @@
+// The real lucent-server on loopback: authentication, list/open/render against
+// the local CPU reference, JPEG while interacting, malformed and oversized
+// messages, coalescing of a camera burst.
+#include <QJsonArray>
+#include <QTest>
+
+#include "RemoteTestFixture.h"
+#include "core/image/ImageMetrics.h"
+#include "core/io/Catalog.h"
+#include "core/raycast/CpuRayCaster.h"
+#include "core/raycast/InteractiveQuality.h"
+
+using namespace lucent;
+using namespace lucent::test;
+
+namespace {
+
+constexpr int kSide = 128;
+
+// The description the server should render after openView() and `camera`.
+RenderDescription localDescription(const Volume& volume, const Camera& camera) {
+    RenderDescription d;
+    d.volume = &volume;
+    d.width = kSide;
+    d.height = kSide;
+    d.transferFunction = loadPreset("ct-bone");
+    d.camera = camera;
+    return d;
+}
+
+// Authenticates, opens the only series, sets size and preset.
+QString openView(RemoteTestClient& client) {
+    if (!client.waitConnected() || !client.authenticate()) {
+        return {};
+    }
+    client.send({{"type", "list"}});
+    const QJsonObject list = client.waitForText("series");
+    const QJsonArray series = list["series"].toArray();
+    if (series.size() != 1) {
+        return {};
+    }
+    const QString uid = series[0].toObject()["uid"].toString();
+    client.change({{"type", "open"}, {"series", uid}});
+    client.change({{"type", "size"}, {"width", kSide}, {"height", kSide}});
+    client.change({{"type", "tf"}, {"preset", "ct-bone"}});
+    return uid;
+}
+
+void saveOnFailure(const ImageRGBA8& image, const QString& name, bool failed) {
+    if (failed) {
+        QImage(image.pixels.data(), image.width, image.height, QImage::Format_RGBA8888)
+            .save(QDir::temp().filePath(name));
+        qWarning() << "saved" << QDir::temp().filePath(name);
+    }
+}
+
+} // namespace
+
+class TestRemoteServer : public QObject {
+    Q_OBJECT
+
+private slots:
+    void refusesMissingAndWrongTokens() {
+        ServerProcess server;
+        QVERIFY(server.port());
+        RemoteTestClient noToken(server.port());
+        QVERIFY(noToken.waitConnected());
+        noToken.send({{"type", "list"}});
+        const QJsonObject e1 = noToken.waitForText("error");
+        QCOMPARE(e1["code"].toString(), "auth-required");
+        QVERIFY(e1["message"].toString().contains("auth"));
+        QVERIFY(e1["fatal"].toBool());
+        QVERIFY(noToken.waitDisconnected());
+
+        RemoteTestClient wrong(server.port());
+        QVERIFY(wrong.waitConnected());
+        wrong.send({{"type", "auth"}, {"token", "not-the-token"}});
+        const QJsonObject e2 = wrong.waitForText("error");
+        QCOMPARE(e2["code"].toString(), "auth-failed");
+        QVERIFY(e2["message"].toString().contains("token"));
+        QVERIFY(wrong.waitDisconnected());
+        QVERIFY(wrong.frames.isEmpty());
+        QVERIFY2(!server.log().contains("not-the-token"), "a token reached the log");
+    }
+
+    void listHoldsNoPatientData() {
+        ServerProcess server;
+        QVERIFY(server.port());
+        RemoteTestClient client(server.port());
+        QVERIFY(client.waitConnected() && client.authenticate());
+        client.send({{"type", "list"}});
+        const QJsonObject entry = client.waitForText("series")["series"].toArray()[0].toObject();
+        QCOMPARE(entry["dims"].toArray(), QJsonArray({48, 40, 36}));
+        QCOMPARE(entry["description"].toString(), "synthetic");
+        QVERIFY(!entry.contains("patientName") && !entry.contains("patient_name"));
+        QVERIFY(!server.log().contains(kToken));
+    }
+
+    void stillFrameEqualsLocalRender_data() {
+        QTest::addColumn<QString>("backend");
+        QTest::newRow("cpu") << "cpu";
+        QTest::newRow("gl") << "gl"; // the CPU where EGL gives no GL 4.3 context
+    }
+    void stillFrameEqualsLocalRender() {
+        QFETCH(QString, backend);
+        ServerProcess server(backend);
+        QVERIFY(server.port());
+        RemoteTestClient client(server.port());
+        QVERIFY(!openView(client).isEmpty());
+        client.change({{"type", "camera"}, {"azimuth", 35}, {"elevation", 15}, {"zoom", 1.3}});
+        client.change({{"type", "render"}});
+        const ReceivedFrame* frame = client.waitForCurrentFrame();
+        QVERIFY(frame);
+        QCOMPARE(frame->header.format, "png");
+        QCOMPARE(frame->header.width, kSide);
+
+        const Volume volume = loadPath(server.volumeFile().toStdString());
+        CpuRayCaster cpu(volume);
+        const ImageRGBA8 local = cpu.render(localDescription(volume, {35, 15, 1.3})).image;
+        const ImageRGBA8 remote = frame->decoded();
+        const double db = psnr(local, remote);
+        qInfo("still %s: PSNR %.1f dB, render %.1f ms, encode %.1f ms", qPrintable(backend), db,
+              frame->header.renderMs, frame->header.encodeMs);
+        saveOnFailure(remote, "remote_still_" + backend + ".png", !(db >= 40.0));
+        QVERIFY2(db >= 40.0, qPrintable(QString("PSNR %1 dB").arg(db)));
+        // Not a blank image: the ball and the block show.
+        QVERIFY(psnr(local, ImageRGBA8::filled(kSide, kSide, 0)) < 30.0);
+    }
+
+    void interactiveFrameIsJpegOfTheInteractiveDescription() {
+        ServerProcess server;
+        QVERIFY(server.port());
+        RemoteTestClient client(server.port());
+        QVERIFY(!openView(client).isEmpty());
+        client.change({{"type", "quality"}, {"quality", "interactive"}});
+        client.change({{"type", "camera"}, {"azimuth", -50}});
+        const ReceivedFrame* frame = client.waitForCurrentFrame();
+        QVERIFY(frame);
+        QCOMPARE(frame->header.format, "jpeg");
+        QVERIFY(frame->image.startsWith("\xff\xd8"));
+
+        const Volume volume = loadPath(server.volumeFile().toStdString());
+        CpuRayCaster cpu(volume);
+        const RenderDescription d =
+            interactiveDescription(localDescription(volume, {-50, 0, 1, 30}));
+        const ImageRGBA8 local = cpu.render(d).image;
+        const ImageRGBA8 remote = frame->decoded();
+        QCOMPARE(remote.width, d.width);
+        const double db = psnr(local, remote);
+        qInfo("interactive: PSNR %.1f dB, %lld JPEG bytes", db, qlonglong(frame->image.size()));
+        saveOnFailure(remote, "remote_interactive.png", !(db >= 32.0));
+        QVERIFY2(db >= 32.0, qPrintable(QString("PSNR %1 dB").arg(db)));
+    }
+
+    void badMessagesCloseOnlyTheirConnection() {
+        ServerProcess server;
+        QVERIFY(server.port());
+        RemoteTestClient good(server.port());
+        QVERIFY(!openView(good).isEmpty());
+        QVERIFY(good.waitForCurrentFrame());
+
+        RemoteTestClient malformed(server.port());
+        QVERIFY(malformed.waitConnected() && malformed.authenticate());
+        malformed.sendRaw("{\"type\": \"camera\", azimuth: ");
+        QCOMPARE(malformed.waitForText("error")["code"].toString(), "malformed");
+        QVERIFY(malformed.waitDisconnected());
+
+        RemoteTestClient oversized(server.port());
+        QVERIFY(oversized.waitConnected() && oversized.authenticate());
+        oversized.sendRaw("{\"type\":\"list\",\"pad\":\"" + QString(100 * 1024, 'x') + "\"}");
+        QCOMPARE(oversized.waitForText("error")["code"].toString(), "too-large");
+        QVERIFY(oversized.waitDisconnected());
+
+        RemoteTestClient outOfOrder(server.port());
+        QVERIFY(outOfOrder.waitConnected() && outOfOrder.authenticate());
+        outOfOrder.send({{"type", "render"}});
+        QCOMPARE(outOfOrder.waitForText("error")["code"].toString(), "out-of-order");
+        QVERIFY(outOfOrder.waitDisconnected());
+
+        // The first client is still served.
+        good.change({{"type", "camera"}, {"azimuth", 90}});
+        QVERIFY(good.waitForCurrentFrame());
+        QVERIFY(!good.disconnected);
+    }
+
+    void cameraBurstCoalescesToTheLastCamera() {
+        ServerProcess server;
+        QVERIFY(server.port());
+        RemoteTestClient client(server.port());
+        QVERIFY(!openView(client).isEmpty());
+        QVERIFY(client.waitForCurrentFrame());
+        const qsizetype before = client.frames.size();
+        for (int n = 1; n <= 20; ++n) {
+            client.change({{"type", "camera"}, {"azimuth", 7.0 * n}, {"elevation", -n}});
+        }
+        const ReceivedFrame* last = client.waitForCurrentFrame();
+        QVERIFY(last);
+        QTest::qWait(300); // nothing stale may follow
+        const qsizetype burstFrames = client.frames.size() - before;
+        qInfo("20 camera messages gave %lld frame(s)", qlonglong(burstFrames));
+        QCOMPARE(client.frames.back().header.seq, client.seq);
+        QVERIFY2(burstFrames <= 5, qPrintable(QString("%1 frames").arg(burstFrames)));
+
+        const Volume volume = loadPath(server.volumeFile().toStdString());
+        CpuRayCaster cpu(volume);
+        const ImageRGBA8 local = cpu.render(localDescription(volume, {140, -20, 1, 30})).image;
+        const double db = psnr(local, client.frames.back().decoded());
+        QVERIFY2(db >= 40.0, qPrintable(QString("PSNR %1 dB").arg(db)));
+    }
+};
+
+QTEST_GUILESS_MAIN(TestRemoteServer)
+#include "test_remote_server.moc"
