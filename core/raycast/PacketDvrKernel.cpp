@@ -229,33 +229,9 @@ LUCENT_AVX2 void PacketDvrKernel<T>::castPacket(const glm::dvec3& o, const glm::
                 const __m256i c = clearance(i, j, kk, sampling);
                 const __m256i clear = _mm256_cmpgt_epi32(c, _mm256_setzero_si256());
                 if (maskBits(clear) != 0) {
-                    // clearanceSkip for eight lanes.
-                    const __m256i r = _mm256_sub_epi32(c, _mm256_set1_epi32(1));
                     const __m256i cellIjk[3] = {i, j, kk};
-                    const __m256 q[3] = {qx, qy, qz}, s[3] = {vsx, vsy, vsz};
-                    const __m256 spare = _mm256_set1_ps(0.01f);
-                    __m256 steps = _mm256_set1_ps(1e6f);
-                    for (int a = 0; a < 3; ++a) {
-                        const __m256 up = _mm256_sub_ps(
-                            _mm256_sub_ps(
-                                _mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_add_epi32(cellIjk[a], r),
-                                                                    _mm256_set1_epi32(1))),
-                                q[a]),
-                            spare);
-                        const __m256 down = _mm256_sub_ps(
-                            _mm256_sub_ps(q[a],
-                                          _mm256_cvtepi32_ps(_mm256_sub_epi32(cellIjk[a], r))),
-                            spare);
-                        const __m256 ahead = _mm256_cmp_ps(s[a], _mm256_setzero_ps(), _CMP_GT_OQ);
-                        const __m256 moving = _mm256_cmp_ps(s[a], _mm256_setzero_ps(), _CMP_NEQ_OQ);
-                        const __m256 room = _mm256_mul_ps(_mm256_blendv_ps(down, up, ahead),
-                                                          _mm256_load_ps(inverse[a]));
-                        steps = _mm256_blendv_ps(steps, _mm256_min_ps(room, steps), moving);
-                    }
-                    const __m256i skip = _mm256_and_si256(
-                        _mm256_and_si256(_mm256_cvttps_epi32(steps), clear),
-                        _mm256_castps_si256(_mm256_cmp_ps(steps, _mm256_setzero_ps(), _CMP_GT_OQ)));
-                    next = _mm256_add_epi32(next, skip);
+                    const __m256 q[3] = {qx, qy, qz}, stride[3] = {vsx, vsy, vsz};
+                    next = _mm256_add_epi32(next, clearanceSkips(q, cellIjk, c, stride, inverse));
                     sampling &= ~maskBits(clear);
                 }
             }

@@ -44,6 +44,30 @@ struct CellClearance {
     }
 };
 
+// FastDvrKernel's clearanceSkip for eight lanes at positions q in cells
+// `cell` of clearance c (0 where c is 0); inverse[a][lane] = 1 / |stride|.
+LUCENT_AVX2 inline __m256i clearanceSkips(const __m256 q[3], const __m256i cell[3], __m256i c,
+                                          const __m256 stride[3], const float inverse[3][8]) {
+    const __m256i r = _mm256_sub_epi32(c, _mm256_set1_epi32(1)), one = _mm256_set1_epi32(1);
+    const __m256 spare = _mm256_set1_ps(0.01f), zero = _mm256_setzero_ps();
+    __m256 steps = _mm256_set1_ps(1e6f);
+    for (int a = 0; a < 3; ++a) {
+        const __m256 far = _mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_add_epi32(cell[a], r), one));
+        const __m256 near = _mm256_cvtepi32_ps(_mm256_sub_epi32(cell[a], r));
+        const __m256 up = _mm256_sub_ps(_mm256_sub_ps(far, q[a]), spare);
+        const __m256 down = _mm256_sub_ps(_mm256_sub_ps(q[a], near), spare);
+        const __m256 ahead = _mm256_cmp_ps(stride[a], zero, _CMP_GT_OQ);
+        const __m256 moving = _mm256_cmp_ps(stride[a], zero, _CMP_NEQ_OQ);
+        const __m256 room =
+            _mm256_mul_ps(_mm256_blendv_ps(down, up, ahead), _mm256_load_ps(inverse[a]));
+        steps = _mm256_blendv_ps(steps, _mm256_min_ps(room, steps), moving);
+    }
+    const __m256i some =
+        _mm256_and_si256(_mm256_cmpgt_epi32(c, _mm256_setzero_si256()),
+                         _mm256_castps_si256(_mm256_cmp_ps(steps, zero, _CMP_GT_OQ)));
+    return _mm256_and_si256(_mm256_cvttps_epi32(steps), some);
+}
+
 // The table's colour and opacity at value v in the lanes of `lanes` (not 0):
 // FastDvrKernel's lookup and interpolation. Every lane gets a lookup, the
 // others at the value of one of `lanes` (eight loads are cheaper than a
