@@ -8,6 +8,7 @@ namespace lucent::cli {
 constexpr int kOk = 0;
 constexpr int kUsage = 2;
 constexpr int kBadInput = 3;
+constexpr int kNetwork = 4; // a PACS, a render server or the network failed
 
 // Each takes the arguments after the command name, with the program name first.
 int runInfo(const QStringList& args);
