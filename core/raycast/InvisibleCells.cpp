@@ -46,8 +46,9 @@ template <class T> struct Classify {
 
 // classify(v) of each voxel of a slice.
 template <class T>
-void classifySlice(const Classify<T>& classify, const T* __restrict v, std::size_t n,
-                   std::uint8_t* __restrict out) {
+__attribute__((target_clones("avx2", "default"))) void
+classifySlice(const Classify<T>& classify, const T* __restrict v, std::size_t n,
+              std::uint8_t* __restrict out) {
     for (std::size_t i = 0; i < n; ++i) {
         out[i] = classify(v[i]);
     }
