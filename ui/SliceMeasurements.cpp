@@ -26,7 +26,11 @@ QPointF toWidget(const SlicePlane& plane, const glm::dvec3& p) {
 void paintLabel(QPainter& painter, const QPointF& at, const QString& text) {
     const QRectF box =
         painter.fontMetrics().boundingRect(QRect(0, 0, 400, 100), Qt::AlignLeft, text);
-    const QRectF placed = box.translated(at + QPointF(6.0, 6.0)).adjusted(-2, -1, 2, 1);
+    QRectF placed = box.translated(at + QPointF(6.0, 6.0)).adjusted(-2, -1, 2, 1);
+    // Kept inside the view: moved left or up where it would leave it.
+    const QRectF view = painter.window();
+    placed.moveLeft(std::max(view.left(), std::min(placed.left(), view.right() - placed.width())));
+    placed.moveTop(std::max(view.top(), std::min(placed.top(), view.bottom() - placed.height())));
     painter.fillRect(placed, QColor(0, 0, 0, 150));
     painter.drawText(placed, Qt::AlignCenter, text);
 }
