@@ -39,6 +39,12 @@ TexelFormat texelFormat(VoxelType type, bool coefficients, bool half) {
     return {GL_R16_SNORM, GL_SHORT, 2, 2, 32767.0f};
 }
 
+// The specular power when it is a whole number the shader can multiply out, else 0.
+int integerPower(const Shading& s) {
+    const double p = s.specularPower;
+    return p >= 1.0 && p <= 64.0 && p == std::floor(p) ? int(p) : 0;
+}
+
 int shaderMode(RenderMode m) {
     switch (m) {
     case RenderMode::Dvr:
@@ -311,7 +317,9 @@ GpuRenderResult GpuRayCaster::render(const RenderDescription& desc) {
         flag(desc.transferFunction.shading.enabled) + "\n#define LUCENT_LEAP " +
         flag(sampling.emptySpaceLeaping) + "\n#define LUCENT_LEVEL0 " + flag(level == 0) +
         "\n#define LUCENT_CELLS_IN_ONE_BRICK " + flag(brickSize % kCellSize == 0) +
-        "\n#define LUCENT_GRADIENT_TEXTURE " + flag(pool.hasGradients()) + "\n";
+        "\n#define LUCENT_GRADIENT_TEXTURE " + flag(pool.hasGradients()) +
+        "\n#define LUCENT_SPECULAR_INT " +
+        std::to_string(integerPower(desc.transferFunction.shading)) + "\n";
     auto& program = s.programs[defines];
     if (!program) {
         program = std::make_unique<ShaderProgram>("raycast.vert", "raycast.frag", defines);

@@ -233,6 +233,23 @@ vec4 preintegrated(float front, float back) {
     return mix(near, far, b.y);
 }
 
+// ndotl^power. An integer power (1..64, the presets' 10 among them) is a
+// compile-time constant multiplied out by squaring: llvmpipe's pow is a long
+// polynomial in every lane.
+float specularTerm(float ndotl) {
+    if (LUCENT_SPECULAR_INT > 0) {
+        float result = 1.0, x = ndotl;
+        for (int e = LUCENT_SPECULAR_INT; e > 0; e >>= 1) {
+            if ((e & 1) != 0) {
+                result *= x;
+            }
+            x *= x;
+        }
+        return result;
+    }
+    return pow(ndotl, uLight.w);
+}
+
 vec3 shade(vec3 base, vec3 q, vec3 w) {
     vec3 g = uGradientToWorld * gradientAt(q);
     float len = length(g);
@@ -241,7 +258,7 @@ vec3 shade(vec3 base, vec3 q, vec3 w) {
     }
     float ndotl = min(1.0, abs(dot(g, w)) / len);
     float diffuse = uLight.x + uLight.y * ndotl;
-    return base * diffuse + vec3(uLight.z * pow(ndotl, uLight.w));
+    return base * diffuse + vec3(uLight.z * specularTerm(ndotl));
 }
 
 // --- leaping ------------------------------------------------------------------
