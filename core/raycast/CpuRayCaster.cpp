@@ -10,6 +10,7 @@
 #include <tuple>
 
 #include "core/raycast/BSplinePrefilter.h"
+#include "core/raycast/BrickVisibility.h"
 #include "core/raycast/CastImage.h"
 #include "core/raycast/FastDvrKernel.h"
 #include "core/raycast/InvisibleCells.h"
@@ -178,9 +179,7 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
             tHi = std::max(tHi, double(b.maxValue));
         }
     }
-    if (!(tHi > tLo)) {
-        tHi = tLo + 1.0;
-    }
+    std::tie(tLo, tHi) = tableRange(tLo, tHi);
     Cache::ClassificationKey key{
         desc.transferFunction, desc.mode,       desc.isoValue,   tLo,   tHi,
         sampling.step,         exact,           sf.preintegrate, cubic, grid.brickSize(),
@@ -216,20 +215,12 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
 
     // Empty-space leaping: which bricks can be passed over, decided so that no
     // sample that could contribute is ever skipped.
-    const double cell =
-        (tHi - tLo) / double((sf.preintegrate ? kPreintegrationSize : kTableSize) - 1);
-    const double widen =
-        (exact && !sf.preintegrate ? 0.0 : cell) + 1e-6 * (std::abs(tLo) + std::abs(tHi) + 1.0);
+    // (Widened by a cell of the table the samples are classified with.)
     const TransferFunction& tf = desc.transferFunction;
-    const auto visible = [&](double a, double b) {
-        if (desc.mode == RenderMode::Isosurface) {
-            return desc.isoValue >= a - widen && desc.isoValue <= b + widen;
-        }
-        if (desc.mode != RenderMode::Dvr) {
-            return true;
-        }
-        return tf.maxOpacity(a - widen, b + widen) > 0.0;
-    };
+    const auto visible = valueVisibility(desc, tLo, tHi,
+                                         sf.preintegrate ? kPreintegrationSize
+                                         : exact         ? 0
+                                                         : kTableSize);
     using LevelData = Cache::LevelData;
     auto levelData = [&](const BrickGrid& level) {
         LevelData out{std::vector<std::uint8_t>(level.count(), 0),
@@ -276,25 +267,10 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
     sf.cellLeapReach = &cache.leapReach;
 
     // Values outside the transfer function's non-zero opacity need no lookup.
-    const auto& op = tf.opacity;
-    double visLo = -std::numeric_limits<double>::infinity(), visHi = -visLo;
-    if (!op.empty() && op.front().opacity <= 0.0) {
-        std::size_t i = 0;
-        while (i + 1 < op.size() && op[i + 1].opacity <= 0.0) {
-            ++i;
-        }
-        visLo = i + 1 < op.size() ? op[i].value : std::numeric_limits<double>::infinity();
-    }
-    if (!op.empty() && op.back().opacity <= 0.0) {
-        std::size_t i = op.size() - 1;
-        while (i > 0 && op[i - 1].opacity <= 0.0) {
-            --i;
-        }
-        visHi = i > 0 ? op[i].value : -std::numeric_limits<double>::infinity();
-    }
     const double tableCell = exact ? 0.0 : (tHi - tLo) / double(kTableSize - 1);
-    sf.visibleLo = sd.visibleLo = visLo - tableCell;
-    sf.visibleHi = sd.visibleHi = visHi + tableCell;
+    const auto [visLo, visHi] = visibleValueRange(tf, tableCell);
+    sf.visibleLo = sd.visibleLo = visLo;
+    sf.visibleHi = sd.visibleHi = visHi;
     // The fast kernels pass over samples in cells whose voxels all lie beyond
     // the visible range by more than the float rounding of a trilinear sample
     // (a table cell, or a few float ulps of the largest value).
