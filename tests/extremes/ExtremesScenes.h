@@ -238,7 +238,8 @@ inline Scene makeScene(const std::string& name) {
         return s;
     }
     if (name == "constant-1e30") {
-        return scene(constant(1e30), scaledRampTf(1e30, true));
+        // 1e30 inside the ramp (0.5e30 .. 1.5e30): visible, so rays sample it.
+        return scene(constant(1e30), scaledRampTf(1e28, true));
     }
     if (name == "brick-border") {
         // Brick borders at multiples of 8 voxels; the centre ray runs along j
