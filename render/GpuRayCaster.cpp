@@ -343,7 +343,8 @@ GpuRenderResult GpuRayCaster::render(const RenderDescription& desc) {
     p.set("uEarlyTermination", float(sampling.earlyTermination));
     p.set("uIso", float(desc.isoValue));
     p.set("uLight", glm::vec4(light.ambient, light.diffuse, light.specular, light.specularPower));
-    p.set("uGradientToWorld", glm::mat3(glm::transpose(glm::inverse(linear)) / levelFactor));
+    p.set("uGradientToWorld", glm::mat3(glm::transpose(glm::inverse(linear)) /
+                                        (levelFactor * gradientScale(s.valueLo, s.valueHi))));
     p.set("uVisibleLo", float(std::max(visLo, -3.0e38)));
     p.set("uVisibleHi", float(std::min(visHi, 3.0e38)));
     p.set("uStepRatio", float(stepRatio));

@@ -30,6 +30,11 @@ std::pair<double, double> tableRange(double lo, double hi) {
     return {lo, lo + std::max(1.0, std::abs(lo) * 1e-6)};
 }
 
+double gradientScale(double valueLo, double valueHi) {
+    const double m = std::max(std::abs(valueLo), std::abs(valueHi));
+    return m > 0.0 && std::isfinite(m) ? m : 1.0;
+}
+
 std::pair<double, double> visibleValueRange(const TransferFunction& tf, double tableCell) {
     const auto& op = tf.opacity;
     const double inf = std::numeric_limits<double>::infinity();

@@ -23,6 +23,14 @@ valueVisibility(const RenderDescription& desc, double tableLo, double tableHi, i
 // (lo + 1 is lo again for lo = 1e30).
 std::pair<double, double> tableRange(double lo, double hi);
 
+// What both ray casters divide gradients by before shading: the largest
+// |value| of the volume (1 for an all-zero one). Shading needs only the
+// gradient's direction; in these units its length neither overflows in float
+// (values of 1e30) nor falls under the "no surface here" threshold because the
+// data are small (values of 1e-30), and that threshold (1e-6) is relative to
+// the data.
+double gradientScale(double valueLo, double valueHi);
+
 // The values outside which the transfer function's opacity is zero, widened
 // by `tableCell` (infinite where the opacity never drops to zero).
 std::pair<double, double> visibleValueRange(const TransferFunction& tf, double tableCell);

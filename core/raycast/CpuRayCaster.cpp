@@ -159,7 +159,8 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
         s.isoValue = desc.isoValue;
         const glm::dmat3 linear(g.direction[0] * g.spacing.x, g.direction[1] * g.spacing.y,
                                 g.direction[2] * g.spacing.z);
-        s.gradientToWorld = glm::transpose(glm::inverse(linear));
+        s.gradientToWorld = glm::transpose(glm::inverse(linear)) /
+                            gradientScale(cache.range.first, cache.range.second);
         s.boxLo = glm::dvec3(0.0);
         s.boxHi = glm::dvec3(g.dims - 1);
         s.clipLo = glm::max(desc.clip.lo, s.boxLo);

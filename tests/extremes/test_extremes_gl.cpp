@@ -46,12 +46,6 @@ private slots:
         const double p = psnr(g.frame.image, r.image);
         qInfo("%s: GL against CPU %.2f dB, %zu samples", qPrintable(name), p,
               g.frame.stats.samples);
-        if (name == "float-1e30") {
-            QEXPECT_FAIL("", "float shading: the length of a 1e30 gradient overflows", Continue);
-        }
-        if (name == "constant-shaded-cubic") {
-            QEXPECT_FAIL("", "cubic float field: a constant volume's gradient is not 0", Continue);
-        }
         QVERIFY2(p >= 40.0, qPrintable(name + QString(": GL %1 dB from the CPU").arg(p)));
     }
 
