@@ -25,11 +25,6 @@
 namespace lucent::cli {
 namespace {
 
-double medianOf(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
-
 QString csvLine(const QualityPoint& p) {
     return QStringLiteral("%1,%2,%3,%4,%5,%6,%7,%8,%9,%10\n")
         .arg(p.setting.step)
@@ -155,7 +150,7 @@ int runBench(const QStringList& args) {
                 first = render(d);
                 ms.push_back(double(timer.nsecsElapsed()) / 1e6);
             }
-            p.ms = medianOf(ms);
+            p.ms = median(ms);
             p.samples = first.stats.samples;
             const ImageRGBA8& ref = setting.shading ? refShaded : refFlat;
             p.psnrDb = psnr(first.image, ref);

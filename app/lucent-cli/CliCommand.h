@@ -2,6 +2,9 @@
 
 #include <QStringList>
 
+#include <algorithm>
+#include <vector>
+
 // Exit status of every lucent-cli command: 0 ok, 2 usage, 3 nothing loadable or bad input.
 namespace lucent::cli {
 
@@ -9,6 +12,12 @@ constexpr int kOk = 0;
 constexpr int kUsage = 2;
 constexpr int kBadInput = 3;
 constexpr int kNetwork = 4; // a PACS, a render server or the network failed
+
+// The median of frame times (render --repeat, bench quality).
+inline double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
 
 // Each takes the arguments after the command name, with the program name first.
 int runInfo(const QStringList& args);

@@ -112,11 +112,6 @@ RenderDescription describe(const QCommandLineParser& p, const Volume& volume) {
     return d;
 }
 
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
-
 // PATH is a series UID the server holds; one still frame, written as it comes.
 int renderRemote(const QCommandLineParser& p, QTextStream& err) {
     RemoteStillRequest r;

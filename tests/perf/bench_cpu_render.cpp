@@ -18,6 +18,7 @@
 #include "core/image/PngIO.h"
 #include "core/io/Catalog.h"
 #include "core/raycast/CpuRayCaster.h"
+#include "tests/perf/BenchScenes.h"
 
 using namespace lucent;
 
@@ -39,16 +40,7 @@ private slots:
         const Volume volume = loadPath(dir);
         RenderDescription d;
         d.volume = &volume;
-        d.transferFunction = loadPreset("ct-bone");
-        if (unitMm > 0.0) {
-            // An opacity per unitMm becomes one per dt_ref: a' = 1 - (1 - a)^(dt_ref / unit).
-            const double ratio = std::min({volume.geometry().spacing.x, volume.geometry().spacing.y,
-                                           volume.geometry().spacing.z}) /
-                                 unitMm;
-            for (OpacityPoint& p : d.transferFunction.opacity) {
-                p.opacity = 1.0 - std::pow(1.0 - p.opacity, ratio);
-            }
-        }
+        d.transferFunction = bench::opacityPerUnit(loadPreset("ct-bone"), volume, unitMm);
         d.sampling.step = 0.5;
         d.sampling.interpolation = Interpolation::Linear;
         CpuRayCaster caster(volume);

@@ -25,6 +25,7 @@
 #include "core/volume/Volume.h"
 #include "render/GpuRayCaster.h"
 #include "render/OffscreenContext.h"
+#include "tests/perf/BenchScenes.h"
 
 using namespace lucent;
 using Clock = std::chrono::steady_clock;
@@ -39,29 +40,12 @@ double msSince(Clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
-
 glm::ivec2 benchSize() {
     glm::ivec2 s(512, 512);
     if (const char* e = std::getenv("LUCENT_BENCH_SIZE")) {
         std::sscanf(e, "%dx%d", &s.x, &s.y);
     }
     return s;
-}
-
-TransferFunction boneTf(const Volume& v, double unitMm) {
-    TransferFunction tf = loadPreset("ct-bone");
-    if (unitMm > 0.0) {
-        const glm::dvec3 s = v.geometry().spacing;
-        const double ratio = std::min({s.x, s.y, s.z}) / unitMm;
-        for (OpacityPoint& p : tf.opacity) {
-            p.opacity = 1.0 - std::pow(1.0 - p.opacity, ratio);
-        }
-    }
-    return tf;
 }
 
 // Mirrored tiles of the CT, so that the tiled volume has no seams.
@@ -120,7 +104,7 @@ private slots:
         const Volume volume = loadPath(philips());
         RenderDescription d;
         d.volume = &volume;
-        d.transferFunction = boneTf(volume, unitMm);
+        d.transferFunction = bench::opacityPerUnit(loadPreset("ct-bone"), volume, unitMm);
         d.width = benchSize().x;
         d.height = benchSize().y;
         GpuOptions options;
@@ -155,7 +139,7 @@ private slots:
         qInfo("gpu_render%s: render_ms=%.1f (median of 6, %dx%d) first_ms=%.1f samples=%zu "
               "bricks_used=%zu/%zu uploaded_mib=%.1f psnr_db=%.2f ssim=%.4f vs the CPU with the "
               "same settings; psnr_db=%.2f ssim=%.4f vs the converged reference",
-              tag.c_str(), median(ms), d.width, d.height, firstMs, first.frame.stats.samples,
+              tag.c_str(), bench::median(ms), d.width, d.height, firstMs, first.frame.stats.samples,
               first.frame.stats.bricksUsed, first.frame.stats.bricksTotal, uploadedMib,
               psnr(first.frame.image, sameRef.image), ssim(first.frame.image, sameRef.image),
               psnr(first.frame.image, truth.image), ssim(first.frame.image, truth.image));
@@ -194,7 +178,7 @@ private slots:
             }
             qInfo("gpu_cubic_coefficients=%s: render_ms=%.1f (median of 3) uploaded_mib=%.1f "
                   "psnr_db=%.2f ssim=%.4f vs the CPU reference (double, same settings)",
-                  half ? "float16" : "float32", median(ms),
+                  half ? "float16" : "float32", bench::median(ms),
                   double(first.gpu.bytesUploaded) / 1048576.0,
                   psnr(first.frame.image, reference.image),
                   ssim(first.frame.image, reference.image));
@@ -246,8 +230,8 @@ private slots:
               "(%s) first_ms=%.1f render_ms=%.1f (median of 3) resident=%zu slots=%zu "
               "uploaded_mib=%.1f gradients=%s",
               big.dims().x, big.dims().y, big.dims().z, double(big.byteCount()) / 1e9, buildMs,
-              budgetMib, first.frame.stats.lod, first.gpu.lodReason.c_str(), firstMs, median(ms),
-              first.gpu.bricksResident, first.gpu.poolSlots,
+              budgetMib, first.frame.stats.lod, first.gpu.lodReason.c_str(), firstMs,
+              bench::median(ms), first.gpu.bricksResident, first.gpu.poolSlots,
               double(first.gpu.bytesUploaded) / 1048576.0,
               first.gpu.gradientsCached ? "cached" : "computed");
         QVERIFY(first.gpu.poolSlots > 0);
