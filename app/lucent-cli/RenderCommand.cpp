@@ -81,6 +81,9 @@ RenderDescription describe(const QCommandLineParser& p, const Volume& volume) {
     d.camera.azimuth = number(p, "azimuth", 0.0);
     d.camera.elevation = number(p, "elevation", 0.0);
     d.camera.zoom = number(p, "zoom", 1.0);
+    d.camera.distance = number(p, "distance", 0.0);
+    d.camera.panRight = number(p, "pan-right", 0.0);
+    d.camera.panUp = number(p, "pan-up", 0.0);
     SamplingSettings& s = d.sampling;
     s.step = number(p, "step", s.step);
     s.interpolation = choice(p, "interp", Interpolation::Linear,
@@ -159,6 +162,12 @@ int renderRemote(const QCommandLineParser& p, QTextStream& err) {
                     << " is not sent to a remote backend (the server chooses its sampling)\n";
             }
         }
+        for (const char* camera : {"distance", "pan-right", "pan-up"}) {
+            if (p.isSet(camera)) {
+                err << "lucent-cli render: --" << camera
+                    << " is not sent to a remote backend (protocol v1 cameras orbit the centre)\n";
+            }
+        }
     } catch (const std::exception& e) {
         err << "lucent-cli render: " << e.what() << "\n";
         return kUsage;
@@ -205,6 +214,12 @@ int runRender(const QStringList& args) {
         {"azimuth", "Turn about the head-foot axis, degrees.", "DEG"},
         {"elevation", "Turn about the left-right axis, degrees.", "DEG"},
         {"zoom", "1 fits the volume.", "F"},
+        {"distance",
+         "Eye to the point looked at, mm (default: fit the volume; less than the "
+         "volume's radius puts the eye inside).",
+         "MM"},
+        {"pan-right", "Move the point looked at to the view's right, mm.", "MM"},
+        {"pan-up", "Move the point looked at up in the view, mm.", "MM"},
         {"step", "Sampling step in voxels of the smallest spacing (default 0.5).", "VOXELS"},
         {"interp", "nearest, linear or cubic.", "NAME"},
         {"precision", "float (fast) or double (reference).", "NAME"},

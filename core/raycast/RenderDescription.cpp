@@ -61,6 +61,12 @@ void RenderDescription::validate() const {
         !std::isfinite(isoValue)) {
         fail("azimuth, elevation and iso value must be finite");
     }
+    if (!(camera.distance >= 0.0) || !std::isfinite(camera.distance)) {
+        fail("camera distance must be 0 (fit the volume) or a positive number of mm");
+    }
+    if (!std::isfinite(camera.panRight) || !std::isfinite(camera.panUp)) {
+        fail("camera pan must be finite");
+    }
     if (sampling.classification == Classification::Pre &&
         sampling.interpolation == Interpolation::Cubic) {
         fail("pre-classification is available with nearest and linear interpolation, not cubic");

@@ -17,6 +17,14 @@ double volumeRadius(const VolumeGeometry& g) {
     return std::max(r, 1e-6);
 }
 
+double fitDistance(const VolumeGeometry& geometry, const Camera& camera, int width, int height) {
+    const double aspect = static_cast<double>(width) / static_cast<double>(height);
+    const double halfFov = glm::radians(camera.fieldOfView) * 0.5;
+    // The bounding sphere just fits the narrower side of the view.
+    const double fitHalf = std::min(halfFov, std::atan(std::tan(halfFov) * aspect));
+    return volumeRadius(geometry) / std::sin(fitHalf);
+}
+
 ViewFrame makeViewFrame(const VolumeGeometry& geometry, const Camera& camera, int width,
                         int height) {
     ViewFrame f;
@@ -29,11 +37,12 @@ ViewFrame makeViewFrame(const VolumeGeometry& geometry, const Camera& camera, in
     f.up = glm::normalize(r * glm::dvec3(0, 0, 1));
     f.aspect = static_cast<double>(width) / static_cast<double>(height);
     const double halfFov = glm::radians(camera.fieldOfView) * 0.5;
-    // Zoom 1: the bounding sphere just fits the narrower side of the view.
-    const double fitHalf = std::min(halfFov, std::atan(std::tan(halfFov) * f.aspect));
-    const double distance = volumeRadius(geometry) / std::sin(fitHalf);
+    const double distance =
+        camera.distance > 0.0 ? camera.distance : fitDistance(geometry, camera, width, height);
     f.tanHalfFov = std::tan(halfFov) / camera.zoom;
-    f.eye = volumeCentre(geometry) - f.forward * distance;
+    const glm::dvec3 target =
+        volumeCentre(geometry) + f.right * camera.panRight + f.up * camera.panUp;
+    f.eye = target - f.forward * distance;
     return f;
 }
 

@@ -34,6 +34,10 @@ struct ViewFrame {
 ViewFrame makeViewFrame(const VolumeGeometry& geometry, const Camera& camera, int width,
                         int height);
 
+// The eye's distance from the point looked at when Camera::distance is 0: the
+// volume's bounding sphere just fits the narrower side of a view of this size.
+double fitDistance(const VolumeGeometry& geometry, const Camera& camera, int width, int height);
+
 // Radius of the sphere around the voxel centres (centred on volumeCentre), in LPS mm.
 double volumeRadius(const VolumeGeometry& geometry);
 
