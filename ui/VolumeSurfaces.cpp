@@ -4,9 +4,6 @@
 #include <QOpenGLFunctions>
 #include <QPainter>
 
-#include "core/volume/BrickResidency.h"
-#include "render/GlError.h"
-#include "render/GpuRayCaster.h"
 #include "ui/VolumeView.h"
 
 namespace lucent {
@@ -32,18 +29,21 @@ void VolumeGlSurface::initializeGL() {
                 .arg(f.majorVersion())
                 .arg(f.minorVersion())
                 .arg(f.profile() == QSurfaceFormat::CoreProfile ? "core" : "compatibility"));
+        return;
     }
+    // A new context (first show, or another window): render afresh in it.
+    view_->requestRender();
 }
 
 void VolumeGlSurface::releaseGl() {
-    if (!caster_) {
+    if (!view_->localBackend().holdsGlResources()) {
         return;
     }
     const bool madeCurrent = context() != nullptr;
     if (madeCurrent) {
         makeCurrent();
     }
-    caster_.reset();
+    view_->localBackend().releaseGl();
     if (madeCurrent) {
         doneCurrent();
     }
@@ -66,48 +66,23 @@ void VolumeGlSurface::paintGL() {
     if (failed_) {
         return;
     }
-    const QSize deviceSize = size() * devicePixelRatioF();
-    auto render = [this](const RenderDescription& d) {
-        if (!caster_ || casterGeneration_ != view_->volumeGeneration()) {
-            caster_.reset();
-            caster_ = std::make_unique<GpuRayCaster>(*view_->volume());
-            casterGeneration_ = view_->volumeGeneration();
-        }
-        RenderResult frame = caster_->render(d).frame;
-        // The caster leaves its own framebuffer bound; QPainter draws into ours.
-        QOpenGLFunctions* f = context()->functions();
-        f->glBindFramebuffer(GL_FRAMEBUFFER, defaultFramebufferObject());
-        f->glViewport(0, 0, width() * devicePixelRatio(), height() * devicePixelRatio());
-        return frame;
-    };
-    try {
-        QPainter painter(this);
-        view_->paintFrame(painter, deviceSize, render);
-    } catch (const GlError& e) {
-        caster_.reset();
-        reportFailure(QString::fromStdString(e.what()));
-    } catch (const BudgetError& e) {
-        caster_.reset();
-        reportFailure(QString::fromStdString(e.what()));
-    }
+    view_->renderPending();
+    // The caster leaves its own framebuffer bound; QPainter draws into ours.
+    gl->glBindFramebuffer(GL_FRAMEBUFFER, defaultFramebufferObject());
+    gl->glViewport(0, 0, width() * devicePixelRatio(), height() * devicePixelRatio());
+    QPainter painter(this);
+    view_->paintFrame(painter);
 }
 
-VolumeCpuSurface::VolumeCpuSurface(VolumeView* view) : QWidget(view), view_(view) {
+VolumeFrameSurface::VolumeFrameSurface(VolumeView* view) : QWidget(view), view_(view) {
     setAttribute(Qt::WA_TransparentForMouseEvents);
     setAttribute(Qt::WA_OpaquePaintEvent);
 }
 
-void VolumeCpuSurface::paintEvent(QPaintEvent*) {
+void VolumeFrameSurface::paintEvent(QPaintEvent*) {
+    view_->renderPending();
     QPainter painter(this);
-    try {
-        view_->paintFrame(
-            painter, size() * devicePixelRatioF(),
-            [this](const RenderDescription& d) { return view_->cpuCaster().render(d); });
-    } catch (const std::exception& e) {
-        painter.setPen(QColor(255, 120, 80));
-        painter.drawText(rect().adjusted(6, 4, -6, -4), Qt::AlignLeft | Qt::AlignTop,
-                         tr("Cannot render: %1").arg(QString::fromStdString(e.what())));
-    }
+    view_->paintFrame(painter);
 }
 
 } // namespace lucent

@@ -49,11 +49,36 @@ TransferFunction defaultTransferFunction(const Volume* volume) {
 } // namespace
 
 VolumeView::VolumeView(QWidget* parent, Backend preferred)
-    : QWidget(parent), transferFunction_(defaultTransferFunction(nullptr)) {
+    : QWidget(parent), local_(std::make_unique<LocalRenderBackend>()),
+      remote_(std::make_unique<RemoteRenderBackend>()),
+      transferFunction_(defaultTransferFunction(nullptr)) {
     setMinimumSize(120, 120);
     setFocusPolicy(Qt::StrongFocus);
     auto* layout = new QStackedLayout(this);
     layout->setContentsMargins(0, 0, 0, 0);
+    for (RenderBackend* backend :
+         {static_cast<RenderBackend*>(local_.get()), static_cast<RenderBackend*>(remote_.get())}) {
+        connect(backend, &RenderBackend::frameReady, this, [this, backend](const BackendFrame& f) {
+            if (backend == &activeBackend()) {
+                onFrame(f);
+            }
+        });
+        connect(backend, &RenderBackend::frameFailed, this, [this, backend](const QString& why) {
+            if (backend == &activeBackend()) {
+                onFrameFailed(why);
+            }
+        });
+    }
+    connect(local_.get(), &LocalRenderBackend::renderWanted, this, &VolumeView::updateSurface);
+    // Not now: the GL surface is in the middle of painting and is replaced.
+    connect(local_.get(), &LocalRenderBackend::gpuFailed, this, &VolumeView::fallBackToCpu,
+            Qt::QueuedConnection);
+    connect(remote_.get(), &RemoteRenderBackend::statusChanged, this, [this] {
+        if (backend_ == Backend::Remote) {
+            frameError_.clear();
+            updateNotice();
+        }
+    });
     if (preferred == Backend::Gpu) {
         glFailure_ = glUnavailableReason();
     } else {
@@ -73,54 +98,95 @@ QSurfaceFormat VolumeView::surfaceFormat() {
     return format;
 }
 
+RenderBackend& VolumeView::activeBackend() {
+    if (backend_ == Backend::Remote) {
+        return *remote_;
+    }
+    return *local_;
+}
+
 void VolumeView::useSurface(Backend backend) {
     auto* layout = static_cast<QStackedLayout*>(this->layout());
-    if (surface_ != nullptr) {
-        layout->removeWidget(surface_);
-        surface_->hide();
-        surface_->deleteLater();
-    }
+    const bool wasRemote = backend_ == Backend::Remote;
+    // A GL surface releases the local backend's GL resources as it goes.
+    surface_.reset();
     backend_ = backend;
     if (backend == Backend::Gpu) {
-        surface_ = new VolumeGlSurface(this);
-        setNotice({});
+        local_->setDevice(LocalRenderBackend::Device::Gpu);
+        surface_ = std::make_unique<VolumeGlSurface>(this);
     } else {
-        surface_ = new VolumeCpuSurface(this);
-        setNotice(tr("3D on the CPU: %1").arg(glFailure_));
+        local_->setDevice(LocalRenderBackend::Device::Cpu);
+        surface_ = std::make_unique<VolumeFrameSurface>(this);
     }
-    layout->addWidget(surface_);
-    layout->setCurrentWidget(surface_);
+    if (backend != Backend::Remote && wasRemote) {
+        remote_->disconnectFromServer();
+    }
+    layout->addWidget(surface_.get());
+    layout->setCurrentWidget(surface_.get());
+    frameError_.clear();
+    updateNotice();
+    emit backendChanged(backend_);
+    requestRender();
+}
+
+void VolumeView::renderOnServer(const RemoteServerSettings& settings) {
+    remote_->setVolume(volume_);
+    if (backend_ != Backend::Remote) {
+        useSurface(Backend::Remote);
+    }
+    if (settings != remote_->settings() || remote_->status() == BackendStatus::Failed ||
+        remote_->status() == BackendStatus::Disconnected) {
+        remote_->connectTo(settings);
+    }
+    requestRender();
+}
+
+void VolumeView::renderLocally() {
+    if (backend_ != Backend::Remote) {
+        return;
+    }
+    useSurface(glFailure_.isEmpty() ? Backend::Gpu : Backend::Cpu);
 }
 
 void VolumeView::fallBackToCpu(const QString& reason) {
-    if (backend_ == Backend::Cpu) {
+    if (backend_ != Backend::Gpu) {
         return;
     }
     glFailure_ = reason;
     useSurface(Backend::Cpu);
 }
 
-void VolumeView::setNotice(const QString& notice) {
-    if (notice != notice_) {
-        notice_ = notice;
+void VolumeView::updateNotice() {
+    QString line;
+    if (backend_ == Backend::Cpu) {
+        line = tr("3D on the CPU: %1").arg(glFailure_);
+    } else if (backend_ == Backend::Remote) {
+        line = tr("3D on the server: %1").arg(remote_->statusMessage());
+    }
+    if (!frameError_.isEmpty()) {
+        line = line.isEmpty() ? frameError_ : line + "; " + frameError_;
+    }
+    if (line != notice_) {
+        notice_ = line;
         emit noticeChanged(notice_);
+        updateSurface();
     }
 }
 
-CpuRayCaster& VolumeView::cpuCaster() {
-    if (!cpuCaster_ || cpuCasterGeneration_ != volumeGeneration_) {
-        cpuCaster_.reset();
-        cpuCaster_ = std::make_unique<CpuRayCaster>(*volume_);
-        cpuCasterGeneration_ = volumeGeneration_;
+void VolumeView::updateSurface() {
+    if (surface_) {
+        surface_->update();
     }
-    return *cpuCaster_;
 }
 
 void VolumeView::setVolume(std::shared_ptr<const Volume> volume) {
-    // The GL surface's caster is remade on its next frame, in its own context.
-    cpuCaster_.reset();
     volume_ = std::move(volume);
     ++volumeGeneration_;
+    // The GPU caster is remade on its next frame, in its own context.
+    local_->setVolume(volume_);
+    remote_->setVolume(volume_);
+    lastFrame_ = {};
+    lastFrameCurrent_ = false;
     transferFunction_ = defaultTransferFunction(volume_.get());
     clip_ = ClipBox{};
     pan_ = {};
@@ -177,9 +243,19 @@ void VolumeView::setPan(const QPointF& pan) {
 }
 
 void VolumeView::requestRender() {
-    if (surface_ != nullptr) {
-        surface_->update();
+    if (!surface_) {
+        return;
     }
+    if (!volume_ || volume_->empty()) {
+        updateSurface();
+        return;
+    }
+    activeBackend().request(description(), FrameOptions{interacting(), quality_});
+}
+
+void VolumeView::resizeEvent(QResizeEvent* event) {
+    QWidget::resizeEvent(event);
+    requestRender();
 }
 
 RenderDescription VolumeView::description() const {
@@ -202,41 +278,53 @@ RenderDescription VolumeView::description(int width, int height) const {
 }
 
 QImage VolumeView::grabImage() {
-    if (auto* gl = qobject_cast<VolumeGlSurface*>(surface_)) {
+    if (auto* gl = qobject_cast<VolumeGlSurface*>(surface_.get())) {
         return gl->grabFramebuffer();
     }
     return surface_->grab().toImage();
 }
 
-void VolumeView::paintFrame(QPainter& painter, const QSize& deviceSize,
-                            const FrameRenderer& render) {
+void VolumeView::renderPending() {
+    if (backend_ != Backend::Remote) {
+        local_->renderPending();
+    }
+}
+
+void VolumeView::onFrame(const BackendFrame& frame) {
+    const RenderDescription still = description();
+    lastFrame_ = frame.interactive ? scaledTo(frame.image, still.width, still.height) : frame.image;
+    lastFrameCurrent_ = frame.current;
+    if (!frameError_.isEmpty()) {
+        frameError_.clear();
+        updateNotice();
+    }
+    emit renderedFrame(frame.stats, frame.interactive);
+    if (backend_ == Backend::Remote) {
+        updateSurface(); // local frames come from inside the surface's paint
+    }
+}
+
+void VolumeView::onFrameFailed(const QString& reason) {
+    frameError_ = tr("Cannot render: %1").arg(reason);
+    updateNotice();
+}
+
+void VolumeView::paintFrame(QPainter& painter) {
     const QRectF area(QPointF(0, 0), QSizeF(painter.device()->width(), painter.device()->height()));
     painter.fillRect(area, Qt::black);
     if (!volume_ || volume_->empty()) {
         painter.setPen(Qt::gray);
         painter.drawText(area, Qt::AlignCenter, tr("No volume"));
-        return;
-    }
-    const RenderDescription still =
-        description(std::max(1, deviceSize.width()), std::max(1, deviceSize.height()));
-    const bool interactive = interacting();
-    QString renderError;
-    try {
-        RenderResult frame = render(interactive ? interactiveDescription(still, quality_) : still);
-        lastFrame_ =
-            interactive ? scaledTo(frame.image, still.width, still.height) : std::move(frame.image);
+    } else if (!lastFrame_.pixels.empty()) {
         const QImage image(lastFrame_.pixels.data(), lastFrame_.width, lastFrame_.height,
                            4 * lastFrame_.width, QImage::Format_RGBA8888);
         painter.setRenderHint(QPainter::SmoothPixmapTransform, false);
         painter.drawImage(QRectF(pan_, area.size()), image);
-        emit renderedFrame(frame.stats, interactive);
-    } catch (const std::invalid_argument& e) {
-        renderError = tr("Cannot render: %1").arg(QString::fromStdString(e.what()));
     }
-    const QString line = renderError.isEmpty() ? notice_ : renderError;
-    if (!line.isEmpty()) {
+    if (!notice_.isEmpty()) {
         painter.setPen(QColor(255, 200, 80));
-        painter.drawText(area.adjusted(6, 4, -6, -4), Qt::AlignLeft | Qt::AlignTop, line);
+        painter.drawText(area.adjusted(6, 4, -6, -4),
+                         Qt::AlignLeft | Qt::AlignTop | Qt::TextWordWrap, notice_);
     }
 }
 

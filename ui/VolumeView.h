@@ -1,7 +1,6 @@
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <memory>
 
 #include <QImage>
@@ -13,6 +12,8 @@
 #include "core/raycast/CpuRayCaster.h"
 #include "core/raycast/InteractiveQuality.h"
 #include "core/raycast/RenderDescription.h"
+#include "render/LocalRenderBackend.h"
+#include "render/RemoteRenderBackend.h"
 
 class QPainter;
 
@@ -20,8 +21,10 @@ namespace lucent {
 
 // The 3D view: the volume ray cast on the GPU (GpuRayCaster in a QOpenGLWidget's
 // context) or, where OpenGL 4.3 cannot be had, on the CPU (CpuRayCaster), with a
-// one-line notice saying why. The view owns the camera, mode, clip box and
-// transfer function it renders with.
+// one-line notice saying why; or on a lucent-server (renderOnServer), switched at
+// run time. Frames come from a RenderBackend (LocalRenderBackend or
+// RemoteRenderBackend); the view owns the camera, mode, clip box and transfer
+// function it renders with, so a switch keeps them.
 //
 // Mouse: left-drag rotates (kDegreesPerPixel of azimuth per pixel right, of
 // elevation per pixel down), right-drag zooms (up = closer), middle-drag pans,
@@ -33,7 +36,7 @@ class VolumeView : public QWidget {
     Q_OBJECT
 
 public:
-    enum class Backend { Gpu, Cpu };
+    enum class Backend { Gpu, Cpu, Remote };
     static constexpr double kDegreesPerPixel = 0.5;
     static constexpr double kZoomPerPixel = 0.01; // zoom *= exp(-dy * this)
     static constexpr double kWheelZoomPerNotch = 1.1;
@@ -65,19 +68,30 @@ public:
     RenderDescription description(int width, int height) const;
 
     Backend backend() const { return backend_; }
-    // Why the view is not on the GPU, or the last render error; empty otherwise.
+    // Renders on a lucent-server from now on: camera, transfer function, mode
+    // and clip box go with it. The connection status is in notice().
+    void renderOnServer(const RemoteServerSettings& settings);
+    // Back to this computer: the GPU, or the CPU where OpenGL cannot be had.
+    void renderLocally();
+    LocalRenderBackend& localBackend() { return *local_; }
+    RemoteRenderBackend& remoteBackend() { return *remote_; }
+
+    // The view's notice line: why it is not on the GPU, the server's status, or
+    // the last render error; empty otherwise.
     QString notice() const { return notice_; }
     bool interacting() const { return dragButton_ != Qt::NoButton; }
     // The last frame as shown (scaled up when it was an interactive one).
     const ImageRGBA8& lastFrame() const { return lastFrame_; }
-    // The view's pixels as on screen (renders a frame).
+    // Whether it shows the newest request (a server's frames may lag behind).
+    bool lastFrameCurrent() const { return lastFrameCurrent_; }
+    // The view's pixels as on screen.
     QImage grabImage();
 
-    // Used by the render surfaces: renders one frame with `render` and paints it.
-    using FrameRenderer = std::function<RenderResult(const RenderDescription&)>;
-    void paintFrame(QPainter& painter, const QSize& deviceSize, const FrameRenderer& render);
-    CpuRayCaster& cpuCaster();
-    // Called by the GL surface when OpenGL fails: switches to the CPU renderer.
+    // Used by the surfaces, from their paint: renders a waiting local request
+    // (the GL surface's context is current), then paints the last frame.
+    void renderPending();
+    void paintFrame(QPainter& painter);
+    // Called when OpenGL fails: switches to the CPU renderer.
     void fallBackToCpu(const QString& reason);
 
 public slots:
@@ -98,21 +112,29 @@ signals:
     // After each frame: its statistics and whether it was an interactive one.
     void renderedFrame(const lucent::RenderStats& stats, bool interactive);
     void noticeChanged(const QString& notice);
+    void backendChanged(lucent::VolumeView::Backend backend);
 
 protected:
     void mousePressEvent(QMouseEvent* event) override;
     void mouseMoveEvent(QMouseEvent* event) override;
     void mouseReleaseEvent(QMouseEvent* event) override;
     void wheelEvent(QWheelEvent* event) override;
+    void resizeEvent(QResizeEvent* event) override;
 
 private:
     void useSurface(Backend backend);
-    void setNotice(const QString& notice);
+    RenderBackend& activeBackend();
+    void onFrame(const BackendFrame& frame);
+    void onFrameFailed(const QString& reason);
+    void updateNotice();
+    void updateSurface();
 
     std::shared_ptr<const Volume> volume_;
     std::uint64_t volumeGeneration_ = 0;
-    std::unique_ptr<CpuRayCaster> cpuCaster_;
-    std::uint64_t cpuCasterGeneration_ = 0;
+    // Before surface_: the GL surface releases the local backend's GL resources
+    // when it goes, so the backends must outlive it.
+    std::unique_ptr<LocalRenderBackend> local_;
+    std::unique_ptr<RemoteRenderBackend> remote_;
 
     TransferFunction transferFunction_;
     Camera camera_;
@@ -124,10 +146,13 @@ private:
     QPointF pan_;
 
     Backend backend_ = Backend::Cpu;
-    QWidget* surface_ = nullptr; // a child: VolumeGlSurface or VolumeCpuSurface
+    std::unique_ptr<QWidget> surface_; // a child: VolumeGlSurface or VolumeFrameSurface
     QString notice_;
+    QString backendNotice_; // why not the GPU, or the server's status
+    QString frameError_;    // the last request that failed, until a frame comes
     QString glFailure_;
     ImageRGBA8 lastFrame_;
+    bool lastFrameCurrent_ = false;
 
     Qt::MouseButton dragButton_ = Qt::NoButton;
     QPointF dragStart_;

@@ -1,0 +1,49 @@
+#pragma once
+// Where the 3D view renders: the render server settings (URL, token, series)
+// in a small dialog, kept with QSettings (group "renderServer"), and the View
+// menu's "Render 3D on: This Computer / Server..." that switches the view.
+
+#include <QDialog>
+
+#include "render/RemoteRenderBackend.h"
+
+class QLabel;
+class QLineEdit;
+class QMenu;
+class QSettings;
+
+namespace lucent {
+
+class VolumeView;
+
+// Keys renderServer/url, renderServer/token, renderServer/series.
+RemoteServerSettings loadRenderServerSettings(const QSettings& settings);
+void saveRenderServerSettings(QSettings& settings, const RemoteServerSettings& server);
+
+class RenderServerSettings : public QDialog {
+    Q_OBJECT
+
+public:
+    explicit RenderServerSettings(const RemoteServerSettings& initial, QWidget* parent = nullptr);
+
+    RemoteServerSettings settings() const;
+    // Accepts only usable settings; otherwise shows what is wrong, naming the field.
+    void accept() override;
+
+    QLineEdit* urlEdit() const { return url_; }
+    QLineEdit* tokenEdit() const { return token_; }
+    QLineEdit* seriesEdit() const { return series_; }
+    QLabel* problemLabel() const { return problem_; }
+
+private:
+    QLineEdit* url_;
+    QLineEdit* token_;
+    QLineEdit* series_;
+    QLabel* problem_;
+};
+
+// Adds "Render 3D on" to menu: "This Computer" and "Server..." (the dialog, then
+// the switch; the settings are saved in `settings`). The checked item follows the view.
+void addRenderBackendMenu(QMenu* menu, VolumeView* view, QSettings* settings);
+
+} // namespace lucent
