@@ -2,7 +2,6 @@
 // trade"): time, samples, PSNR and SSIM of every sampling setting against the
 // reference, the front, a CSV and a plot.
 #include <QCommandLineParser>
-#include <QElapsedTimer>
 #include <QFile>
 #include <QTextStream>
 
@@ -14,7 +13,6 @@
 #include "CliCommand.h"
 #include "QualityPlot.h"
 #include "TerminalProgress.h"
-#include "core/image/ImageMetrics.h"
 #include "core/io/Catalog.h"
 #include "core/raycast/CpuRayCaster.h"
 #include "core/raycast/QualityFront.h"
@@ -26,17 +24,7 @@ namespace lucent::cli {
 namespace {
 
 QString csvLine(const QualityPoint& p) {
-    return QStringLiteral("%1,%2,%3,%4,%5,%6,%7,%8,%9,%10\n")
-        .arg(p.setting.step)
-        .arg(interpolationName(p.setting.interpolation))
-        .arg(QString::fromStdString(p.setting.classificationName()))
-        .arg(p.setting.shading ? 1 : 0)
-        .arg(p.setting.brickSize)
-        .arg(p.ms, 0, 'f', 2)
-        .arg(p.samples)
-        .arg(std::isinf(p.psnrDb) ? QStringLiteral("inf") : QString::number(p.psnrDb, 'f', 2))
-        .arg(p.ssim, 0, 'f', 4)
-        .arg(p.pareto ? 1 : 0);
+    return QString::fromStdString(qualityCsvRow(p));
 }
 
 } // namespace
@@ -129,39 +117,12 @@ int runBench(const QStringList& args) {
         const std::function<RenderResult(const RenderDescription&)> render =
             [&](const RenderDescription& d) { return gpu ? gpu->render(d).frame : cpu.render(d); };
 
-        QElapsedTimer timer;
-        timer.start();
-        // The reference, once per shading state (shading is part of what is compared).
-        const ImageRGBA8 refShaded = cpu.render(qualityReference(base)).image;
-        RenderDescription flat = base;
-        flat.transferFunction.shading.enabled = false;
-        const ImageRGBA8 refFlat = cpu.render(qualityReference(flat)).image;
-        err << "reference rendered in " << timer.elapsed() << " ms\n";
-
-        std::vector<QualityPoint> points;
-        for (const QualitySetting& setting : qualitySweep(steps, bricks)) {
-            const RenderDescription d = setting.applyTo(base);
-            QualityPoint p;
-            p.setting = setting;
-            RenderResult first = render(d); // warms tables and uploads
-            std::vector<double> ms;
-            for (int n = 0; n < frames; ++n) {
-                timer.restart();
-                first = render(d);
-                ms.push_back(double(timer.nsecsElapsed()) / 1e6);
-            }
-            p.ms = median(ms);
-            p.samples = first.stats.samples;
-            const ImageRGBA8& ref = setting.shading ? refShaded : refFlat;
-            p.psnrDb = psnr(first.image, ref);
-            p.ssim = ssim(first.image, ref);
-            points.push_back(p);
-            err << "." << Qt::flush;
-        }
+        const std::vector<QualityPoint> points = measureQuality(
+            base, qualitySweep(steps, bricks), render,
+            [&](const RenderDescription& d) { return cpu.render(d); }, frames,
+            [&](std::size_t, std::size_t) { err << "." << Qt::flush; });
         err << "\n";
-        markParetoFront(points);
-        const QString header =
-            "step,interp,classification,shading,brick,ms,samples,psnr_db,ssim,pareto\n";
+        const QString header = QString::fromStdString(qualityCsvHeader()) + "\n";
         if (parser.isSet("csv")) {
             QFile f(parser.value("csv"));
             if (!f.open(QIODevice::WriteOnly | QIODevice::Truncate)) {

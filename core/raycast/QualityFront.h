@@ -4,10 +4,13 @@
 // the front (none faster and more accurate at once). Renderer-agnostic: the
 // caller renders.
 
+#include <cstddef>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "core/raycast/CpuRayCaster.h"
 #include "core/raycast/RenderDescription.h"
 
 namespace lucent {
@@ -57,5 +60,30 @@ void markParetoFront(std::vector<QualityPoint>& points);
 // frame; the fastest point when none is that fast; nullopt for no points.
 std::optional<QualityPoint> bestWithin(const std::vector<QualityPoint>& points, double ms,
                                        bool shading);
+
+// The reduced sweep of a quick front, around the settings the full fronts put
+// on the front (docs/quality): steps 2, 1, 0.5 and 0.25 voxels with trilinear
+// and tricubic, nearest at step 2; post-classification; bricks of 64; the
+// given shading only.
+std::vector<QualitySetting> quickSweep(bool shading);
+
+// Renders one frame with the renderer being measured.
+using QualityRender = std::function<RenderResult(const RenderDescription&)>;
+
+// Measures each setting on `base`: one warm-up frame, then the median time of
+// `frames` frames, the samples, and PSNR and SSIM against `reference`'s image
+// of qualityReference() (rendered once per shading state); marks the front.
+// `progress(done, total)` is called after each setting when given.
+std::vector<QualityPoint>
+measureQuality(const RenderDescription& base, const std::vector<QualitySetting>& settings,
+               const QualityRender& render, const QualityRender& reference, int frames,
+               const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+// The bench's CSV: header (no newline) and one row per point (with newline).
+std::string qualityCsvHeader();
+std::string qualityCsvRow(const QualityPoint& p);
+// Reads a row written by qualityCsvRow; throws std::invalid_argument naming
+// the column that does not parse.
+QualityPoint parseQualityCsvRow(const std::string& row);
 
 } // namespace lucent

@@ -1,0 +1,148 @@
+#include "core/raycast/MeasuredFront.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace lucent {
+
+namespace {
+
+std::uint64_t fnv1a(const void* data, std::size_t n, std::uint64_t h = 1469598103934665603ull) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < n; ++i) {
+        h = (h ^ p[i]) * 1099511628211ull;
+    }
+    return h;
+}
+
+std::string hex(std::uint64_t v) {
+    char text[17];
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(v));
+    return text;
+}
+
+constexpr const char* kMagic = "# lucent quality front";
+
+} // namespace
+
+double MeasuredFront::timeScale(int requestedWidth, int requestedHeight) const {
+    return double(requestedWidth) * requestedHeight / (double(std::max(1, width)) * height);
+}
+
+std::string volumeFingerprint(const Volume& volume) {
+    const VolumeGeometry& g = volume.geometry();
+    // A lattice of at most about a million bytes, in runs of 64: quick on
+    // gigavoxel volumes, and any real edit of the data moves it.
+    const std::span<const std::byte> bytes = volume.bytes();
+    const std::size_t run = 64;
+    const std::size_t stride = std::max<std::size_t>(run, bytes.size() / 16384);
+    std::uint64_t h = fnv1a(&g.dims, sizeof g.dims);
+    h = fnv1a(&g.spacing, sizeof g.spacing, h);
+    for (std::size_t at = 0; at < bytes.size(); at += stride) {
+        h = fnv1a(bytes.data() + at, std::min(run, bytes.size() - at), h);
+    }
+    char dims[96];
+    std::snprintf(dims, sizeof dims, "%dx%dx%d %s", g.dims.x, g.dims.y, g.dims.z,
+                  voxelTypeName(volume.type()));
+    return volume.seriesUid + " " + dims + " " + hex(h);
+}
+
+std::string frontKey(const RenderDescription& d, const std::string& backend) {
+    return "renderer=" + std::to_string(kRendererVersion) + " backend=" + backend +
+           " mode=" + renderModeName(d.mode) +
+           " shading=" + (d.transferFunction.shading.enabled ? "1" : "0") +
+           " volume=" + volumeFingerprint(*d.volume);
+}
+
+std::filesystem::path frontCachePath(const std::filesystem::path& cacheDir,
+                                     const std::string& key) {
+    return cacheDir / ("quality-front-" + hex(fnv1a(key.data(), key.size())) + ".csv");
+}
+
+std::optional<MeasuredFront> loadFront(const std::filesystem::path& cacheDir,
+                                       const std::string& key) {
+    std::ifstream in(frontCachePath(cacheDir, key));
+    if (!in) {
+        return std::nullopt;
+    }
+    MeasuredFront front;
+    std::string line;
+    // "# lucent quality front WxH", "# key", the CSV header, the rows.
+    if (!std::getline(in, line) || line.rfind(kMagic, 0) != 0 ||
+        std::sscanf(line.c_str() + std::string(kMagic).size(), " %dx%d", &front.width,
+                    &front.height) != 2 ||
+        front.width < 1 || front.height < 1) {
+        return std::nullopt;
+    }
+    if (!std::getline(in, line) || line != "# " + key) {
+        return std::nullopt;
+    }
+    front.key = key;
+    if (!std::getline(in, line) || line != qualityCsvHeader()) {
+        return std::nullopt;
+    }
+    try {
+        while (std::getline(in, line)) {
+            if (!line.empty()) {
+                front.points.push_back(parseQualityCsvRow(line));
+            }
+        }
+    } catch (const std::invalid_argument&) {
+        return std::nullopt;
+    }
+    if (front.points.empty()) {
+        return std::nullopt;
+    }
+    return front;
+}
+
+void saveFront(const std::filesystem::path& cacheDir, const MeasuredFront& front) {
+    const std::filesystem::path path = frontCachePath(cacheDir, front.key);
+    std::error_code ec;
+    std::filesystem::create_directories(cacheDir, ec);
+    // Written aside and renamed: a reader never sees half a file.
+    const std::filesystem::path partial = path.string() + ".part";
+    {
+        std::ofstream out(partial, std::ios::trunc);
+        out << kMagic << " " << front.width << "x" << front.height << "\n"
+            << "# " << front.key << "\n"
+            << qualityCsvHeader() << "\n";
+        for (const QualityPoint& p : front.points) {
+            out << qualityCsvRow(p);
+        }
+        if (!out) {
+            throw std::runtime_error("quality front: cannot write " + partial.string());
+        }
+    }
+    std::filesystem::rename(partial, path, ec);
+    if (ec) {
+        throw std::runtime_error("quality front: cannot write " + path.string() + ": " +
+                                 ec.message());
+    }
+}
+
+MeasuredFront measureQuickFront(const RenderDescription& description, const std::string& backend,
+                                const QualityRender& render, const QualityRender& reference,
+                                const std::function<void(std::size_t, std::size_t)>& progress) {
+    MeasuredFront front;
+    front.key = frontKey(description, backend);
+    RenderDescription base = description;
+    // The quick size keeps the view's aspect, the longer side kQuickFrontSize.
+    const double aspect = double(description.width) / std::max(1, description.height);
+    front.width =
+        aspect >= 1.0 ? kQuickFrontSize : std::max(16, int(std::lround(kQuickFrontSize * aspect)));
+    front.height =
+        aspect >= 1.0 ? std::max(16, int(std::lround(kQuickFrontSize / aspect))) : kQuickFrontSize;
+    base.width = front.width;
+    base.height = front.height;
+    front.points = measureQuality(base, quickSweep(description.transferFunction.shading.enabled),
+                                  render, reference, 2, progress);
+    return front;
+}
+
+} // namespace lucent

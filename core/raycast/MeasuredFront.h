@@ -1,0 +1,61 @@
+#pragma once
+// The quick front of one volume on one backend, measured once and kept in a
+// cache file: a small sweep (quickSweep) at a reduced image size, whose times
+// are scaled to the image size asked for. Keyed by the volume's fingerprint,
+// the backend, the renderer version, the mode and the shading, so another
+// volume, backend or renderer measures its own. Plain C++: the caller gives
+// the cache folder (the user's cache dir in the app and the UI).
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/raycast/QualityFront.h"
+
+namespace lucent {
+
+// Bump when a renderer change alters speed or images: older cache files are
+// then measured again.
+inline constexpr int kRendererVersion = 1;
+
+// The image size a quick front is measured at.
+inline constexpr int kQuickFrontSize = 128;
+
+struct MeasuredFront {
+    std::string key;
+    int width = kQuickFrontSize; // the size the times were measured at
+    int height = kQuickFrontSize;
+    std::vector<QualityPoint> points;
+
+    // Requested pixels over measured pixels: the factor on the front's times.
+    double timeScale(int requestedWidth, int requestedHeight) const;
+};
+
+// The series UID with the dims, spacing, voxel type and a hash of (a lattice
+// of) the voxels: equal for the same data, different for another volume.
+std::string volumeFingerprint(const Volume& volume);
+
+// What a front depends on: volume, backend ("cpu", "gl"), renderer version,
+// mode and shading of `description`.
+std::string frontKey(const RenderDescription& description, const std::string& backend);
+
+// The cache file of `key` in `cacheDir` (a name from a hash of the key).
+std::filesystem::path frontCachePath(const std::filesystem::path& cacheDir, const std::string& key);
+
+// The cached front of `key`, or nullopt when there is none, it is for another
+// key (a hash collision) or it does not parse.
+std::optional<MeasuredFront> loadFront(const std::filesystem::path& cacheDir,
+                                       const std::string& key);
+
+// Writes the front (creating the folder); throws std::runtime_error naming
+// the file when it cannot.
+void saveFront(const std::filesystem::path& cacheDir, const MeasuredFront& front);
+
+// Measures the quick front of `description` (its volume, TF, mode, camera and
+// shading) with `render`, against `reference` (the CPU reference renderer).
+MeasuredFront measureQuickFront(const RenderDescription& description, const std::string& backend,
+                                const QualityRender& render, const QualityRender& reference,
+                                const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+} // namespace lucent

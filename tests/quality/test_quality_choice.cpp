@@ -1,0 +1,176 @@
+// Quality chosen from a front: levels and target times parsed, the most
+// accurate front point within the (scaled) time, the fastest with a message
+// when none fits, the default with a message without a front, the drag step
+// from the same filter, and the cached front read back as written.
+#include <QTemporaryDir>
+#include <QTest>
+
+#include <fstream>
+
+#include "core/raycast/MeasuredFront.h"
+#include "core/raycast/QualityChoice.h"
+#include "tests/raycast/RaycastScenes.h"
+
+using namespace lucent;
+
+namespace {
+
+QualityPoint point(double step, Interpolation interp, double ms, double db, bool shading = true) {
+    QualityPoint p;
+    p.setting.step = step;
+    p.setting.interpolation = interp;
+    p.setting.shading = shading;
+    p.ms = ms;
+    p.psnrDb = db;
+    p.samples = std::size_t(1000 / step);
+    p.ssim = 0.9;
+    return p;
+}
+
+// A front as measured: linear is fast, cubic accurate; one dominated point.
+std::vector<QualityPoint> front() {
+    std::vector<QualityPoint> pts = {
+        point(2, Interpolation::Linear, 10, 33),    point(1, Interpolation::Linear, 20, 36),
+        point(0.5, Interpolation::Linear, 40, 38),  point(2, Interpolation::Nearest, 30, 30),
+        point(1, Interpolation::Cubic, 100, 45),    point(0.5, Interpolation::Cubic, 200, 52),
+        point(0.25, Interpolation::Cubic, 400, 55), point(1, Interpolation::Linear, 5, 40, false),
+    };
+    markParetoFront(pts);
+    return pts;
+}
+
+} // namespace
+
+class TestQualityChoice : public QObject {
+    Q_OBJECT
+private slots:
+    void levelsAndTimesParse() {
+        QCOMPARE(parseQualityRequest("fast").budgetMs, kFastBudgetMs);
+        QCOMPARE(parseQualityRequest("balanced").budgetMs, kBalancedBudgetMs);
+        QCOMPARE(parseQualityRequest("best").budgetMs, kBestBudgetMs);
+        QVERIFY(kFastBudgetMs < kBalancedBudgetMs && kBalancedBudgetMs < kBestBudgetMs);
+        QCOMPARE(parseQualityRequest("120ms").budgetMs, 120.0);
+        QCOMPARE(parseQualityRequest("7.5").budgetMs, 7.5);
+        for (const char* bad : {"", "ms", "quick", "-5ms", "0ms", "12 ms", "nanms", "infms"}) {
+            try {
+                parseQualityRequest(bad);
+                QFAIL(qPrintable(QString("accepted '%1'").arg(bad)));
+            } catch (const std::invalid_argument& e) {
+                QVERIFY2(QString(e.what()).contains(QString("'%1'").arg(bad)), e.what());
+            }
+        }
+    }
+
+    void mostAccurateWithinTheBudget() {
+        const auto pts = front();
+        QVERIFY(!pts[3].pareto); // nearest: slower and worse than linear step 1
+        QualityChoice c = chooseQuality(pts, 50, true);
+        QVERIFY(c.fromFront && c.withinBudget && c.message.empty());
+        QCOMPARE(c.setting.step, 0.5);
+        QVERIFY(c.setting.interpolation == Interpolation::Linear);
+        QCOMPARE(c.psnrDb, 38.0);
+        c = chooseQuality(pts, 250, true);
+        QVERIFY(c.setting.interpolation == Interpolation::Cubic);
+        QCOMPARE(c.setting.step, 0.5);
+        QCOMPARE(chooseQuality(pts, 1e9, true).psnrDb, 55.0);
+        // Times scale with the pixels: four times the pixels, a quarter of the budget.
+        c = chooseQuality(pts, 250, true, 4.0);
+        QCOMPARE(c.psnrDb, 38.0);
+        QCOMPARE(c.predictedMs, 160.0);
+        // The other shading has its own front.
+        c = chooseQuality(pts, 50, false);
+        QVERIFY(!c.setting.shading);
+        QCOMPARE(c.psnrDb, 40.0);
+    }
+
+    void unreachableBudgetGivesTheFastestWithAMessage() {
+        const auto pts = front();
+        for (const double budget : {0.0, 5.0, -1.0}) {
+            const QualityChoice c = chooseQuality(pts, budget, true);
+            QVERIFY(c.fromFront);
+            QVERIFY(!c.withinBudget);
+            QCOMPARE(c.predictedMs, 10.0);
+            QCOMPARE(c.setting.step, 2.0);
+            QVERIFY2(QString::fromStdString(c.message).contains("fastest"), c.message.c_str());
+        }
+    }
+
+    void noFrontGivesTheDefaultWithAMessage() {
+        for (const auto& pts : {std::vector<QualityPoint>{}, front()}) {
+            // front() has one unshaded point only; empty has none at all.
+            const bool shading = pts.empty();
+            QualityChoice c = chooseQuality(pts, 100, shading);
+            if (!pts.empty()) {
+                c = chooseQuality({pts.begin(), pts.begin() + 3}, 100, false);
+            }
+            QVERIFY(!c.fromFront);
+            QVERIFY(!c.withinBudget);
+            QVERIFY2(QString::fromStdString(c.message).contains("no measured front"),
+                     c.message.c_str());
+            QCOMPARE(c.setting.step, QualitySetting{}.step);
+            QVERIFY(QString::fromStdString(describeChoice(c)).contains("not measured"));
+        }
+    }
+
+    void dragUsesACoarserStepOfTheSameFilter() {
+        const auto pts = front();
+        QualitySetting still = chooseQuality(pts, 250, true).setting; // cubic 0.5
+        // A quarter of the pixels while dragging: cubic 1 (100 ms) fits 30 ms * 4.
+        InteractiveQuality q = chooseInteractive(pts, still, 30, 1.0, 2);
+        QCOMPARE(q.imageDivisor, 2);
+        QCOMPARE(q.stepFactor, 2.0);
+        // Nothing fits: the coarsest step of that filter.
+        q = chooseInteractive(pts, still, 1, 1.0, 2);
+        QCOMPARE(q.stepFactor, 2.0);
+        // Everything fits: the still step itself.
+        q = chooseInteractive(pts, still, 1e9, 1.0, 2);
+        QCOMPARE(q.stepFactor, 1.0);
+        still = chooseQuality(pts, 50, true).setting; // linear 0.5
+        q = chooseInteractive(pts, still, 3, 1.0, 2); // linear 2 (10 ms / 4)
+        QCOMPARE(q.stepFactor, 4.0);
+        QCOMPARE(chooseInteractive({}, still, 3, 1.0, 2).stepFactor, 2.0);
+    }
+
+    void cachedFrontReadsBackAsWritten() {
+        QTemporaryDir dir;
+        const Volume v = test::makeVolume(
+            {12, 10, 8}, [](int i, int j, int k) { return double(i * j - k); }, VoxelType::Int16);
+        RenderDescription d;
+        d.volume = &v;
+        MeasuredFront f;
+        f.key = frontKey(d, "cpu");
+        f.width = 128;
+        f.height = 96;
+        f.points = front();
+        const std::filesystem::path cache = dir.filePath("cache/lucent").toStdString();
+        QVERIFY(!loadFront(cache, f.key));
+        saveFront(cache, f);
+        const auto back = loadFront(cache, f.key);
+        QVERIFY(back);
+        QCOMPARE(back->width, 128);
+        QCOMPARE(back->points.size(), f.points.size());
+        for (std::size_t n = 0; n < f.points.size(); ++n) {
+            QCOMPARE(back->points[n].setting.step, f.points[n].setting.step);
+            QVERIFY(back->points[n].setting.interpolation == f.points[n].setting.interpolation);
+            QCOMPARE(back->points[n].pareto, f.points[n].pareto);
+            QCOMPARE(back->points[n].psnrDb, f.points[n].psnrDb);
+        }
+        QCOMPARE(back->timeScale(256, 192), 4.0);
+        // Another backend, shading or volume: another key, no front.
+        QVERIFY(frontKey(d, "gl") != f.key);
+        d.transferFunction.shading.enabled = !d.transferFunction.shading.enabled;
+        QVERIFY(frontKey(d, "cpu") != f.key);
+        Volume w = test::makeVolume(
+            {12, 10, 8}, [](int i, int j, int k) { return double(i * j - k); }, VoxelType::Int16);
+        w.voxels<std::int16_t>()[0] = 999;
+        d.volume = &w;
+        d.transferFunction.shading.enabled = !d.transferFunction.shading.enabled;
+        QVERIFY(frontKey(d, "cpu") != f.key);
+        // A damaged file is measured again, not trusted.
+        std::ofstream(frontCachePath(cache, f.key), std::ios::app) << "1,linear,post,1,64,x\n";
+        QVERIFY(!loadFront(cache, f.key));
+    }
+};
+
+QTEST_GUILESS_MAIN(TestQualityChoice)
+#include "test_quality_choice.moc"
