@@ -99,6 +99,7 @@ RemoteRenderBackend::RemoteRenderBackend(QObject* parent) : RenderBackend(parent
 
 RemoteRenderBackend::~RemoteRenderBackend() {
     if (socket_) {
+        socket_->disconnect(this); // no reports from a half-destroyed object
         socket_->abort();
     }
 }

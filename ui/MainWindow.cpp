@@ -17,6 +17,7 @@
 
 #include "ui/MprCursor.h"
 #include "ui/PacsBrowser.h"
+#include "ui/RenderServerSettings.h"
 #include "ui/ScreenshotExport.h"
 #include "ui/SliceView.h"
 #include "ui/StudyBrowser.h"
@@ -166,6 +167,7 @@ void MainWindow::addViewMenu() {
                             layout_->maximize(layout_->activeView());
                         }
                     });
+    addRenderBackendMenu(menu, volumeView_); // this computer or a render server
     menu->addSeparator();
     for (QDockWidget* dock : findChildren<QDockWidget*>()) {
         menu->addAction(dock->toggleViewAction());

@@ -67,7 +67,7 @@ void RenderServerSettings::accept() {
     }
 }
 
-void addRenderBackendMenu(QMenu* menu, VolumeView* view, QSettings* settings) {
+void addRenderBackendMenu(QMenu* menu, VolumeView* view) {
     QMenu* where = menu->addMenu(QObject::tr("&Render 3D on"));
     auto* group = new QActionGroup(where);
     QAction* local = where->addAction(QObject::tr("This &Computer"));
@@ -82,10 +82,11 @@ void addRenderBackendMenu(QMenu* menu, VolumeView* view, QSettings* settings) {
     follow();
     QObject::connect(view, &VolumeView::backendChanged, where, follow);
     QObject::connect(local, &QAction::triggered, view, [view] { view->renderLocally(); });
-    QObject::connect(server, &QAction::triggered, view, [view, settings, follow] {
-        RenderServerSettings dialog(loadRenderServerSettings(*settings), view->window());
+    QObject::connect(server, &QAction::triggered, view, [view, follow] {
+        QSettings settings;
+        RenderServerSettings dialog(loadRenderServerSettings(settings), view->window());
         if (dialog.exec() == QDialog::Accepted) {
-            saveRenderServerSettings(*settings, dialog.settings());
+            saveRenderServerSettings(settings, dialog.settings());
             view->renderOnServer(dialog.settings());
         }
         follow(); // cancelled: back to where the view still renders

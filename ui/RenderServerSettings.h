@@ -43,7 +43,8 @@ private:
 };
 
 // Adds "Render 3D on" to menu: "This Computer" and "Server..." (the dialog, then
-// the switch; the settings are saved in `settings`). The checked item follows the view.
-void addRenderBackendMenu(QMenu* menu, VolumeView* view, QSettings* settings);
+// the switch; the settings are kept in the application's QSettings). The checked
+// item follows the view.
+void addRenderBackendMenu(QMenu* menu, VolumeView* view);
 
 } // namespace lucent

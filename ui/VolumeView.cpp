@@ -87,7 +87,11 @@ VolumeView::VolumeView(QWidget* parent, Backend preferred)
     useSurface(glFailure_.isEmpty() ? Backend::Gpu : Backend::Cpu);
 }
 
-VolumeView::~VolumeView() = default;
+VolumeView::~VolumeView() {
+    // The backends outlive the surface; nothing they say reaches a view going away.
+    local_->disconnect(this);
+    remote_->disconnect(this);
+}
 
 QSurfaceFormat VolumeView::surfaceFormat() {
     QSurfaceFormat format = QSurfaceFormat::defaultFormat();

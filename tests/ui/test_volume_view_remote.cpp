@@ -1,0 +1,385 @@
+// The 3D view switched to a real lucent-server at run time (started here on
+// loopback, on the real Philips CT that is also loaded locally): its frames
+// against the local CPU reference (PNG stills and JPEG while dragging), camera,
+// transfer function, mode and clip changes, the switch back keeping the view,
+// a killed server and its restart on the same port (the view reconnects by
+// itself), a wrong token, bad settings, the settings dialog and the menu.
+#include <QAction>
+#include <QApplication>
+#include <QLabel>
+#include <QLineEdit>
+#include <QMenu>
+#include <QProcess>
+#include <QSettings>
+#include <QSignalSpy>
+#include <QTemporaryDir>
+#include <QTest>
+
+#include <filesystem>
+#include <memory>
+
+#include <unistd.h>
+
+#include "core/image/ImageMetrics.h"
+#include "core/image/PngIO.h"
+#include "core/io/Catalog.h"
+#include "ui/RenderServerSettings.h"
+#include "ui/VolumeView.h"
+
+using namespace lucent;
+
+namespace {
+
+const std::filesystem::path kSeriesDir =
+    std::filesystem::path(LUCENT_TEST_DATA_DIR) / "dcm_qa_ct/Philips_S21570/S2010";
+constexpr char kToken[] = "token-for-the-view-tests";
+constexpr int kFrameTimeoutMs = 60000;
+
+// A lucent-server serving kSeriesDir on loopback (CPU backend), with its own
+// store and token file; start() again after kill() listens on the same port.
+class ServerRun {
+public:
+    ServerRun() {
+        QFile tokens(dir_.filePath("tokens"));
+        if (tokens.open(QIODevice::WriteOnly)) {
+            tokens.write(QByteArray(kToken) + "\n");
+        }
+    }
+    ~ServerRun() { kill(); }
+
+    // Empty on success, else why not.
+    QString start() {
+        process_ = std::make_unique<QProcess>();
+        process_->setProcessChannelMode(QProcess::SeparateChannels);
+        process_->start(QString(LUCENT_BIN_DIR) + "/lucent-server",
+                        {"--listen", QString("127.0.0.1:%1").arg(port_), "--store",
+                         dir_.filePath("store"), "--data", QString::fromStdString(kSeriesDir),
+                         "--token-file", dir_.filePath("tokens"), "--backend", "cpu"});
+        QString out;
+        (void)QTest::qWaitFor(
+            [&] {
+                out += QString::fromUtf8(process_->readAllStandardOutput());
+                return out.contains("listening on") || process_->state() == QProcess::NotRunning;
+            },
+            60000);
+        const qsizetype at = out.indexOf("listening on 127.0.0.1:");
+        if (at < 0) {
+            return "lucent-server did not start: " + out +
+                   QString::fromUtf8(process_->readAllStandardError());
+        }
+        port_ = quint16(out.mid(at + 23).trimmed().toUInt());
+        return {};
+    }
+    // SIGKILL: no goodbye to the clients.
+    void kill() {
+        if (process_ && process_->state() != QProcess::NotRunning) {
+            process_->kill();
+            process_->waitForFinished(10000);
+        }
+        process_.reset();
+    }
+    quint16 port() const { return port_; }
+    QUrl url() const { return QUrl(QString("ws://127.0.0.1:%1/").arg(port_)); }
+    RemoteServerSettings settings(const QString& token = kToken) const {
+        return {url(), token, {}};
+    }
+
+private:
+    QTemporaryDir dir_;
+    std::unique_ptr<QProcess> process_;
+    quint16 port_ = 0;
+};
+
+double checkedPsnr(const ImageRGBA8& actual, const ImageRGBA8& reference, const char* name) {
+    const double p = psnr(actual, reference);
+    if (p < 40.0) {
+        const std::filesystem::path dir(LUCENT_BIN_DIR);
+        writePng(actual, dir / (std::string("remote_failed_") + name + "_view.png"));
+        writePng(reference, dir / (std::string("remote_failed_") + name + "_cpu.png"));
+    }
+    return p;
+}
+
+} // namespace
+
+class TestVolumeViewRemote : public QObject {
+    Q_OBJECT
+
+private slots:
+    void initTestCase();
+    void init();
+    void cleanup();
+    void remoteFramesMatchLocalRender();
+    void reconnectsAfterServerRestart();
+    void wrongTokenIsNamed();
+    void badSettingsAndMissingSeries();
+    void settingsDialogAndMenu();
+
+private:
+    // Waits for a new frame showing the newest request, of this kind.
+    bool waitForCurrentFrame(bool interactive, int timeoutMs = kFrameTimeoutMs);
+    bool waitForStatus(BackendStatus status, int timeoutMs = 30000);
+    // The CPU reference of what the view shows now.
+    ImageRGBA8 cpuReference(bool interactive = false);
+
+    std::shared_ptr<const Volume> volume_;
+    std::unique_ptr<CpuRayCaster> cpu_;
+    std::unique_ptr<VolumeView> view_;
+    std::vector<bool> frames_; // interactive or not, in arrival order
+};
+
+void TestVolumeViewRemote::initTestCase() {
+    if (!std::filesystem::exists(kSeriesDir)) {
+        QSKIP(qPrintable(QString("real test data not found: %1 (see ../shared/data/README.md)")
+                             .arg(QString::fromStdString(kSeriesDir.string()))));
+    }
+    volume_ = std::make_shared<const Volume>(loadPath(kSeriesDir));
+    QVERIFY(!volume_->seriesUid.empty());
+    cpu_ = std::make_unique<CpuRayCaster>(*volume_);
+}
+
+void TestVolumeViewRemote::init() {
+    frames_.clear();
+    view_ = std::make_unique<VolumeView>();
+    view_->resize(192, 160);
+    view_->remoteBackend().setReconnectDelays(200, 1000);
+    QObject::connect(
+        view_.get(), &VolumeView::renderedFrame, view_.get(),
+        [this](const RenderStats&, bool interactive) { frames_.push_back(interactive); });
+    view_->setVolume(volume_);
+    view_->show();
+    QVERIFY(QTest::qWaitForWindowExposed(view_.get()));
+    QTRY_VERIFY_WITH_TIMEOUT(!frames_.empty(), 30000);
+}
+
+void TestVolumeViewRemote::cleanup() {
+    view_.reset();
+}
+
+bool TestVolumeViewRemote::waitForCurrentFrame(bool interactive, int timeoutMs) {
+    const std::size_t before = frames_.size();
+    return QTest::qWaitFor(
+        [&] {
+            return frames_.size() > before && frames_.back() == interactive &&
+                   view_->lastFrameCurrent();
+        },
+        timeoutMs);
+}
+
+bool TestVolumeViewRemote::waitForStatus(BackendStatus status, int timeoutMs) {
+    return QTest::qWaitFor([&] { return view_->remoteBackend().status() == status; }, timeoutMs);
+}
+
+ImageRGBA8 TestVolumeViewRemote::cpuReference(bool interactive) {
+    const RenderDescription still = view_->description();
+    if (!interactive) {
+        return cpu_->render(still).image;
+    }
+    return scaledTo(cpu_->render(interactiveDescription(still)).image, still.width, still.height);
+}
+
+void TestVolumeViewRemote::remoteFramesMatchLocalRender() {
+    ServerRun server;
+    const QString started = server.start();
+    QVERIFY2(started.isEmpty(), qPrintable(started));
+    Camera camera;
+    camera.azimuth = 30.0;
+    camera.elevation = 10.0;
+    camera.zoom = 1.3;
+    view_->setCamera(camera);
+    const TransferFunction tf = view_->transferFunction();
+
+    view_->renderOnServer(server.settings());
+    QCOMPARE(view_->backend(), VolumeView::Backend::Remote);
+    QVERIFY2(waitForCurrentFrame(false), qPrintable(view_->notice()));
+    QCOMPARE(view_->remoteBackend().status(), BackendStatus::Connected);
+    QVERIFY2(view_->notice().contains("connected"), qPrintable(view_->notice()));
+    QCOMPARE(view_->camera().azimuth, 30.0);
+    QCOMPARE(view_->transferFunction(), tf);
+    QCOMPARE(view_->lastFrame().width, 192);
+    double p = checkedPsnr(view_->lastFrame(), cpuReference(), "still");
+    QVERIFY2(p >= 40.0, qPrintable(QString("still: psnr %1 dB").arg(p)));
+    // Not trivially black: the phantom is there.
+    QVERIFY(psnr(view_->lastFrame(), ImageRGBA8::filled(192, 160, 0)) < 30.0);
+
+    camera.azimuth = 100.0;
+    camera.elevation = -20.0;
+    view_->setCamera(camera);
+    QVERIFY2(waitForCurrentFrame(false), qPrintable(view_->notice()));
+    p = checkedPsnr(view_->lastFrame(), cpuReference(), "camera");
+    QVERIFY2(p >= 40.0, qPrintable(QString("camera: psnr %1 dB").arg(p)));
+
+    view_->setTransferFunction(loadPreset("ct-soft-tissue"));
+    QVERIFY2(waitForCurrentFrame(false), qPrintable(view_->notice()));
+    p = checkedPsnr(view_->lastFrame(), cpuReference(), "tf");
+    QVERIFY2(p >= 40.0, qPrintable(QString("transfer function: psnr %1 dB").arg(p)));
+
+    ClipBox clip;
+    clip.lo = {100.0, 80.0, 4.0};
+    clip.hi = {420.0, 400.0, 22.0};
+    view_->setClipBox(clip);
+    view_->setMode(RenderMode::Mip);
+    QVERIFY2(waitForCurrentFrame(false), qPrintable(view_->notice()));
+    p = checkedPsnr(view_->lastFrame(), cpuReference(), "mip_clip");
+    QVERIFY2(p >= 40.0, qPrintable(QString("mip with clip: psnr %1 dB").arg(p)));
+    view_->setMode(RenderMode::Dvr);
+
+    // A drag: JPEG frames of the interactive description, then a lossless still.
+    const QPoint start(96, 80);
+    QTest::mousePress(view_.get(), Qt::LeftButton, {}, start);
+    QTest::mouseMove(view_.get(), start + QPoint(30, 10));
+    QVERIFY2(waitForCurrentFrame(true), qPrintable(view_->notice()));
+    QCOMPARE(view_->camera().azimuth, 100.0 + 30 * VolumeView::kDegreesPerPixel);
+    QCOMPARE(view_->lastFrame().width, 192); // scaled up to the view
+    p = psnr(view_->lastFrame(), cpuReference(true));
+    QVERIFY2(p >= 32.0, qPrintable(QString("interactive JPEG: psnr %1 dB").arg(p)));
+    QTest::mouseRelease(view_.get(), Qt::LeftButton, {}, start + QPoint(30, 10));
+    QVERIFY2(waitForCurrentFrame(false), qPrintable(view_->notice()));
+    p = checkedPsnr(view_->lastFrame(), cpuReference(), "after_drag");
+    QVERIFY2(p >= 40.0, qPrintable(QString("after the drag: psnr %1 dB").arg(p)));
+
+    // Back to this computer: the same view, rendered here.
+    const Camera before = view_->camera();
+    const TransferFunction tfBefore = view_->transferFunction();
+    view_->renderLocally();
+    QVERIFY(view_->backend() != VolumeView::Backend::Remote);
+    QCOMPARE(view_->remoteBackend().status(), BackendStatus::Disconnected);
+    QCOMPARE(view_->camera().azimuth, before.azimuth);
+    QCOMPARE(view_->camera().elevation, before.elevation);
+    QCOMPARE(view_->camera().zoom, before.zoom);
+    QCOMPARE(view_->transferFunction(), tfBefore);
+    QCOMPARE(view_->clipBox().lo, clip.lo);
+    QVERIFY2(waitForCurrentFrame(false), qPrintable(view_->notice()));
+    p = psnr(view_->lastFrame(), cpuReference());
+    // The GPU against the CPU reference: the bound of test_volume_view.
+    QVERIFY2(p >= 35.0, qPrintable(QString("local again: psnr %1 dB").arg(p)));
+}
+
+void TestVolumeViewRemote::reconnectsAfterServerRestart() {
+    ServerRun server;
+    QString started = server.start();
+    QVERIFY2(started.isEmpty(), qPrintable(started));
+    view_->renderOnServer(server.settings());
+    QVERIFY2(waitForCurrentFrame(false), qPrintable(view_->notice()));
+
+    server.kill();
+    QVERIFY2(waitForStatus(BackendStatus::Reconnecting), qPrintable(view_->notice()));
+    QVERIFY2(view_->notice().contains("reconnecting") || view_->notice().contains("trying again"),
+             qPrintable(view_->notice()));
+    // Changes while the server is away are sent when it is back.
+    Camera camera = view_->camera();
+    camera.azimuth = -60.0;
+    view_->setCamera(camera);
+    view_->setTransferFunction(loadPreset("ct-bone"));
+    QTest::qWait(1500); // a few refused attempts
+    QCOMPARE(view_->remoteBackend().status(), BackendStatus::Reconnecting);
+
+    started = server.start(); // the same port
+    QVERIFY2(started.isEmpty(), qPrintable(started));
+    QVERIFY2(waitForStatus(BackendStatus::Connected), qPrintable(view_->notice()));
+    QVERIFY2(waitForCurrentFrame(false), qPrintable(view_->notice()));
+    const double p = checkedPsnr(view_->lastFrame(), cpuReference(), "reconnected");
+    QVERIFY2(p >= 40.0, qPrintable(QString("after the reconnect: psnr %1 dB").arg(p)));
+}
+
+void TestVolumeViewRemote::wrongTokenIsNamed() {
+    ServerRun server;
+    const QString started = server.start();
+    QVERIFY2(started.isEmpty(), qPrintable(started));
+    view_->renderOnServer(server.settings("not-the-token"));
+    QVERIFY2(waitForStatus(BackendStatus::Failed), qPrintable(view_->notice()));
+    QVERIFY2(view_->notice().contains("token"), qPrintable(view_->notice()));
+    QVERIFY2(view_->notice().contains("auth-failed"), qPrintable(view_->notice()));
+    QVERIFY(!view_->notice().contains("not-the-token")); // never shown
+    QTest::qWait(800);
+    QCOMPARE(view_->remoteBackend().status(), BackendStatus::Failed); // no retry loop
+
+    // The right token, from the same view.
+    view_->renderOnServer(server.settings());
+    QVERIFY2(waitForCurrentFrame(false), qPrintable(view_->notice()));
+    QCOMPARE(view_->remoteBackend().status(), BackendStatus::Connected);
+}
+
+void TestVolumeViewRemote::badSettingsAndMissingSeries() {
+    view_->renderOnServer({QUrl("http://127.0.0.1:1/"), kToken, {}});
+    QCOMPARE(view_->remoteBackend().status(), BackendStatus::Failed);
+    QVERIFY2(view_->notice().contains("server URL"), qPrintable(view_->notice()));
+    view_->renderOnServer({QUrl("ws://127.0.0.1:1/"), "", {}});
+    QVERIFY2(view_->notice().contains("token"), qPrintable(view_->notice()));
+
+    ServerRun server;
+    const QString started = server.start();
+    QVERIFY2(started.isEmpty(), qPrintable(started));
+    RemoteServerSettings settings = server.settings();
+    settings.series = "1.2.3.4.5";
+    view_->renderOnServer(settings);
+    QVERIFY2(waitForStatus(BackendStatus::Failed), qPrintable(view_->notice()));
+    QVERIFY2(view_->notice().contains("does not have series 1.2.3.4.5"),
+             qPrintable(view_->notice()));
+}
+
+void TestVolumeViewRemote::settingsDialogAndMenu() {
+    QTemporaryDir dir;
+    QSettings store(dir.filePath("lucent.ini"), QSettings::IniFormat);
+    const RemoteServerSettings saved{QUrl("ws://render-host:8765/"), "abc", "1.2.3"};
+    saveRenderServerSettings(store, saved);
+    QCOMPARE(loadRenderServerSettings(store), saved);
+
+    RenderServerSettings dialog(saved);
+    QCOMPARE(dialog.tokenEdit()->echoMode(), QLineEdit::Password);
+    dialog.urlEdit()->setText("http://render-host/");
+    dialog.accept();
+    QVERIFY(dialog.result() != QDialog::Accepted);
+    QVERIFY2(dialog.problemLabel()->text().contains("server URL"),
+             qPrintable(dialog.problemLabel()->text()));
+    dialog.urlEdit()->setText("wss://render-host:9000/");
+    dialog.tokenEdit()->setText("  ");
+    dialog.accept();
+    QVERIFY(dialog.result() != QDialog::Accepted);
+    QVERIFY(dialog.problemLabel()->text().startsWith("token"));
+    dialog.tokenEdit()->setText("t0ken");
+    dialog.accept();
+    QCOMPARE(dialog.result(), int(QDialog::Accepted));
+    QCOMPARE(dialog.settings().url, QUrl("wss://render-host:9000/"));
+    QCOMPARE(dialog.settings().token, QString("t0ken"));
+
+    QMenu menu;
+    addRenderBackendMenu(&menu, view_.get());
+    QMenu* where = menu.actions().at(0)->menu();
+    QVERIFY(where != nullptr);
+    QAction* local = where->actions().at(0);
+    QAction* server = where->actions().at(1);
+    QVERIFY(local->isChecked());
+    view_->renderOnServer({QUrl("ws://127.0.0.1:1/"), kToken, {}}); // nothing listens there
+    QVERIFY(server->isChecked());
+    QVERIFY2(waitForStatus(BackendStatus::Reconnecting), qPrintable(view_->notice()));
+    QVERIFY2(view_->notice().contains("cannot reach"), qPrintable(view_->notice()));
+    local->trigger();
+    QCOMPARE(view_->backend() == VolumeView::Backend::Remote, false);
+    QVERIFY(local->isChecked());
+}
+
+int main(int argc, char** argv) {
+    // QOpenGLWidget needs a display: without one, run again under Xvfb.
+    if (qEnvironmentVariableIsEmpty("DISPLAY") && qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM") &&
+        qEnvironmentVariableIsEmpty("LUCENT_UNDER_XVFB")) {
+        qputenv("LUCENT_UNDER_XVFB", "1");
+        std::vector<char*> args = {const_cast<char*>("xvfb-run"), const_cast<char*>("-a"),
+                                   const_cast<char*>("-s"),
+                                   const_cast<char*>("-screen 0 1280x1024x24")};
+        for (int n = 0; n < argc; ++n) {
+            args.push_back(argv[n]);
+        }
+        args.push_back(nullptr);
+        execvp("xvfb-run", args.data());
+        std::fprintf(stderr, "test_volume_view_remote: no DISPLAY and xvfb-run cannot be started "
+                             "(packaging/install-deps.sh installs xvfb and xauth)\n");
+        return 1;
+    }
+    QSurfaceFormat::setDefaultFormat(VolumeView::surfaceFormat());
+    QApplication app(argc, argv);
+    TestVolumeViewRemote test;
+    return QTest::qExec(&test, argc, argv);
+}
+
+#include "test_volume_view_remote.moc"
