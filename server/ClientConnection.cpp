@@ -1,39 +1,57 @@
 #include "server/ClientConnection.h"
 
 #include <QLoggingCategory>
+#include <QWebSocketHandshakeOptions>
 
 #include <nlohmann/json.hpp>
 
 #include "server/RenderServer.h"
+#include "server/TeachingSession.h"
+#include "server/ViewStream.h"
 
 namespace lucent::remote {
 namespace {
 
 Q_LOGGING_CATEGORY(lcClient, "lucent.server.client")
 
-// A new render waits while this much of the previous frame is still unsent.
-constexpr qint64 kMaxUnsentBytes = 0;
-
-std::string defaultPreset(const SeriesEntry& series, RenderMode mode) {
-    if (series.modality != "CT") {
-        return "mr-default";
+// The subprotocols the client offered in its handshake.
+QStringList offeredSubprotocols(const QWebSocket& socket) {
+    QStringList offered = socket.handshakeOptions().subprotocols();
+    const QByteArray header = socket.request().rawHeader("Sec-WebSocket-Protocol");
+    for (const QByteArray& part : header.split(',')) {
+        const QString name = QString::fromLatin1(part.trimmed());
+        if (!name.isEmpty() && !offered.contains(name)) {
+            offered.append(name);
+        }
     }
-    return mode == RenderMode::Dvr ? "ct-bone" : "ct-mip";
+    return offered;
+}
+
+nlohmann::json seriesSummary(const SeriesEntry& s, bool withDescription) {
+    const glm::ivec3 d = s.geometry.dims;
+    nlohmann::json entry{{"uid", s.id}, {"modality", s.modality}, {"dims", {d.x, d.y, d.z}}};
+    entry["description"] = withDescription ? s.description : std::string();
+    return entry;
 }
 
 } // namespace
 
 ClientConnection::ClientConnection(quint64 id, QWebSocket* socket, RenderServer& server)
-    : QObject(&server), id_(id), socket_(socket), server_(server) {
+    : QObject(&server), id_(id), socket_(socket), server_(server),
+      ownView_(new ViewStream(server.newViewId(), server, this)) {
     socket->setParent(this);
+    ownView_->addMember(this);
+    ownView_->setPacer(this);
     // Qt closes the connection itself beyond this; below it the protocol's
     // own limit answers with an error message first.
     socket->setMaxAllowedIncomingMessageSize(4 * kMaxMessageBytes);
     connect(socket, &QWebSocket::textMessageReceived, this, &ClientConnection::onText);
     connect(socket, &QWebSocket::binaryMessageReceived, this, &ClientConnection::onBinary);
-    connect(socket, &QWebSocket::bytesWritten, this, &ClientConnection::pump);
+    connect(socket, &QWebSocket::bytesWritten, this, &ClientConnection::onBytesWritten);
     connect(socket, &QWebSocket::disconnected, this, [this] {
         qCInfo(lcClient) << "client" << id_ << "disconnected";
+        closing_ = true;
+        leaveSession();
         emit closed(id_);
     });
     authTimer_.setSingleShot(true);
@@ -42,6 +60,21 @@ ClientConnection::ClientConnection(quint64 id, QWebSocket* socket, RenderServer&
     authTimer_.start(kAuthTimeoutMs);
     cameraClock_.start();
 }
+
+void ClientConnection::start() {
+    if (!socket_) {
+        return;
+    }
+    const QString prefix = QString::fromLatin1(kTokenSubprotocolPrefix);
+    for (const QString& offered : offeredSubprotocols(*socket_)) {
+        if (offered.startsWith(prefix)) {
+            authenticate(offered.mid(prefix.size()).toStdString());
+            break;
+        }
+    }
+}
+
+ClientConnection::~ClientConnection() = default;
 
 void ClientConnection::sendJson(const std::string& json) {
     if (socket_ && !closing_) {
@@ -62,6 +95,31 @@ void ClientConnection::sendError(const std::string& code, const std::string& mes
     }
 }
 
+void ClientConnection::offerFrame(const QByteArray& message) {
+    if (!socket_ || closing_) {
+        return;
+    }
+    if (socket_->bytesToWrite() == 0 && pendingFrame_.isEmpty()) {
+        socket_->sendBinaryMessage(message);
+    } else {
+        pendingFrame_ = message; // a newer frame replaces the one waiting
+    }
+}
+
+bool ClientConnection::readyForFrame() const {
+    return socket_ && !closing_ && socket_->bytesToWrite() == 0 && pendingFrame_.isEmpty();
+}
+
+void ClientConnection::onBytesWritten() {
+    if (!socket_ || closing_) {
+        return;
+    }
+    if (!pendingFrame_.isEmpty() && socket_->bytesToWrite() == 0) {
+        socket_->sendBinaryMessage(std::exchange(pendingFrame_, {}));
+    }
+    (session_ ? session_->view() : *ownView_).pump();
+}
+
 void ClientConnection::onBinary(const QByteArray&) {
     sendError("malformed", "binary messages are not part of the client's protocol", true);
 }
@@ -78,98 +136,163 @@ void ClientConnection::onText(const QString& text) {
     }
 }
 
+void ClientConnection::authenticate(const std::string& token) {
+    if (!server_.acceptsToken(token)) {
+        sendError("auth-failed", "the token is not valid", true);
+        return;
+    }
+    authenticated_ = true;
+    authTimer_.stop();
+    qCInfo(lcClient) << "client" << id_ << "authenticated";
+    sendJson(nlohmann::json{{"type", "hello"},
+                            {"version", kProtocolVersion},
+                            {"backend", server_.backendDescription().toStdString()}}
+                 .dump());
+}
+
 void ClientConnection::handle(const ClientMessage& message) {
     if (!authenticated_) {
-        const auto* auth = std::get_if<AuthRequest>(&message);
-        if (!auth) {
+        if (const auto* auth = std::get_if<AuthRequest>(&message)) {
+            authenticate(auth->token);
+        } else {
             sendError("auth-required",
                       "the first message must be {\"type\":\"auth\",\"token\":...}", true);
-        } else if (!server_.acceptsToken(auth->token)) {
-            sendError("auth-failed", "the token is not valid", true);
-        } else {
-            authenticated_ = true;
-            authTimer_.stop();
-            qCInfo(lcClient) << "client" << id_ << "authenticated";
-            sendJson(nlohmann::json{{"type", "hello"},
-                                    {"version", kProtocolVersion},
-                                    {"backend", server_.backendDescription().toStdString()}}
-                         .dump());
         }
         return;
     }
+    const bool follower = session_ && !session_->isPresenter(*this);
     if (std::holds_alternative<AuthRequest>(message)) {
         sendError("out-of-order", "already authenticated", true);
     } else if (std::holds_alternative<ListRequest>(message)) {
-        nlohmann::json list = nlohmann::json::array();
-        for (const auto& s : server_.series()) {
-            const glm::ivec3 d = s->geometry.dims;
-            list.push_back({{"uid", s->id},
-                            {"description", s->description},
-                            {"modality", s->modality},
-                            {"dims", {d.x, d.y, d.z}}});
-        }
-        sendJson(nlohmann::json{{"type", "series"}, {"series", list}}.dump());
+        sendList();
     } else if (const auto* open = std::get_if<OpenRequest>(&message)) {
-        auto series = server_.findSeries(open->series);
-        if (!series) {
-            sendError("not-found", "no series with uid '" + open->series.substr(0, 128) + "'",
-                      false);
+        if (follower) {
+            sendError("not-presenter", "this client does not hold control of the session", false);
+        } else {
+            handleOpen(*open);
+        }
+    } else if (!isViewMessage(message)) {
+        handleSession(message);
+    } else if (follower) {
+        sendError("not-presenter", "this client does not hold control of the session", false);
+    } else {
+        ViewStream& view = session_ ? session_->view() : *ownView_;
+        if (!view.accepting()) {
+            sendError("out-of-order", "open a series first", true);
             return;
         }
-        const int width = description_.width, height = description_.height;
-        series_ = std::move(series);
-        description_ = RenderDescription{};
-        description_.width = width;
-        description_.height = height;
-        const std::string preset = defaultPreset(*series_, description_.mode);
-        description_.transferFunction = loadPreset(preset);
-        qCInfo(lcClient) << "client" << id_ << "opened a series";
-        const glm::ivec3 d = series_->geometry.dims;
-        sendJson(nlohmann::json{
-            {"type", "opened"},
-            {"series", series_->id},
-            {"dims", {d.x, d.y, d.z}},
-            {"preset",
-             preset}}.dump());
-        changed();
-    } else if (!series_) {
-        sendError("out-of-order", "open a series first", true);
-    } else {
-        handleView(message);
-    }
-}
-
-void ClientConnection::handleView(const ClientMessage& message) {
-    if (const auto* camera = std::get_if<CameraUpdate>(&message)) {
-        if (!takeCameraToken()) {
+        if (std::holds_alternative<CameraUpdate>(message) && !takeCameraToken()) {
             sendError("rate-limited", "too many camera updates; this one was dropped", false);
             return;
         }
-        Camera& c = description_.camera;
-        c.azimuth = camera->azimuth.value_or(c.azimuth);
-        c.elevation = camera->elevation.value_or(c.elevation);
-        c.zoom = camera->zoom.value_or(c.zoom);
-    } else if (const auto* tf = std::get_if<TransferFunctionUpdate>(&message)) {
-        try {
-            description_.transferFunction =
-                tf->preset ? loadPreset(*tf->preset) : *tf->transferFunction;
-        } catch (const TransferFunctionError& e) {
-            sendError("bad-request", e.what(), false);
+        if (const auto error = view.apply(message)) {
+            sendError("bad-request", *error, false);
+        }
+    }
+}
+
+void ClientConnection::sendList() {
+    nlohmann::json list = nlohmann::json::array();
+    if (session_ && !session_->isPresenter(*this)) {
+        // A follower sees the session's de-identified series only.
+        if (const auto& shared = session_->view().series()) {
+            list.push_back(seriesSummary(*shared, false));
+        }
+    } else {
+        for (const auto& s : server_.series()) {
+            list.push_back(seriesSummary(*s, true));
+        }
+    }
+    sendJson(nlohmann::json{{"type", "series"}, {"series", list}}.dump());
+}
+
+void ClientConnection::handleOpen(const OpenRequest& open) {
+    auto series = server_.findSeries(open.series);
+    if (!series) {
+        sendError("not-found", "no series with uid '" + open.series.substr(0, 128) + "'", false);
+        return;
+    }
+    qCInfo(lcClient) << "client" << id_ << "opened a series";
+    if (session_) {
+        session_->share(std::move(series)); // every member gets `opened` when it is ready
+    } else {
+        sendJson(ownView_->open(std::move(series)));
+    }
+}
+
+void ClientConnection::handleSession(const ClientMessage& message) {
+    if (std::holds_alternative<SessionCreate>(message)) {
+        if (session_) {
+            sendError("out-of-order", "already in a session", true);
             return;
         }
-    } else if (const auto* mode = std::get_if<ModeUpdate>(&message)) {
-        description_.mode = mode->mode;
-        description_.isoValue = mode->isoValue.value_or(description_.isoValue);
-    } else if (const auto* clip = std::get_if<ClipUpdate>(&message)) {
-        description_.clip = clip->box;
-    } else if (const auto* quality = std::get_if<QualityUpdate>(&message)) {
-        quality_ = quality->quality;
-    } else if (const auto* size = std::get_if<SizeUpdate>(&message)) {
-        description_.width = size->width;
-        description_.height = size->height;
+        TeachingSession* session = server_.createSession(*this);
+        if (!session) {
+            sendError("session-limit", "the server runs as many sessions as it may", false);
+            return;
+        }
+        const auto shared = ownView_->series();
+        ownView_->close();
+        session_ = session;
+        sendJson(
+            nlohmann::json{{"type", "session-created"}, {"session", session->id().toStdString()}}
+                .dump());
+        session->broadcastState();
+        if (shared) {
+            session->share(shared); // the series this client had open, de-identified
+        }
+    } else if (const auto* join = std::get_if<SessionJoin>(&message)) {
+        if (session_) {
+            sendError("out-of-order", "already in a session", true);
+            return;
+        }
+        TeachingSession* session = server_.findSession(QString::fromStdString(join->session));
+        if (!session) {
+            sendError("not-found", "no such session", false);
+            return;
+        }
+        if (session->full()) {
+            sendError("session-full", "the session has no room for another member", false);
+            return;
+        }
+        ownView_->close();
+        session_ = session;
+        session->join(*this);
+        session->broadcastState();
+        qCInfo(lcClient) << "client" << id_ << "joined a session";
+    } else if (const auto* handover = std::get_if<SessionHandover>(&message)) {
+        if (!session_) {
+            sendError("out-of-order", "not in a session", true);
+        } else if (!session_->isPresenter(*this)) {
+            sendError("not-presenter", "this client does not hold control of the session", false);
+        } else if (!session_->handover(handover->to)) {
+            sendError("bad-request", "session-handover: no member " + std::to_string(handover->to),
+                      false);
+        } else {
+            session_->broadcastState();
+        }
+    } else if (std::holds_alternative<SessionLeave>(message)) {
+        if (!session_) {
+            sendError("out-of-order", "not in a session", true);
+            return;
+        }
+        const std::string id = session_->id().toStdString();
+        leaveSession();
+        sendJson(nlohmann::json{{"type", "session-left"}, {"session", id}}.dump());
     }
-    // RenderRequest: nothing changes but a frame is owed.
-    changed();
+}
+
+void ClientConnection::leaveSession() {
+    if (!session_) {
+        return;
+    }
+    TeachingSession* session = session_;
+    session_ = nullptr;
+    if (session->leave(*this)) {
+        server_.endSession(session->id());
+    } else {
+        session->broadcastState();
+    }
 }
 
 bool ClientConnection::takeCameraToken() {
@@ -180,35 +303,6 @@ bool ClientConnection::takeCameraToken() {
     }
     cameraTokens_ -= 1.0;
     return true;
-}
-
-void ClientConnection::changed() {
-    ++seq_;
-    renderWanted_ = true;
-    pump();
-}
-
-void ClientConnection::pump() {
-    if (!socket_ || closing_ || !renderWanted_ || renderInFlight_ || !series_ ||
-        socket_->bytesToWrite() > kMaxUnsentBytes) {
-        return;
-    }
-    renderWanted_ = false;
-    renderInFlight_ = true;
-    server_.submit(RenderJob{id_, series_, description_, quality_, seq_});
-}
-
-void ClientConnection::deliver(const RenderedFrame& frame) {
-    renderInFlight_ = false;
-    if (!socket_ || closing_) {
-        return;
-    }
-    if (!frame.error.isEmpty()) {
-        sendError("render-failed", frame.error.toStdString(), false);
-    } else {
-        socket_->sendBinaryMessage(frame.message);
-    }
-    pump();
 }
 
 } // namespace lucent::remote

@@ -1,45 +1,57 @@
 #pragma once
-// One WebSocket client of the render server: authentication, the state of its
-// view, and the frames it is owed. At most one frame per client is being
-// rendered and at most one is being written; changes that arrive meanwhile
-// are coalesced into the next render, so a client never gets stale frames
-// queued behind newer ones.
+// One WebSocket client of the render server: authentication (the auth
+// message, or a token offered as a WebSocket subprotocol), the view it
+// watches (its own, or a teaching session's), and the frames it is sent.
+// The client is only ever sent the newest frame: one that arrives while the
+// previous one is still being written replaces any frame waiting behind it.
 
+#include <QByteArray>
 #include <QElapsedTimer>
 #include <QObject>
 #include <QPointer>
 #include <QTimer>
 #include <QWebSocket>
 
-#include <cstdint>
-#include <memory>
+#include <string>
 
-#include "core/io/SeriesEntry.h"
-#include "core/raycast/RenderDescription.h"
-#include "server/RenderWorker.h"
 #include "server/protocol/ProtocolMessages.h"
 
 namespace lucent::remote {
 
 class RenderServer;
+class TeachingSession;
+class ViewStream;
 
 // Camera updates: a burst of this many, then this many per second.
 inline constexpr double kCameraBurst = 60.0;
 inline constexpr double kCameraPerSecond = 60.0;
 // A client must authenticate within this time.
 inline constexpr int kAuthTimeoutMs = 10000;
+// The subprotocol a client selects, and the prefix of the one that carries
+// its token (browsers cannot set headers on a WebSocket).
+inline constexpr char kSubprotocol[] = "lucent.v1";
+inline constexpr char kTokenSubprotocolPrefix[] = "lucent.token.";
 
 class ClientConnection : public QObject {
     Q_OBJECT
 public:
     // Takes the socket (as a Qt child).
     ClientConnection(quint64 id, QWebSocket* socket, RenderServer& server);
+    ~ClientConnection() override;
+    // Authenticates at once when the handshake offered a token subprotocol.
+    void start();
 
     quint64 id() const { return id_; }
-    // A frame the render thread finished for this client.
-    void deliver(const RenderedFrame& frame);
+    void sendJson(const std::string& json);
     // Sends an error; a fatal one closes the connection after it.
     void sendError(const std::string& code, const std::string& message, bool fatal);
+    // A finished frame of the view it watches: sent now, or kept (replacing
+    // any older one) until the socket has written what it holds.
+    void offerFrame(const QByteArray& message);
+    // Nothing unsent: the next render may start for a view it paces.
+    bool readyForFrame() const;
+    // Leaves its teaching session, if any (on a close too).
+    void leaveSession();
 
 signals:
     void closed(quint64 id);
@@ -47,12 +59,13 @@ signals:
 private:
     void onText(const QString& text);
     void onBinary(const QByteArray& data);
+    void onBytesWritten();
+    void authenticate(const std::string& token);
     void handle(const ClientMessage& message);
-    void handleView(const ClientMessage& message);
-    void sendJson(const std::string& json);
+    void handleSession(const ClientMessage& message);
+    void handleOpen(const OpenRequest& open);
+    void sendList();
     bool takeCameraToken();
-    void changed();
-    void pump();
 
     quint64 id_;
     QPointer<QWebSocket> socket_;
@@ -61,12 +74,9 @@ private:
     bool authenticated_ = false;
     bool closing_ = false;
 
-    std::shared_ptr<const SeriesEntry> series_;
-    RenderDescription description_; // volume stays null: the render thread fills it in
-    Quality quality_ = Quality::Still;
-    std::uint64_t seq_ = 0; // accepted view changes so far
-    bool renderInFlight_ = false;
-    bool renderWanted_ = false;
+    ViewStream* ownView_;               // child: the view when in no session
+    QPointer<TeachingSession> session_; // when in one
+    QByteArray pendingFrame_;
 
     double cameraTokens_ = kCameraBurst;
     QElapsedTimer cameraClock_;

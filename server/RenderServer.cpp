@@ -7,6 +7,8 @@
 #include <stdexcept>
 
 #include "server/ClientConnection.h"
+#include "server/TeachingSession.h"
+#include "server/ViewStream.h"
 
 namespace lucent::remote {
 namespace {
@@ -56,14 +58,25 @@ RenderServer::RenderServer(ServerOptions options,
     renderThread_.setObjectName("lucent-render");
     connect(worker_.get(), &RenderWorker::frameRendered, this, &RenderServer::onFrameRendered);
     connect(socketServer_, &QWebSocketServer::newConnection, this, &RenderServer::onNewConnection);
+    // A client that offers subprotocols gets this one (its token may ride in another).
+    socketServer_->setSupportedSubprotocols({QString::fromLatin1(kSubprotocol)});
 }
 
 RenderServer::~RenderServer() {
+    copyPool_.waitForDone();
     socketServer_->close();
     for (const auto& client : std::as_const(clients_)) {
         if (client) {
             QObject::disconnect(client, nullptr, this, nullptr); // they go with this object
         }
+    }
+    // Sessions and clients unregister their views from this object's members:
+    // they go first.
+    for (const auto& session : std::as_const(sessions_)) {
+        delete session.data();
+    }
+    for (const auto& client : std::as_const(clients_)) {
+        delete client.data();
     }
     if (renderThread_.isRunning()) {
         QMetaObject::invokeMethod(
@@ -122,6 +135,8 @@ void RenderServer::onNewConnection() {
         qCInfo(lcServer) << "client" << id << "connected from" << socket->peerAddress().toString();
         if (clients_.size() >= options_.maxClients) {
             client->sendError("busy", "the server has no room for another client", true);
+        } else {
+            client->start();
         }
         clients_.insert(id, client);
         connect(client, &ClientConnection::closed, this, [this](quint64 closedId) {
@@ -133,8 +148,8 @@ void RenderServer::onNewConnection() {
 }
 
 void RenderServer::onFrameRendered(const RenderedFrame& frame) {
-    if (const QPointer<ClientConnection> client = clients_.value(frame.client)) {
-        client->deliver(frame);
+    if (const QPointer<ViewStream> view = views_.value(frame.view)) {
+        view->deliver(frame);
     }
 }
 

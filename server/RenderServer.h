@@ -7,10 +7,16 @@
 #include <QHostAddress>
 #include <QObject>
 #include <QPointer>
+#include <QString>
 #include <QThread>
+#include <QThreadPool>
 #include <QWebSocketServer>
 
+#include <filesystem>
+#include <functional>
+#include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +26,8 @@
 namespace lucent::remote {
 
 class ClientConnection;
+class TeachingSession;
+class ViewStream;
 
 struct ServerOptions {
     QHostAddress address = QHostAddress::LocalHost;
@@ -27,6 +35,10 @@ struct ServerOptions {
     std::vector<std::string> tokens;
     Backend backend = Backend::Gl;
     int maxClients = 64;
+    int maxSessions = 16;
+    int maxSessionMembers = 64; // the presenter included
+    // The store: de-identified copies for teaching sessions go under it.
+    std::filesystem::path storeDir;
 };
 
 // The tokens of a token file: one per line, blank lines and lines starting
@@ -53,18 +65,44 @@ public:
     std::shared_ptr<const SeriesEntry> findSeries(const std::string& uid) const;
     void submit(const RenderJob& job);
 
+    // Views and the frames rendered for them.
+    quint64 newViewId() { return nextViewId_++; }
+    void registerView(ViewStream* view);
+    void unregisterView(quint64 id);
+
+    // Teaching sessions. createSession() gives null at the limit.
+    TeachingSession* createSession(ClientConnection& presenter);
+    TeachingSession* findSession(const QString& id) const;
+    void endSession(const QString& id);
+    int sessionCount() const { return int(sessions_.size()); }
+    // The de-identified copy of a series (made once, under the store, on a
+    // worker thread); `done` runs on this thread unless `context` is gone,
+    // with null and the reason when it failed.
+    using CopyDone = std::function<void(std::shared_ptr<const SeriesEntry>, QString)>;
+    void deidentifiedCopy(const std::shared_ptr<const SeriesEntry>& original, QObject* context,
+                          CopyDone done);
+
 private:
     void onNewConnection();
     void onFrameRendered(const RenderedFrame& frame);
+    void copyFinished(const std::string& originalId, std::shared_ptr<const SeriesEntry> copy,
+                      const QString& error);
 
     ServerOptions options_;
     std::vector<std::shared_ptr<const SeriesEntry>> series_;
-    QWebSocketServer* socketServer_; // child
+    QWebSocketServer* socketServer_;     // child
     QThread renderThread_;
     std::unique_ptr<RenderWorker> worker_; // lives on renderThread_; deleted after it ends
     QString backendDescription_;
     QHash<quint64, QPointer<ClientConnection>> clients_;
     quint64 nextClientId_ = 1;
+    QHash<quint64, QPointer<ViewStream>> views_;
+    quint64 nextViewId_ = 1;
+    QHash<QString, QPointer<TeachingSession>> sessions_;
+    // De-identified copies by original series id, and who waits for one.
+    std::map<std::string, std::shared_ptr<const SeriesEntry>> copies_;
+    std::map<std::string, std::vector<std::pair<QPointer<QObject>, CopyDone>>> copyWaiters_;
+    QThreadPool copyPool_; // makes the copies; waited for before the rest goes
 };
 
 } // namespace lucent::remote

@@ -7,7 +7,6 @@
 
 #include "core/io/Catalog.h"
 #include "core/raycast/CpuRayCaster.h"
-#include "core/raycast/InteractiveQuality.h"
 #include "render/GlError.h"
 #include "render/GpuRayCaster.h"
 #include "render/OffscreenContext.h"
@@ -23,7 +22,7 @@ double millisecondsSince(const QElapsedTimer& timer) {
 }
 
 // PNG (lossless) or JPEG of an opaque RGBA image; throws std::runtime_error.
-QByteArray encode(const ImageRGBA8& image, Quality quality) {
+QByteArray encode(const ImageRGBA8& image, Quality quality, int jpegQuality) {
     const QImage rgba(image.pixels.data(), image.width, image.height, image.width * 4,
                       QImage::Format_RGBA8888);
     const QImage rgb = rgba.convertToFormat(QImage::Format_RGB888);
@@ -32,7 +31,7 @@ QByteArray encode(const ImageRGBA8& image, Quality quality) {
     buffer.open(QIODevice::WriteOnly);
     QImageWriter writer(&buffer, quality == Quality::Interactive ? "jpeg" : "png");
     if (quality == Quality::Interactive) {
-        writer.setQuality(kJpegQuality);
+        writer.setQuality(jpegQuality);
     }
     if (!writer.write(rgb)) {
         throw std::runtime_error("image encoding failed: " + writer.errorString().toStdString());
@@ -41,6 +40,14 @@ QByteArray encode(const ImageRGBA8& image, Quality quality) {
 }
 
 } // namespace
+
+RenderDescription scaledInteractiveDescription(const RenderDescription& still, double scale) {
+    RenderDescription d = still;
+    d.sampling.step *= 2.0;
+    d.width = std::max(1, int(still.width * scale));
+    d.height = std::max(1, int(still.height * scale));
+    return d;
+}
 
 struct RenderWorker::LoadedSeries {
     std::string id;
@@ -106,14 +113,15 @@ RenderWorker::LoadedSeries& RenderWorker::loaded(const SeriesEntry& entry) {
 
 void RenderWorker::render(const RenderJob& job) {
     RenderedFrame frame;
-    frame.client = job.client;
+    frame.view = job.view;
     frame.seq = job.seq;
     try {
         LoadedSeries& series = loaded(*job.series);
         RenderDescription description = job.description;
         description.volume = series.volume.get();
-        if (job.quality == Quality::Interactive) {
-            description = interactiveDescription(description);
+        const bool interactive = job.quality == Quality::Interactive;
+        if (interactive) {
+            description = scaledInteractiveDescription(description, job.scale);
         }
         QElapsedTimer timer;
         timer.start();
@@ -122,11 +130,14 @@ void RenderWorker::render(const RenderJob& job) {
         FrameHeader header;
         header.renderMs = millisecondsSince(timer);
         timer.restart();
-        const QByteArray encoded = encode(image, job.quality);
+        const QByteArray encoded = encode(image, job.quality, job.jpegQuality);
         header.encodeMs = millisecondsSince(timer);
+        frame.frameMs = header.renderMs + header.encodeMs;
+        header.scale = interactive ? job.scale : 1.0;
+        header.jpegQuality = interactive ? job.jpegQuality : 0;
         header.width = image.width;
         header.height = image.height;
-        header.format = job.quality == Quality::Interactive ? "jpeg" : "png";
+        header.format = interactive ? "jpeg" : "png";
         header.seq = job.seq;
         header.quality = job.quality;
         const std::string message = frameMessage(

@@ -23,24 +23,33 @@ namespace lucent::remote {
 
 enum class Backend { Gl, Cpu };
 
-// One frame a client's view needs.
+// One frame a view needs (a client's own view or a teaching session's).
 struct RenderJob {
-    quint64 client = 0;
+    quint64 view = 0;
     std::shared_ptr<const SeriesEntry> series;
     RenderDescription description; // the still description; volume left null
     Quality quality = Quality::Still;
+    // Interactive frames: the image scale (the step doubles) and JPEG quality.
+    double scale = 0.5;
+    int jpegQuality = 85;
     std::uint64_t seq = 0;
 };
 
 struct RenderedFrame {
-    quint64 client = 0;
+    quint64 view = 0;
+    double frameMs = 0.0; // render plus encode
     std::uint64_t seq = 0;
     QByteArray message; // the binary frame message, ready to send; empty on error
     QString error;
 };
 
-// How interactive frames are made: half the image size, twice the step, JPEG.
-inline constexpr int kJpegQuality = 85;
+// The `quality: interactive` frames: half the image size, twice the step, JPEG 85.
+inline constexpr double kFixedInteractiveScale = 0.5;
+inline constexpr int kFixedInteractiveJpegQuality = 85;
+
+// The description of an interactive frame at this scale: the image's sides
+// scaled (at least 1 pixel), the sampling step doubled.
+RenderDescription scaledInteractiveDescription(const RenderDescription& still, double scale);
 
 class RenderWorker : public QObject {
     Q_OBJECT

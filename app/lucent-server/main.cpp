@@ -50,6 +50,9 @@ int main(int argc, char** argv) {
         {"token-file", "File of access tokens, one a line.", "FILE"},
         {"backend", "gl (EGL; the CPU where there is none) or cpu.", "NAME", "gl"},
         {"max-clients", "Clients served at once.", "N", "64"},
+        {"max-sessions", "Teaching sessions at once.", "N", "16"},
+        {"max-session-members", "Members of one teaching session, the presenter included.", "N",
+         "64"},
         {"check", "Check the configuration, list the series, and exit."},
     });
     QTextStream err(stderr);
@@ -80,6 +83,16 @@ int main(int argc, char** argv) {
         err << "lucent-server: --max-clients must be a positive number\n";
         return kUsage;
     }
+    options.maxSessions = parser.value("max-sessions").toInt(&ok);
+    if (!ok || options.maxSessions < 1) {
+        err << "lucent-server: --max-sessions must be a positive number\n";
+        return kUsage;
+    }
+    options.maxSessionMembers = parser.value("max-session-members").toInt(&ok);
+    if (!ok || options.maxSessionMembers < 2) {
+        err << "lucent-server: --max-session-members must be a number from 2\n";
+        return kUsage;
+    }
     if (!parser.isSet("store") || !parser.isSet("token-file")) {
         err << "lucent-server: --store DIR and --token-file FILE are required\n";
         return kUsage;
@@ -91,7 +104,8 @@ int main(int argc, char** argv) {
         if (parser.isSet("data")) {
             data = parser.value("data").toStdString();
         }
-        served = lucent::remote::scanServedSeries(parser.value("store").toStdString(), data);
+        options.storeDir = parser.value("store").toStdString();
+        served = lucent::remote::scanServedSeries(options.storeDir, data);
     } catch (const std::exception& e) {
         err << "lucent-server: " << e.what() << "\n";
         return kBadInput;

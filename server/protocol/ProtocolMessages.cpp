@@ -154,7 +154,45 @@ SizeUpdate parseSize(const Json& m) {
     return u;
 }
 
+InteractionUpdate parseInteraction(const Json& m) {
+    checkKeys(m, "interaction", {"state"});
+    const std::string state = requiredString(m, "state", "interaction");
+    if (state != "start" && state != "end") {
+        badRequest("interaction: 'state' must be start or end");
+    }
+    return {state == "start"};
+}
+
+SessionJoin parseSessionJoin(const Json& m) {
+    checkKeys(m, "session-join", {"session"});
+    std::string id = requiredString(m, "session", "session-join");
+    if (id.size() > 64) {
+        badRequest("session-join: 'session' is longer than 64 characters");
+    }
+    return {std::move(id)};
+}
+
+SessionHandover parseSessionHandover(const Json& m) {
+    checkKeys(m, "session-handover", {"to"});
+    const auto it = m.find("to");
+    if (it == m.end() || !it->is_number_unsigned() || it->get<std::uint64_t>() == 0) {
+        badRequest("session-handover: 'to' must be a member number from session-state");
+    }
+    return {it->get<std::uint64_t>()};
+}
+
 } // namespace
+
+bool isViewMessage(const ClientMessage& message) {
+    return std::holds_alternative<CameraUpdate>(message) ||
+           std::holds_alternative<TransferFunctionUpdate>(message) ||
+           std::holds_alternative<ModeUpdate>(message) ||
+           std::holds_alternative<ClipUpdate>(message) ||
+           std::holds_alternative<QualityUpdate>(message) ||
+           std::holds_alternative<SizeUpdate>(message) ||
+           std::holds_alternative<RenderRequest>(message) ||
+           std::holds_alternative<InteractionUpdate>(message);
+}
 
 const char* qualityName(Quality quality) {
     return quality == Quality::Interactive ? "interactive" : "still";
@@ -210,6 +248,23 @@ ClientMessage parseClientMessage(std::string_view text) {
         checkKeys(m, type, {});
         return RenderRequest{};
     }
+    if (type == "interaction") {
+        return parseInteraction(m);
+    }
+    if (type == "session-create") {
+        checkKeys(m, type, {});
+        return SessionCreate{};
+    }
+    if (type == "session-join") {
+        return parseSessionJoin(m);
+    }
+    if (type == "session-handover") {
+        return parseSessionHandover(m);
+    }
+    if (type == "session-leave") {
+        checkKeys(m, type, {});
+        return SessionLeave{};
+    }
     throw ProtocolError("unknown-type", "unknown message type '" + type.substr(0, 64) + "'", true);
 }
 
@@ -225,8 +280,10 @@ std::string frameMessage(const FrameHeader& header, std::string_view imageBytes)
         {"seq", header.seq},
         {"quality", qualityName(header.quality)},
         {"render_ms", header.renderMs},
-        {"encode_ms",
-         header.encodeMs}}.dump();
+        {"encode_ms", header.encodeMs},
+        {"scale", header.scale},
+        {"jpeg_quality",
+         header.jpegQuality}}.dump();
     const auto n = static_cast<std::uint32_t>(json.size());
     std::string out;
     out.reserve(4 + json.size() + imageBytes.size());
@@ -267,6 +324,8 @@ ParsedFrame parseFrameMessage(std::string_view message) {
                                : Quality::Still;
         f.header.renderMs = h.value("render_ms", 0.0);
         f.header.encodeMs = h.value("encode_ms", 0.0);
+        f.header.scale = h.value("scale", 1.0);
+        f.header.jpegQuality = h.value("jpeg_quality", 0);
     } catch (const Json::exception& e) {
         throw malformed(std::string("header: ") + e.what());
     }

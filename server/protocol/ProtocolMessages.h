@@ -58,10 +58,28 @@ struct SizeUpdate {
     int height = 0;
 };
 struct RenderRequest {};
+// {"type":"interaction","state":"start"|"end"}: adaptive JPEG frames while
+// active, one lossless still at the end.
+struct InteractionUpdate {
+    bool active = false;
+};
+// Teaching sessions.
+struct SessionCreate {};
+struct SessionJoin {
+    std::string session; // the id session-created gave
+};
+struct SessionHandover {
+    std::uint64_t to = 0; // a member number from session-state
+};
+struct SessionLeave {};
 
 using ClientMessage =
     std::variant<AuthRequest, ListRequest, OpenRequest, CameraUpdate, TransferFunctionUpdate,
-                 ModeUpdate, ClipUpdate, QualityUpdate, SizeUpdate, RenderRequest>;
+                 ModeUpdate, ClipUpdate, QualityUpdate, SizeUpdate, RenderRequest,
+                 InteractionUpdate, SessionCreate, SessionJoin, SessionHandover, SessionLeave>;
+
+// True for the messages that change a view (and owe a frame).
+bool isViewMessage(const ClientMessage& message);
 
 // Why a message was refused. `code` is one of the codes in docs/protocol.md;
 // fatal errors end the connection after the error message is sent.
@@ -94,6 +112,10 @@ struct FrameHeader {
     Quality quality = Quality::Still;
     double renderMs = 0.0;
     double encodeMs = 0.0;
+    // Interactive frames: the image scale against the view's size (1, 0.75,
+    // 0.5 or 0.35) and the JPEG quality (50..85); 1 and 0 for PNG stills.
+    double scale = 1.0;
+    int jpegQuality = 0;
 };
 
 // A binary frame: 4 bytes big-endian header length N, N bytes of header JSON,

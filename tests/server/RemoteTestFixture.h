@@ -12,6 +12,7 @@
 #include <QTemporaryDir>
 #include <QTest>
 #include <QWebSocket>
+#include <QWebSocketHandshakeOptions>
 
 #include <cmath>
 #include <functional>
@@ -66,7 +67,8 @@ struct ReceivedFrame {
 
 class RemoteTestClient {
 public:
-    explicit RemoteTestClient(quint16 port) {
+    // `subprotocols`: offered in the handshake (a token may ride in one).
+    explicit RemoteTestClient(quint16 port, const QStringList& subprotocols = {}) {
         QObject::connect(&socket_, &QWebSocket::textMessageReceived, [this](const QString& t) {
             texts.append(QJsonDocument::fromJson(t.toUtf8()).object());
         });
@@ -77,7 +79,14 @@ public:
                 {parsed.header, QByteArray(parsed.image.data(), qsizetype(parsed.image.size()))});
         });
         QObject::connect(&socket_, &QWebSocket::disconnected, [this] { disconnected = true; });
-        socket_.open(QUrl(QString("ws://127.0.0.1:%1/").arg(port)));
+        const QUrl url(QString("ws://127.0.0.1:%1/").arg(port));
+        if (subprotocols.isEmpty()) {
+            socket_.open(url);
+        } else {
+            QWebSocketHandshakeOptions options;
+            options.setSubprotocols(subprotocols);
+            socket_.open(QNetworkRequest(url), options);
+        }
     }
 
     bool waitConnected() {
@@ -120,6 +129,18 @@ public:
     bool waitDisconnected(int timeoutMs = 10000) {
         return QTest::qWaitFor([this] { return disconnected; }, timeoutMs);
     }
+    // The subprotocol the server selected.
+    QString subprotocol() const { return socket_.subprotocol(); }
+    // Drops the connection without a close handshake (as a killed client does).
+    void abort() { socket_.abort(); }
+    // Received text messages, each as compact JSON, joined.
+    QString allText() const {
+        QString all;
+        for (const QJsonObject& t : texts) {
+            all += QString::fromUtf8(QJsonDocument(t).toJson(QJsonDocument::Compact)) + "\n";
+        }
+        return all;
+    }
     bool authenticate(const QString& token = kToken) {
         send({{"type", "auth"}, {"token", token}});
         return !waitForText("hello").isEmpty();
@@ -136,8 +157,10 @@ private:
 
 class ServerProcess {
 public:
-    // Starts lucent-server on a free port with the synthetic CT as --data.
-    explicit ServerProcess(const QString& backend = "cpu") {
+    // Starts lucent-server on a free port with the synthetic CT as --data
+    // (or `data` when given), and any further arguments.
+    explicit ServerProcess(const QString& backend = "cpu", const QString& data = {},
+                           const QStringList& extraArguments = {}) {
         QVERIFY(dir_.isValid());
         volumeFile_ = dir_.filePath("ct.mhd");
         writeMetaImage(syntheticCt(), volumeFile_.toStdString());
@@ -147,9 +170,10 @@ public:
         tokens.close();
         process_.setProcessChannelMode(QProcess::SeparateChannels);
         process_.start(QString(LUCENT_BIN_DIR) + "/lucent-server",
-                       {"--listen", "127.0.0.1:0", "--store", dir_.filePath("store"), "--data",
-                        volumeFile_, "--token-file", dir_.filePath("tokens"), "--backend",
-                        backend});
+                       QStringList{"--listen", "127.0.0.1:0", "--store", dir_.filePath("store"),
+                                   "--data", data.isEmpty() ? volumeFile_ : data, "--token-file",
+                                   dir_.filePath("tokens"), "--backend", backend} +
+                           extraArguments);
         QString out;
         (void)QTest::qWaitFor(
             [&] {
@@ -171,6 +195,7 @@ public:
         }
     }
     quint16 port() const { return port_; }
+    QString storeDir() const { return dir_.filePath("store"); }
     QString volumeFile() const { return volumeFile_; }
     // What the server wrote to stderr so far (its log).
     QString log() { return log_ += QString::fromUtf8(process_.readAllStandardError()); }

@@ -1,6 +1,7 @@
 // Protocol v1 parser and frame layout (no network).
 #include <QTest>
 
+#include "server/protocol/AdaptiveQuality.h"
 #include "server/protocol/ProtocolMessages.h"
 
 using namespace lucent;
@@ -64,6 +65,87 @@ private slots:
         QVERIFY(std::holds_alternative<RenderRequest>(parseClientMessage(R"({"type":"render"})")));
     }
 
+    void parsesInteractionAndSessionMessages() {
+        QVERIFY(std::get<InteractionUpdate>(
+                    parseClientMessage(R"({"type":"interaction","state":"start"})"))
+                    .active);
+        QVERIFY(!std::get<InteractionUpdate>(
+                     parseClientMessage(R"({"type":"interaction","state":"end"})"))
+                     .active);
+        QVERIFY(isViewMessage(parseClientMessage(R"({"type":"interaction","state":"end"})")));
+        QVERIFY(std::holds_alternative<SessionCreate>(
+            parseClientMessage(R"({"type":"session-create"})")));
+        QCOMPARE(
+            std::get<SessionJoin>(parseClientMessage(R"({"type":"session-join","session":"ab12"})"))
+                .session,
+            "ab12");
+        QCOMPARE(
+            std::get<SessionHandover>(parseClientMessage(R"({"type":"session-handover","to":7})"))
+                .to,
+            std::uint64_t(7));
+        QVERIFY(std::holds_alternative<SessionLeave>(
+            parseClientMessage(R"({"type":"session-leave"})")));
+        QVERIFY(!isViewMessage(parseClientMessage(R"({"type":"session-leave"})")));
+        QVERIFY(!isViewMessage(parseClientMessage(R"({"type":"list"})")));
+        const char* bad[] = {
+            R"({"type":"interaction"})",
+            R"({"type":"interaction","state":"drag"})",
+            R"({"type":"session-create","name":"x"})",
+            R"({"type":"session-join"})",
+            R"({"type":"session-join","session":5})",
+            R"({"type":"session-handover","to":"me"})",
+            R"({"type":"session-handover","to":-3})",
+            R"({"type":"session-handover","to":0})",
+            R"({"type":"session-leave","now":true})",
+        };
+        for (const char* text : bad) {
+            bool fatal = true;
+            QCOMPARE(errorCode(text, &fatal), "bad-request");
+            QVERIFY2(!fatal, text);
+        }
+        const std::string longId =
+            "{\"type\":\"session-join\",\"session\":\"" + std::string(100, 'a') + "\"}";
+        QCOMPARE(errorCode(longId), "bad-request");
+    }
+
+    void adaptiveQualityHoldsTheFrameRate() {
+        AdaptiveQuality adaptive; // 50 ms a frame
+        const InteractiveSetting start = adaptive.current();
+        QCOMPARE(start.scale, 0.5);
+        // Slow frames step down to the cheapest setting and stay there.
+        for (int n = 0; n < 20; ++n) {
+            adaptive.record(200.0);
+        }
+        QCOMPARE(adaptive.level(), kInteractiveLevels - 1);
+        QCOMPARE(adaptive.current().scale, 0.35);
+        QCOMPARE(adaptive.current().jpegQuality, 50);
+        // Fast frames climb back to full size, JPEG quality 85.
+        for (int n = 0; n < 40; ++n) {
+            adaptive.record(5.0);
+        }
+        QCOMPARE(adaptive.level(), std::size_t(0));
+        QCOMPARE(adaptive.current().scale, 1.0);
+        QCOMPARE(adaptive.current().jpegQuality, 85);
+        // Frames that cost what they may (between 45 % and 100 % of the
+        // target) leave the setting alone.
+        AdaptiveQuality steady;
+        for (int n = 0; n < 20; ++n) {
+            steady.record(40.0);
+        }
+        QCOMPARE(steady.level(), std::size_t(4));
+        // A cost model: each level's frame costs its pixels; 100 ms at full
+        // size settles on the best level under 50 ms.
+        AdaptiveQuality modelled;
+        for (int n = 0; n < 40; ++n) {
+            const InteractiveSetting s = modelled.current();
+            modelled.record(100.0 * s.scale * s.scale);
+        }
+        QCOMPARE(modelled.current().scale, 0.5);
+        for (const InteractiveSetting& s : kInteractiveLadder) {
+            QVERIFY(s.jpegQuality >= 50 && s.jpegQuality <= 85);
+        }
+    }
+
     void structuralErrorsAreFatal() {
         bool fatal = false;
         QCOMPARE(errorCode("{not json", &fatal), "malformed");
@@ -122,6 +204,12 @@ private slots:
         QCOMPARE(f.header.format, "jpeg");
         QVERIFY(f.header.quality == Quality::Interactive);
         QCOMPARE(f.image, std::string_view(image));
+        QCOMPARE(f.header.scale, 1.0);
+        h.scale = 0.35;
+        h.jpegQuality = 55;
+        const ParsedFrame g = parseFrameMessage(frameMessage(h, image));
+        QCOMPARE(g.header.scale, 0.35);
+        QCOMPARE(g.header.jpegQuality, 55);
         QVERIFY_THROWS_EXCEPTION(ProtocolError, parseFrameMessage(message.substr(0, 10)));
         QVERIFY_THROWS_EXCEPTION(ProtocolError, parseFrameMessage("\xff\xff"));
     }

@@ -9,9 +9,11 @@
 #include "core/io/Catalog.h"
 #include "core/raycast/CpuRayCaster.h"
 #include "core/raycast/InteractiveQuality.h"
+#include "server/protocol/AdaptiveQuality.h"
 
 using namespace lucent;
 using namespace lucent::test;
+using lucent::remote::FrameHeader;
 
 namespace {
 
@@ -150,6 +152,87 @@ private slots:
         qInfo("interactive: PSNR %.1f dB, %lld JPEG bytes", db, qlonglong(frame->image.size()));
         saveOnFailure(remote, "remote_interactive.png", !(db >= 32.0));
         QVERIFY2(db >= 32.0, qPrintable(QString("PSNR %1 dB").arg(db)));
+    }
+
+    void interactionAdaptsJpegAndEndsWithALosslessStill() {
+        ServerProcess server;
+        QVERIFY(server.port());
+        RemoteTestClient client(server.port());
+        QVERIFY(!openView(client).isEmpty());
+        QVERIFY(client.waitForCurrentFrame());
+        client.change({{"type", "interaction"}, {"state", "start"}});
+        for (int n = 1; n <= 12; ++n) {
+            client.change({{"type", "camera"}, {"azimuth", 10.0 * n}});
+            QVERIFY(client.waitForCurrentFrame()); // a drag that waits for each frame
+            const FrameHeader& h = client.frames.back().header;
+            QCOMPARE(h.format, "jpeg");
+            QVERIFY(h.quality == remote::Quality::Interactive);
+            QVERIFY2(h.jpegQuality >= 50 && h.jpegQuality <= 85,
+                     qPrintable(QString::number(h.jpegQuality)));
+            bool onLadder = false;
+            for (const auto& setting : remote::kInteractiveLadder) {
+                onLadder |= setting.scale == h.scale && setting.jpegQuality == h.jpegQuality;
+            }
+            QVERIFY2(onLadder, qPrintable(QString("scale %1").arg(h.scale)));
+            QCOMPARE(h.width, std::max(1, int(kSide * h.scale)));
+            QVERIFY(client.frames.back().image.startsWith("\xff\xd8"));
+        }
+        // A small volume renders fast: the server chose better than its start
+        // (half size, quality 60).
+        const FrameHeader& last = client.frames.back().header;
+        qInfo("after 12 frames: scale %.2f, JPEG quality %d, render %.1f ms, encode %.1f ms",
+              last.scale, last.jpegQuality, last.renderMs, last.encodeMs);
+        QVERIFY(last.scale > 0.5 || last.jpegQuality > 60 || last.renderMs + last.encodeMs > 22);
+
+        client.change({{"type", "interaction"}, {"state", "end"}});
+        const ReceivedFrame* still = client.waitForCurrentFrame();
+        QVERIFY(still);
+        QCOMPARE(still->header.format, "png");
+        QVERIFY(still->header.quality == remote::Quality::Still);
+        QCOMPARE(still->header.width, kSide);
+        QCOMPARE(still->header.scale, 1.0);
+        const Volume volume = loadPath(server.volumeFile().toStdString());
+        CpuRayCaster cpu(volume);
+        const ImageRGBA8 local = cpu.render(localDescription(volume, {120, 0, 1, 30})).image;
+        const double db = psnr(local, still->decoded());
+        QVERIFY2(db >= 40.0, qPrintable(QString("PSNR %1 dB").arg(db)));
+
+        // The `quality` message still works as before.
+        client.change({{"type", "quality"}, {"quality", "interactive"}});
+        const ReceivedFrame* fixed = client.waitForCurrentFrame();
+        QVERIFY(fixed);
+        QCOMPARE(fixed->header.format, "jpeg");
+        QCOMPARE(fixed->header.scale, 0.5);
+        QCOMPARE(fixed->header.jpegQuality, 85);
+    }
+
+    void tokenInTheSubprotocol() {
+        ServerProcess server;
+        QVERIFY(server.port());
+        RemoteTestClient client(server.port(), {"lucent.v1", QString("lucent.token.") + kToken});
+        QVERIFY(client.waitConnected());
+        QCOMPARE(client.subprotocol(), "lucent.v1");
+        QCOMPARE(client.waitForText("hello")["version"].toInt(), 1); // no auth message sent
+        client.send({{"type", "list"}});
+        QCOMPARE(client.waitForText("series")["series"].toArray().size(), 1);
+        client.send({{"type", "auth"}, {"token", kToken}});
+        QCOMPARE(client.waitForText("error")["code"].toString(), "out-of-order");
+
+        RemoteTestClient wrong(server.port(), {"lucent.v1", "lucent.token.not-the-token"});
+        const QJsonObject error = wrong.waitForText("error");
+        QCOMPARE(error["code"].toString(), "auth-failed");
+        QVERIFY(error["message"].toString().contains("token"));
+        QVERIFY(wrong.waitDisconnected());
+        QVERIFY(wrong.waitForText("hello", 200).isEmpty());
+
+        // Without a token subprotocol the auth message is still required.
+        RemoteTestClient plain(server.port(), {"lucent.v1"});
+        QVERIFY(plain.waitConnected());
+        QCOMPARE(plain.subprotocol(), "lucent.v1");
+        plain.send({{"type", "list"}});
+        QCOMPARE(plain.waitForText("error")["code"].toString(), "auth-required");
+        QVERIFY(!server.log().contains("not-the-token"));
+        QVERIFY(!server.log().contains(kToken));
     }
 
     void badMessagesCloseOnlyTheirConnection() {

@@ -1,0 +1,129 @@
+#include "server/TeachingSession.h"
+
+#include <QLoggingCategory>
+
+#include <nlohmann/json.hpp>
+
+#include "server/ClientConnection.h"
+#include "server/RenderServer.h"
+
+namespace lucent::remote {
+namespace {
+
+Q_LOGGING_CATEGORY(lcSession, "lucent.server.session")
+
+} // namespace
+
+TeachingSession::TeachingSession(QString id, ClientConnection& presenter, RenderServer& server,
+                                 int maxMembers, QObject* parent)
+    : QObject(parent), id_(std::move(id)), server_(server), maxMembers_(maxMembers),
+      view_(new ViewStream(server.newViewId(), server, this)), presenter_(&presenter) {
+    members_.append(&presenter);
+    view_->addMember(&presenter);
+    view_->setPacer(&presenter);
+}
+
+int TeachingSession::memberCount() const {
+    int n = 0;
+    for (const auto& m : members_) {
+        n += m ? 1 : 0;
+    }
+    return n;
+}
+
+void TeachingSession::join(ClientConnection& client) {
+    members_.append(&client);
+    view_->addMember(&client);
+    if (!openedMessage_.empty() && view_->series()) {
+        client.sendJson(openedMessage_);
+        if (!view_->lastFrame().isEmpty()) {
+            client.offerFrame(view_->lastFrame());
+        }
+    }
+}
+
+bool TeachingSession::leave(ClientConnection& client) {
+    members_.removeAll(&client);
+    members_.removeAll(nullptr);
+    view_->removeMember(&client);
+    if (presenter_ == &client || !presenter_) {
+        presenter_ = members_.isEmpty() ? nullptr : members_.front().data();
+        view_->setPacer(presenter_);
+        if (presenter_) {
+            qCInfo(lcSession) << "session: the presenter left; client" << presenter_->id()
+                              << "presents";
+        }
+    }
+    view_->pump(); // a new pacer may be ready
+    return members_.isEmpty();
+}
+
+bool TeachingSession::handover(quint64 to) {
+    for (const auto& m : std::as_const(members_)) {
+        if (m && m->id() == to) {
+            presenter_ = m;
+            view_->setPacer(m);
+            view_->pump();
+            return true;
+        }
+    }
+    return false;
+}
+
+void TeachingSession::share(std::shared_ptr<const SeriesEntry> original) {
+    const std::uint64_t ticket = ++shareCount_;
+    openedMessage_.clear();
+    view_->reset(*original);
+    server_.deidentifiedCopy(
+        original, this, [this, ticket](std::shared_ptr<const SeriesEntry> copy, QString error) {
+            if (ticket != shareCount_) {
+                return; // the presenter opened another series meanwhile
+            }
+            if (!copy) {
+                view_->close();
+                if (presenter_) {
+                    presenter_->sendError(
+                        "render-failed",
+                        "the series could not be de-identified: " + error.toStdString(), false);
+                }
+                return;
+            }
+            openedMessage_ = view_->show(std::move(copy));
+            sendToAll(openedMessage_);
+            broadcastState();
+        });
+}
+
+void TeachingSession::broadcastState() {
+    nlohmann::json ids = nlohmann::json::array();
+    for (const auto& m : std::as_const(members_)) {
+        if (m) {
+            ids.push_back(m->id());
+        }
+    }
+    for (const auto& m : std::as_const(members_)) {
+        if (!m) {
+            continue;
+        }
+        nlohmann::json state{
+            {"type", "session-state"},
+            {"session", id_.toStdString()},
+            {"members", memberCount()},
+            {"member_ids", ids},
+            {"presenter", presenter_ ? nlohmann::json(presenter_->id()) : nlohmann::json()},
+            {"you", m->id()},
+            {"role", m == presenter_ ? "presenter" : "follower"},
+            {"series", view_->series() ? nlohmann::json(view_->series()->id) : nlohmann::json()}};
+        m->sendJson(state.dump());
+    }
+}
+
+void TeachingSession::sendToAll(const std::string& json) {
+    for (const auto& m : std::as_const(members_)) {
+        if (m) {
+            m->sendJson(json);
+        }
+    }
+}
+
+} // namespace lucent::remote

@@ -1,0 +1,178 @@
+#include "server/ViewStream.h"
+
+#include <nlohmann/json.hpp>
+
+#include "server/ClientConnection.h"
+#include "server/RenderServer.h"
+
+namespace lucent::remote {
+
+std::string defaultPreset(const SeriesEntry& series, RenderMode mode) {
+    if (series.modality != "CT") {
+        return "mr-default";
+    }
+    return mode == RenderMode::Dvr ? "ct-bone" : "ct-mip";
+}
+
+ViewStream::ViewStream(quint64 id, RenderServer& server, QObject* parent)
+    : QObject(parent), id_(id), server_(server) {
+    server_.registerView(this);
+}
+
+ViewStream::~ViewStream() {
+    server_.unregisterView(id_);
+}
+
+void ViewStream::addMember(ClientConnection* client) {
+    if (!members_.contains(client)) {
+        members_.append(client);
+    }
+}
+
+void ViewStream::removeMember(ClientConnection* client) {
+    members_.removeAll(client);
+    members_.removeAll(nullptr);
+    if (pacer_ == client) {
+        pacer_ = nullptr;
+    }
+}
+
+int ViewStream::memberCount() const {
+    int n = 0;
+    for (const auto& m : members_) {
+        n += m ? 1 : 0;
+    }
+    return n;
+}
+
+std::string ViewStream::open(std::shared_ptr<const SeriesEntry> series) {
+    reset(*series);
+    return show(std::move(series));
+}
+
+void ViewStream::reset(const SeriesEntry& like) {
+    const int width = description_.width, height = description_.height;
+    series_.reset();
+    opening_ = true;
+    description_ = RenderDescription{};
+    description_.width = width;
+    description_.height = height;
+    preset_ = defaultPreset(like, description_.mode);
+    description_.transferFunction = loadPreset(preset_);
+    quality_ = Quality::Still;
+    interacting_ = false;
+    stillOwed_ = false;
+    lastFrame_.clear();
+    changed();
+}
+
+std::string ViewStream::show(std::shared_ptr<const SeriesEntry> series) {
+    series_ = std::move(series);
+    opening_ = false;
+    renderWanted_ = true;
+    const glm::ivec3 d = series_->geometry.dims;
+    const std::string opened = nlohmann::json{
+        {"type", "opened"},
+        {"series", series_->id},
+        {"dims", {d.x, d.y, d.z}},
+        {"preset", preset_}}.dump();
+    // The caller sends `opened` first; the frame follows from the event loop.
+    QMetaObject::invokeMethod(this, &ViewStream::pump, Qt::QueuedConnection);
+    return opened;
+}
+
+void ViewStream::close() {
+    series_.reset();
+    opening_ = false;
+    renderWanted_ = false;
+    lastFrame_.clear();
+}
+
+std::optional<std::string> ViewStream::apply(const ClientMessage& message) {
+    if (const auto* camera = std::get_if<CameraUpdate>(&message)) {
+        Camera& c = description_.camera;
+        c.azimuth = camera->azimuth.value_or(c.azimuth);
+        c.elevation = camera->elevation.value_or(c.elevation);
+        c.zoom = camera->zoom.value_or(c.zoom);
+    } else if (const auto* tf = std::get_if<TransferFunctionUpdate>(&message)) {
+        try {
+            description_.transferFunction =
+                tf->preset ? loadPreset(*tf->preset) : *tf->transferFunction;
+        } catch (const TransferFunctionError& e) {
+            return std::string(e.what());
+        }
+    } else if (const auto* mode = std::get_if<ModeUpdate>(&message)) {
+        description_.mode = mode->mode;
+        description_.isoValue = mode->isoValue.value_or(description_.isoValue);
+    } else if (const auto* clip = std::get_if<ClipUpdate>(&message)) {
+        description_.clip = clip->box;
+    } else if (const auto* quality = std::get_if<QualityUpdate>(&message)) {
+        quality_ = quality->quality;
+    } else if (const auto* size = std::get_if<SizeUpdate>(&message)) {
+        description_.width = size->width;
+        description_.height = size->height;
+    } else if (const auto* interaction = std::get_if<InteractionUpdate>(&message)) {
+        stillOwed_ = interacting_ && !interaction->active;
+        interacting_ = interaction->active;
+    }
+    // RenderRequest: nothing changes but a frame is owed.
+    changed();
+    return std::nullopt;
+}
+
+void ViewStream::changed() {
+    ++seq_;
+    renderWanted_ = true;
+    pump();
+}
+
+void ViewStream::pump() {
+    if (!renderWanted_ || renderInFlight_ || !series_ || !pacer_ || !pacer_->readyForFrame()) {
+        return;
+    }
+    renderWanted_ = false;
+    renderInFlight_ = true;
+    RenderJob job{
+        id_, series_, description_, quality_, kFixedInteractiveScale, kFixedInteractiveJpegQuality,
+        seq_};
+    adaptiveInFlight_ = false;
+    if (stillOwed_) {
+        job.quality = Quality::Still;
+        stillOwed_ = false;
+    } else if (interacting_) {
+        const InteractiveSetting setting = adaptive_.current();
+        job.quality = Quality::Interactive;
+        job.scale = setting.scale;
+        job.jpegQuality = setting.jpegQuality;
+        adaptiveInFlight_ = true;
+    }
+    server_.submit(job);
+}
+
+void ViewStream::deliver(const RenderedFrame& frame) {
+    renderInFlight_ = false;
+    if (!frame.error.isEmpty()) {
+        // The reason may name a file; only the pacer (owner or presenter) reads it.
+        for (const auto& member : std::as_const(members_)) {
+            if (member) {
+                member->sendError("render-failed",
+                                  member == pacer_ ? frame.error.toStdString()
+                                                   : std::string("the frame could not be rendered"),
+                                  false);
+            }
+        }
+    } else if (series_) {
+        if (adaptiveInFlight_) {
+            adaptive_.record(frame.frameMs);
+        }
+        lastFrame_ = frame.message;
+        for (const auto& member : std::as_const(members_)) {
+            if (member) {
+                member->offerFrame(lastFrame_);
+            }
+        }
+    }
+    pump();
+}
+
+} // namespace lucent::remote
