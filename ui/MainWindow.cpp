@@ -18,6 +18,7 @@
 #include "ui/MprCursor.h"
 #include "ui/PacsBrowser.h"
 #include "ui/RenderServerSettings.h"
+#include "ui/PacsService.h"
 #include "ui/ScreenshotExport.h"
 #include "ui/SliceView.h"
 #include "ui/StudyBrowser.h"
@@ -95,8 +96,9 @@ MainWindow::MainWindow(QWidget* parent)
             &TransferFunctionEditor::setTransferFunction);
     statusBar()->addWidget(info_, 1);
     loader_ = new VolumeLoader(this);
-    // The series opened in this session, with thumbnails; a click opens one again.
-    auto* studyDock = new QDockWidget(tr("Opened series"), this);
+    // Patients, studies and series of the local store and of the folders opened,
+    // with thumbnails; a click opens one.
+    auto* studyDock = new QDockWidget(tr("Studies"), this);
     auto* studies = new StudyBrowser(studyDock);
     studyDock->setObjectName(QStringLiteral("studyDock"));
     studyDock->setWidget(studies);
@@ -127,6 +129,8 @@ MainWindow::MainWindow(QWidget* parent)
     file->addAction(tr("&Quit"), QKeySequence::Quit, qApp, &QApplication::closeAllWindows);
     // PACS query/retrieve and the local store in a dock; arrived series open here.
     PacsBrowser* pacs = PacsBrowser::addDock(this, menuBar()->addMenu(tr("&PACS")));
+    studies->setStoreFolder(pacs->config().storeFolder);
+    connect(pacs->service(), &PacsService::retrievalFinished, studies, &StudyBrowser::refreshStore);
     connect(pacs, &PacsBrowser::openSeries, this,
             [this](const QString& folder, const QString& series) { openPath(folder, series); });
     addViewMenu();

@@ -1,33 +1,56 @@
 #pragma once
+// The study browser: patients -> studies -> series, each series with a
+// thumbnail (its middle image), from the local study store and from the
+// folders opened in this session. A click on a series asks to open it.
 
 #include <QImage>
 #include <QString>
 #include <QWidget>
 
+#include <optional>
+
+#include "core/io/SeriesEntry.h"
 #include "core/volume/Volume.h"
 
-class QListWidget;
-class QListWidgetItem;
+class QLabel;
+class QTreeWidget;
+class QTreeWidgetItem;
 
 namespace lucent {
 
-// The series opened in this session, newest first: a thumbnail (the middle axial
-// slice, small, in the volume's default window), the description and the
-// dimensions. A click on one asks to open it again.
+class SeriesThumbnailer;
+
 class StudyBrowser : public QWidget {
     Q_OBJECT
 
 public:
     static constexpr int kThumbnailSize = 96;
+    static constexpr int kPathRole = Qt::UserRole;
+    static constexpr int kSeriesRole = Qt::UserRole + 1;
+    static constexpr int kSourceRole = Qt::UserRole + 2; // "folder" or "store"
 
     explicit StudyBrowser(QWidget* parent = nullptr);
+    ~StudyBrowser() override;
 
-    // Adds the series loaded from path (or moves it to the top when it is there).
+    // The series loaded from path, marked as opened (bold, selected), with the
+    // thumbnail of the loaded volume; the rest of path's series follow from a
+    // scan in the background.
     void addSeries(const QString& path, const Volume& volume);
-    int count() const;
-    QListWidget* list() const { return list_; }
+    // Scans path in the background and lists every series it holds.
+    void addFolder(const QString& path);
+    // The local study store to list; refreshStore() reads its index again.
+    void setStoreFolder(const QString& folder);
+    void refreshStore();
 
-    // The axial plane through the volume's centre, size x size pixels, grey.
+    // Series rows (of every patient and study).
+    int count() const;
+    QTreeWidget* tree() const { return tree_; }
+    QTreeWidgetItem* findSeries(const QString& path, const QString& seriesUid) const;
+    // Folder scans and thumbnails still on their way.
+    int pending() const;
+
+    // The acquisition plane (i right, j down) through the volume's centre, size x
+    // size pixels, grey, in the volume's default window.
     static QImage thumbnail(const Volume& volume, int size = kThumbnailSize);
 
 signals:
@@ -35,9 +58,20 @@ signals:
     void openRequested(const QString& path, const QString& series);
 
 private:
-    void open(const QListWidgetItem* item);
+    QTreeWidgetItem* seriesItem(const SeriesInfo& info, const QString& path, const QString& source);
+    void addEntry(const QString& path, const SeriesEntry& entry);
+    void scanned(const QString& path, const std::vector<SeriesEntry>& entries,
+                 const QString& error);
+    void setThumbnail(const QString& path, const QString& seriesUid, const QImage& image);
+    void updateStatus();
 
-    QListWidget* list_;
+    QTreeWidget* tree_;
+    QLabel* status_;
+    SeriesThumbnailer* thumbnails_; // child
+    QString storeFolder_;
+    QStringList scannedFolders_;
+    int scansRunning_ = 0;
+    QString lastError_;
 };
 
 } // namespace lucent

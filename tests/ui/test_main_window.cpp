@@ -5,7 +5,6 @@
 #include <QApplication>
 #include <QDockWidget>
 #include <QFile>
-#include <QListWidget>
 #include <QMessageBox>
 #include <QPushButton>
 #include <QSettings>
@@ -13,6 +12,7 @@
 #include <QStandardPaths>
 #include <QTemporaryDir>
 #include <QTest>
+#include <QTreeWidget>
 
 #include <cmath>
 #include <memory>
@@ -354,34 +354,43 @@ void TestMainWindow::studyBrowserListsOpenedSeries() {
     QSignalSpy finished(window_.get(), &MainWindow::loadFinished);
     window_->openPath(ballFile_);
     QTRY_COMPARE_WITH_TIMEOUT(finished.count(), 1, 20000);
+    const QString ballUid = QString::fromStdString(window_->volume()->seriesUid);
     window_->openPath(halfFile);
     QTRY_COMPARE_WITH_TIMEOUT(finished.count(), 2, 20000);
+    const QString halfUid = QString::fromStdString(window_->volume()->seriesUid);
+    QTRY_COMPARE_WITH_TIMEOUT(studies->pending(), 0, 20000); // the folder scans
     QCOMPARE(studies->count(), 2);
-    QListWidget* list = studies->list();
-    QVERIFY2(list->item(0)->text().contains(QStringLiteral("24 x 48 x 40")),
-             qPrintable(list->item(0)->text())); // newest first
-    QVERIFY2(list->item(1)->text().contains(QStringLiteral("ball")),
-             qPrintable(list->item(1)->text()));
-    QVERIFY(list->item(1)->text().contains(QStringLiteral("48 x 48 x 40")));
+    QTreeWidgetItem* halfItem = studies->findSeries(halfFile, halfUid);
+    QTreeWidgetItem* ballItem = studies->findSeries(ballFile_, ballUid);
+    QVERIFY(halfItem != nullptr && ballItem != nullptr);
+    QVERIFY2(halfItem->text(0).contains(QStringLiteral("24 x 48 x 40")),
+             qPrintable(halfItem->text(0)));
+    QVERIFY2(ballItem->text(0).contains(QStringLiteral("ball")), qPrintable(ballItem->text(0)));
+    QVERIFY(ballItem->text(0).contains(QStringLiteral("48 x 48 x 40")));
+    QVERIFY(ballItem->font(0).bold()); // opened in this session
+    // No patient in a MetaImage: both under one "Unknown patient", a study each.
+    QCOMPARE(studies->tree()->topLevelItemCount(), 1);
+    QCOMPARE(studies->tree()->topLevelItem(0)->text(0), QStringLiteral("Unknown patient"));
+    QCOMPARE(studies->tree()->topLevelItem(0)->childCount(), 2);
 
     // The thumbnail: the ball's middle slice, a bright disc on black.
     const QImage thumb = StudyBrowser::thumbnail(*ball_);
     QCOMPARE(thumb.size(), QSize(StudyBrowser::kThumbnailSize, StudyBrowser::kThumbnailSize));
     QVERIFY(thumb.pixelColor(thumb.width() / 2, thumb.height() / 2).value() > 200);
     QCOMPARE(thumb.pixelColor(2, 2).value(), 0);
-    QVERIFY(!list->item(1)->icon().isNull());
+    QVERIFY(!ballItem->icon(0).isNull());
 
-    // A click on the ball opens it again, and it moves to the top.
+    // A click on the ball opens it again.
     auto* dock = window_->findChild<QDockWidget*>(QStringLiteral("studyDock"));
     QVERIFY(dock != nullptr && dock->isVisible());
-    list->scrollToItem(list->item(1));
-    QTest::mouseClick(list->viewport(), Qt::LeftButton, {},
-                      list->visualItemRect(list->item(1)).center());
+    QTreeWidget* tree = studies->tree();
+    tree->scrollToItem(ballItem);
+    QTest::mouseClick(tree->viewport(), Qt::LeftButton, {},
+                      tree->visualItemRect(ballItem).center());
     QTRY_COMPARE_WITH_TIMEOUT(finished.count(), 3, 20000);
     QCOMPARE(finished.at(2).at(0).toBool(), true);
     QCOMPARE(window_->volume()->dims(), ball_->dims());
     QCOMPARE(studies->count(), 2);
-    QVERIFY(list->item(0)->text().contains(QStringLiteral("ball")));
 }
 
 int main(int argc, char** argv) {
