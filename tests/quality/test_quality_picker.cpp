@@ -1,0 +1,111 @@
+// The quality picker of the 3D view's controls, on a real VolumeView (CPU
+// backend, offscreen): Fast measures the volume's front once in the
+// background and sets the view's sampling to a point of it; Best picks a
+// point at least as accurate at once from the same front; an unreachable
+// target falls back to the fastest with a message; Manual gives the view its
+// own sampling back; a second panel reads the front from the cache dir.
+#include <QApplication>
+#include <QComboBox>
+#include <QDir>
+#include <QSignalSpy>
+#include <QSpinBox>
+#include <QTemporaryDir>
+#include <QTest>
+
+#include "core/raycast/MeasuredFront.h"
+#include "tests/raycast/RaycastScenes.h"
+#include "ui/VolumeView.h"
+#include "ui/VolumeViewControls.h"
+
+using namespace lucent;
+
+namespace {
+
+// The front point the view's sampling is, or nullptr.
+const QualityPoint* pointOf(const MeasuredFront& front, const VolumeView& view) {
+    const SamplingSettings& s = view.sampling();
+    for (const QualityPoint& p : front.points) {
+        if (p.setting.step == s.step && p.setting.interpolation == s.interpolation &&
+            p.setting.classification == s.classification &&
+            p.setting.preintegrate == s.preintegrate &&
+            p.setting.shading == view.transferFunction().shading.enabled) {
+            return &p;
+        }
+    }
+    return nullptr;
+}
+
+} // namespace
+
+class TestQualityPicker : public QObject {
+    Q_OBJECT
+    QTemporaryDir cache_;
+
+private slots:
+    void pickerChoosesFromTheMeasuredFront() {
+        VolumeView view(nullptr, VolumeView::Backend::Cpu);
+        view.resize(160, 128);
+        view.setVolume(std::make_shared<Volume>(
+            test::makeVolume({40, 36, 32}, test::blobs, VoxelType::Int16)));
+        view.setTransferFunction(test::rampTf(true));
+        SamplingSettings own = view.sampling();
+        own.step = 0.75; // not a step of the quick sweep
+        view.setSampling(own);
+        VolumeViewControls controls(&view);
+        controls.setQualityCacheDir(cache_.path());
+        QSignalSpy chosen(&controls, &VolumeViewControls::qualityChosen);
+
+        controls.qualityPicker()->setCurrentIndex(1); // Fast
+        QVERIFY2(controls.qualityStatus().contains("Measuring"),
+                 qPrintable(controls.qualityStatus()));
+        QVERIFY(chosen.wait(240000));
+        const auto front =
+            loadFront(cache_.path().toStdString(), frontKey(view.description(), "cpu"));
+        QVERIFY2(front, "the measured front is in the cache dir");
+        const QualityPoint* fast = pointOf(*front, view);
+        QVERIFY2(fast && fast->pareto, qPrintable(controls.qualityStatus()));
+
+        controls.qualityPicker()->setCurrentIndex(3); // Best: from the same front, at once
+        QCOMPARE(chosen.size(), 2);
+        const QualityPoint* best = pointOf(*front, view);
+        QVERIFY(best && best->pareto);
+        QVERIFY2(best->psnrDb >= fast->psnrDb, qPrintable(controls.qualityStatus()));
+        QVERIFY2(best->ms >= fast->ms, qPrintable(controls.qualityStatus()));
+
+        controls.qualityPicker()->setCurrentIndex(4); // Target time
+        controls.qualityTarget()->setValue(1);
+        const double scale = front->timeScale(view.description().width, view.description().height);
+        bool reachable = false;
+        for (const QualityPoint& p : front->points) {
+            reachable = reachable || (p.pareto && p.setting.shading && p.ms * scale <= 1.0);
+        }
+        if (!reachable) {
+            QVERIFY2(controls.qualityStatus().contains("fastest"),
+                     qPrintable(controls.qualityStatus()));
+        }
+
+        controls.qualityPicker()->setCurrentIndex(0); // Manual: the view's own sampling
+        QCOMPARE(view.sampling().step, 0.75);
+        QVERIFY(controls.qualityStatus().isEmpty());
+
+        // Another panel (a new session) finds the front in the cache dir.
+        VolumeViewControls again(&view);
+        again.setQualityCacheDir(cache_.path());
+        QSignalSpy chosenAgain(&again, &VolumeViewControls::qualityChosen);
+        again.qualityPicker()->setCurrentIndex(3);
+        QCOMPARE(chosenAgain.size(), 1);
+        QCOMPARE(pointOf(*front, view), best);
+        QCOMPARE(QDir(cache_.path()).entryList({"quality-front-*.csv"}).size(), 1);
+    }
+};
+
+int main(int argc, char** argv) {
+    if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) {
+        qputenv("QT_QPA_PLATFORM", "offscreen");
+    }
+    QApplication app(argc, argv);
+    TestQualityPicker test;
+    return QTest::qExec(&test, argc, argv);
+}
+
+#include "test_quality_picker.moc"
