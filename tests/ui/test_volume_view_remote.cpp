@@ -6,6 +6,7 @@
 // itself), a wrong token, bad settings, the settings dialog and the menu.
 #include <QAction>
 #include <QApplication>
+#include <QElapsedTimer>
 #include <QLabel>
 #include <QLineEdit>
 #include <QMenu>
@@ -92,6 +93,7 @@ private:
 
 double checkedPsnr(const ImageRGBA8& actual, const ImageRGBA8& reference, const char* name) {
     const double p = psnr(actual, reference);
+    qInfo("%s: psnr %.1f dB against the CPU reference", name, p);
     if (p < 40.0) {
         const std::filesystem::path dir(LUCENT_BIN_DIR);
         writePng(actual, dir / (std::string("remote_failed_") + name + "_view.png"));
@@ -189,9 +191,14 @@ void TestVolumeViewRemote::remoteFramesMatchLocalRender() {
     view_->setCamera(camera);
     const TransferFunction tf = view_->transferFunction();
 
+    QElapsedTimer clock;
+    clock.start();
     view_->renderOnServer(server.settings());
     QCOMPARE(view_->backend(), VolumeView::Backend::Remote);
+    // The GL surface went, and the GPU caster's textures with its context.
+    QVERIFY(!view_->localBackend().holdsGlResources());
     QVERIFY2(waitForCurrentFrame(false), qPrintable(view_->notice()));
+    qInfo("switch to the server: first current frame after %lld ms", clock.elapsed());
     QCOMPARE(view_->remoteBackend().status(), BackendStatus::Connected);
     QVERIFY2(view_->notice().contains("connected"), qPrintable(view_->notice()));
     QCOMPARE(view_->camera().azimuth, 30.0);
@@ -232,6 +239,7 @@ void TestVolumeViewRemote::remoteFramesMatchLocalRender() {
     QCOMPARE(view_->camera().azimuth, 100.0 + 30 * VolumeView::kDegreesPerPixel);
     QCOMPARE(view_->lastFrame().width, 192); // scaled up to the view
     p = psnr(view_->lastFrame(), cpuReference(true));
+    qInfo("interactive JPEG: psnr %.1f dB against the CPU reference", p);
     QVERIFY2(p >= 32.0, qPrintable(QString("interactive JPEG: psnr %1 dB").arg(p)));
     QTest::mouseRelease(view_.get(), Qt::LeftButton, {}, start + QPoint(30, 10));
     QVERIFY2(waitForCurrentFrame(false), qPrintable(view_->notice()));
@@ -251,6 +259,8 @@ void TestVolumeViewRemote::remoteFramesMatchLocalRender() {
     QCOMPARE(view_->clipBox().lo, clip.lo);
     QVERIFY2(waitForCurrentFrame(false), qPrintable(view_->notice()));
     p = psnr(view_->lastFrame(), cpuReference());
+    qInfo("local again (%s): psnr %.1f dB against the CPU reference",
+          view_->backend() == VolumeView::Backend::Gpu ? "GPU" : "CPU", p);
     // The GPU against the CPU reference: the bound of test_volume_view.
     QVERIFY2(p >= 35.0, qPrintable(QString("local again: psnr %1 dB").arg(p)));
 }
@@ -276,8 +286,11 @@ void TestVolumeViewRemote::reconnectsAfterServerRestart() {
 
     started = server.start(); // the same port
     QVERIFY2(started.isEmpty(), qPrintable(started));
+    QElapsedTimer clock;
+    clock.start();
     QVERIFY2(waitForStatus(BackendStatus::Connected), qPrintable(view_->notice()));
     QVERIFY2(waitForCurrentFrame(false), qPrintable(view_->notice()));
+    qInfo("server back: a current frame %lld ms after it listened", clock.elapsed());
     const double p = checkedPsnr(view_->lastFrame(), cpuReference(), "reconnected");
     QVERIFY2(p >= 40.0, qPrintable(QString("after the reconnect: psnr %1 dB").arg(p)));
 }
