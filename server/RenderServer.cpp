@@ -93,16 +93,13 @@ bool RenderServer::listen(QString* error) {
         worker_.get(), [this] { backendDescription_ = worker_->start(); },
         Qt::BlockingQueuedConnection);
     qCInfo(lcServer) << "rendering with" << backendDescription_;
-    if (!socketServer_->listen(options_.address, options_.port)) {
-        *error = "cannot listen on " + options_.address.toString() + ":" +
-                 QString::number(options_.port) + ": " + socketServer_->errorString();
-        return false;
-    }
-    return true;
+    // One port for the browser client's files and the WebSocket upgrades.
+    frontDoor_ = new HttpFrontDoor(*socketServer_, this);
+    return frontDoor_->listen(options_.address, options_.port, options_.tls, error);
 }
 
 quint16 RenderServer::port() const {
-    return socketServer_->serverPort();
+    return frontDoor_ ? frontDoor_->port() : 0;
 }
 
 bool RenderServer::acceptsToken(const std::string& token) const {

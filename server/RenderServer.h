@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "core/io/SeriesEntry.h"
+#include "server/HttpFrontDoor.h"
 #include "server/RenderWorker.h"
 
 namespace lucent::remote {
@@ -39,6 +40,7 @@ struct ServerOptions {
     int maxSessionMembers = 64; // the presenter included
     // The store: de-identified copies for teaching sessions go under it.
     std::filesystem::path storeDir;
+    std::optional<TlsFiles> tls; // https:// and wss:// on the same port when set
 };
 
 // The tokens of a token file: one per line, blank lines and lines starting
@@ -91,6 +93,7 @@ private:
     ServerOptions options_;
     std::vector<std::shared_ptr<const SeriesEntry>> series_;
     QWebSocketServer* socketServer_;     // child
+    HttpFrontDoor* frontDoor_ = nullptr; // child, made by listen(): the port, HTTP and TLS
     QThread renderThread_;
     std::unique_ptr<RenderWorker> worker_; // lives on renderThread_; deleted after it ends
     QString backendDescription_;

@@ -48,6 +48,8 @@ int main(int argc, char** argv) {
         {"store", "Folder of the server's study store.", "DIR"},
         {"data", "Studies to serve besides the store's (DICOM folder or volume file).", "PATH"},
         {"token-file", "File of access tokens, one a line.", "FILE"},
+        {"tls-cert", "PEM certificate (chain): https:// and wss:// on the same port.", "FILE"},
+        {"tls-key", "PEM private key of --tls-cert.", "FILE"},
         {"backend", "gl (EGL; the CPU where there is none) or cpu.", "NAME", "gl"},
         {"max-clients", "Clients served at once.", "N", "64"},
         {"max-sessions", "Teaching sessions at once.", "N", "16"},
@@ -97,6 +99,19 @@ int main(int argc, char** argv) {
         err << "lucent-server: --store DIR and --token-file FILE are required\n";
         return kUsage;
     }
+    if (parser.isSet("tls-cert") != parser.isSet("tls-key")) {
+        err << "lucent-server: --tls-cert FILE and --tls-key FILE go together\n";
+        return kUsage;
+    }
+    if (parser.isSet("tls-cert")) {
+        options.tls = lucent::remote::TlsFiles{parser.value("tls-cert"), parser.value("tls-key")};
+        try {
+            (void)lucent::remote::loadServerTls(*options.tls); // fail before the slow start
+        } catch (const std::exception& e) {
+            err << "lucent-server: " << e.what() << "\n";
+            return kBadInput;
+        }
+    }
     lucent::remote::ServedSeries served;
     try {
         options.tokens = lucent::remote::readTokenFile(parser.value("token-file"));
@@ -123,6 +138,8 @@ int main(int argc, char** argv) {
         err << "lucent-server: " << error << "\n";
         return kBadInput;
     }
+    out << "browser client at " << (options.tls ? "https" : "http") << "://"
+        << options.address.toString() << ":" << server.port() << "/\n";
     out << "listening on " << options.address.toString() << ":" << server.port() << "\n";
     out.flush();
     return QCoreApplication::exec();

@@ -1,0 +1,82 @@
+#pragma once
+// The render server's one port. Reads the head of each incoming HTTP request:
+// a WebSocket upgrade goes to the QWebSocketServer, a GET of / or of a file of
+// the browser client is answered from the files embedded from resources/web/,
+// anything else is refused (404, 405, 400; 431 for an oversized head). With a
+// TLS certificate the same port speaks https:// and wss:// (QSslServer).
+
+#include <QByteArray>
+#include <QHostAddress>
+#include <QList>
+#include <QObject>
+#include <QPair>
+#include <QSslConfiguration>
+#include <QString>
+
+#include <optional>
+
+class QTcpServer;
+class QTcpSocket;
+class QWebSocketServer;
+
+namespace lucent::remote {
+
+// A PEM certificate (chain, leaf first) and its PEM private key.
+struct TlsFiles {
+    QString certificate;
+    QString key;
+};
+
+// The server side of TLS from these files. Throws std::runtime_error naming the
+// file when one cannot be read or parsed, or when the key does not belong to the
+// certificate (checked with a TLS handshake over loopback).
+QSslConfiguration loadServerTls(const TlsFiles& files);
+
+// The head of an HTTP/1.x request: request line and header fields.
+struct HttpRequestHead {
+    QByteArray method;
+    QByteArray target; // as sent: path and query
+    QByteArray version;
+    QList<QPair<QByteArray, QByteArray>> fields; // names lower-cased, values trimmed
+
+    QByteArray field(const QByteArray& lowerCaseName) const;
+    bool isWebSocketUpgrade() const;
+};
+
+// Parses a request head that ends with an empty line; nullopt when it is not HTTP/1.x.
+std::optional<HttpRequestHead> parseHttpRequestHead(const QByteArray& head);
+
+// Request heads larger than this are refused with 431.
+inline constexpr qsizetype kMaxRequestHeadBytes = 16 * 1024;
+// A connection that has not sent a whole request head by then is closed.
+inline constexpr int kRequestHeadTimeoutMs = 10000;
+
+class HttpFrontDoor : public QObject {
+    Q_OBJECT
+public:
+    // `webSockets` gets the upgraded connections; it need not listen itself.
+    explicit HttpFrontDoor(QWebSocketServer& webSockets, QObject* parent = nullptr);
+    ~HttpFrontDoor() override;
+
+    // Listens with TLS when `tls` is given. False with a message (naming the
+    // file for TLS problems) on failure.
+    bool listen(const QHostAddress& address, quint16 port, const std::optional<TlsFiles>& tls,
+                QString* error);
+    void close();
+    quint16 port() const;
+    bool isSecure() const { return secure_; }
+
+private:
+    void onPendingConnection();
+    void onReadable(QTcpSocket* socket);
+    void answer(QTcpSocket* socket, const HttpRequestHead& request);
+    void respond(QTcpSocket* socket, int status, const QByteArray& contentType,
+                 const QByteArray& body, bool withBody,
+                 const QByteArray& extraFields = QByteArray());
+
+    QWebSocketServer& webSockets_;
+    QTcpServer* server_ = nullptr; // child; a QSslServer when secure
+    bool secure_ = false;
+};
+
+} // namespace lucent::remote

@@ -1,0 +1,162 @@
+// The browser client end to end: headless Chromium (driven by chromedriver)
+// opens the page a real lucent-server serves on loopback, authenticates, opens
+// a real CT series, and a mouse drag, a touch drag and a pinch each bring new
+// frames that change the canvas. The server is then restarted on the same port
+// and the page reconnects by itself. Skips when chromium, chromedriver or the
+// real data are missing.
+#include <QDir>
+#include <QFileInfo>
+#include <QTest>
+
+#include "WebDriver.h"
+#include "WebServerFixture.h"
+
+using namespace lucent::test;
+
+namespace {
+
+// A real CT: 28 slices of 512 x 512 (see ../shared/data/README.md).
+const QString kSeriesDir = QString(LUCENT_TEST_DATA_DIR) + "/dcm_qa_ct/Philips_S21570/S2010";
+
+// A fingerprint of the canvas pixels and how many of them are not black.
+constexpr char kCanvasPixels[] = R"(
+const c = document.getElementById('view');
+const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+let hash = 0, lit = 0;
+for (let i = 0; i < d.length; i += 4) {
+  hash = (Math.imul(hash, 31) + d[i] * 65536 + d[i + 1] * 256 + d[i + 2]) | 0;
+  if (d[i] + d[i + 1] + d[i + 2] > 30) lit++;
+}
+return {hash, lit, width: c.width, height: c.height};
+)";
+
+// True once a still frame of the canvas' size is drawn after `drawn` frames.
+QString stillFrameAfter(int drawn) {
+    return QString("const s = window.lucent.stats, c = document.getElementById('view');"
+                   "return s.framesDrawn > %1 && s.lastHeader && s.lastHeader.quality === "
+                   "'still' && s.lastHeader.width === c.width && s.lastHeader.height === "
+                   "c.height;")
+        .arg(drawn);
+}
+
+int framesDrawn(WebDriver& driver) {
+    return driver.execute("return window.lucent.stats.framesDrawn;").toInt();
+}
+
+} // namespace
+
+class TestWebBrowser : public QObject {
+    Q_OBJECT
+private slots:
+    void dragRotatesTheRemoteView();
+
+private:
+    bool waitForNewStill(WebDriver& driver, int before, QJsonObject* pixels);
+};
+
+bool TestWebBrowser::waitForNewStill(WebDriver& driver, int before, QJsonObject* pixels) {
+    if (!driver.waitUntil(stillFrameAfter(before), 30000)) {
+        return false;
+    }
+    *pixels = driver.execute(kCanvasPixels).toObject();
+    return true;
+}
+
+void TestWebBrowser::dragRotatesTheRemoteView() {
+    const BrowserTools tools = findBrowserTools();
+    if (!tools.missing().isEmpty()) {
+        QSKIP(qPrintable(tools.missing()));
+    }
+    if (!QFileInfo(kSeriesDir).isDir()) {
+        QSKIP(qPrintable("real data absent: " + kSeriesDir));
+    }
+    auto server = std::make_unique<WebServerProcess>(QStringList{}, kSeriesDir);
+    QVERIFY2(server->started(), qPrintable(server->startError()));
+    const quint16 port = server->port();
+
+    WebDriver driver(tools);
+    QVERIFY2(driver.start(640, 480), qPrintable(driver.error()));
+    QVERIFY2(driver.navigate(QString("http://127.0.0.1:%1/").arg(port)),
+             qPrintable(driver.error()));
+
+    // Authenticate with the token typed into the page.
+    const QString token = driver.findElement("#token");
+    QVERIFY2(!token.isEmpty(), qPrintable(driver.error()));
+    QVERIFY(driver.sendKeys(token, kToken));
+    QVERIFY(driver.click(driver.findElement("#connect")));
+    QVERIFY2(
+        driver.waitUntil("return document.getElementById('series-list').options.length > 0;",
+                         20000),
+        qPrintable(
+            "no series list: " +
+            driver.execute("return document.getElementById('status').textContent;").toString() +
+            "\n" + driver.consoleLog()));
+    QVERIFY(!driver.execute("return location.href;").toString().contains(kToken));
+
+    // Open the series: a still frame of the canvas' size arrives and shows something.
+    QVERIFY(driver.click(driver.findElement("#open")));
+    QJsonObject before;
+    QVERIFY2(
+        waitForNewStill(driver, 0, &before),
+        qPrintable(
+            "no frame: " +
+            driver.execute("return document.getElementById('status').textContent;").toString() +
+            "\n" + driver.consoleLog()));
+    QVERIFY2(before["lit"].toInt() > 100, "the first frame is black");
+
+    // A mouse drag on the canvas turns the view: new frames, other pixels.
+    const QString canvas = driver.findElement("#view");
+    int drawn = framesDrawn(driver);
+    QVERIFY2(driver.drag(canvas, "mouse", -40, 0, 120, 30, 6), qPrintable(driver.error()));
+    QJsonObject afterMouse;
+    QVERIFY2(waitForNewStill(driver, drawn, &afterMouse), "no frame after the mouse drag");
+    QVERIFY(afterMouse["lit"].toInt() > 100);
+    QVERIFY2(afterMouse["hash"].toInt() != before["hash"].toInt(),
+             "the canvas did not change after the drag");
+    QVERIFY(driver.execute("return window.lucent.view.azimuth;").toDouble() != 0.0);
+
+    // A touch drag turns it again.
+    drawn = framesDrawn(driver);
+    QVERIFY2(driver.drag(canvas, "touch", 0, -30, -20, 90, 6), qPrintable(driver.error()));
+    QJsonObject afterTouch;
+    QVERIFY2(waitForNewStill(driver, drawn, &afterTouch), "no frame after the touch drag");
+    QVERIFY(afterTouch["hash"].toInt() != afterMouse["hash"].toInt());
+
+    // Two fingers moving apart zoom in.
+    const double zoom = driver.execute("return window.lucent.view.zoom;").toDouble();
+    drawn = framesDrawn(driver);
+    QVERIFY2(driver.pinch(canvas, 30, 110, 5), qPrintable(driver.error()));
+    QJsonObject afterPinch;
+    QVERIFY2(waitForNewStill(driver, drawn, &afterPinch), "no frame after the pinch");
+    QVERIFY(driver.execute("return window.lucent.view.zoom;").toDouble() > zoom * 1.5);
+    QVERIFY(afterPinch["hash"].toInt() != afterTouch["hash"].toInt());
+
+    // Phone size: the canvas still fills the width and gets frames of its new size.
+    drawn = framesDrawn(driver);
+    QVERIFY(driver.setWindowSize(390, 800));
+    QJsonObject phone;
+    QVERIFY2(waitForNewStill(driver, drawn, &phone), "no frame at phone size");
+    const double cssWidth =
+        driver.execute("return document.getElementById('view').getBoundingClientRect().width;")
+            .toDouble();
+    QVERIFY2(cssWidth > 300 && cssWidth <= 390, qPrintable(QString::number(cssWidth)));
+
+    // The server goes away and comes back on the same port: the page reconnects,
+    // opens the same series again and shows the same view.
+    server.reset();
+    QVERIFY(driver.waitUntil(
+        "return document.getElementById('status').textContent.includes('reconnecting');", 20000));
+    drawn = framesDrawn(driver);
+    server = std::make_unique<WebServerProcess>(QStringList{}, kSeriesDir, port);
+    QVERIFY2(server->started(), qPrintable(server->startError()));
+    QJsonObject reconnected;
+    QVERIFY2(
+        waitForNewStill(driver, drawn, &reconnected),
+        qPrintable(
+            "no frame after the server came back: " +
+            driver.execute("return document.getElementById('status').textContent;").toString()));
+    QVERIFY(reconnected["lit"].toInt() > 100);
+}
+
+QTEST_GUILESS_MAIN(TestWebBrowser)
+#include "test_web_browser.moc"
