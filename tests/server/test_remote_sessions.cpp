@@ -1,0 +1,329 @@
+// Teaching sessions on the real lucent-server over loopback: the presenter
+// controls the view, followers receive the same frame bytes (50 of them
+// too), control is handed over and passes on when the presenter goes, killed
+// clients free their places and sessions, bad session messages close only
+// their own connection, and a real DICOM series reaches followers
+// de-identified.
+#include <QJsonArray>
+#include <QTest>
+
+#include <memory>
+
+#include "RemoteTestFixture.h"
+#include "core/io/Catalog.h"
+
+using namespace lucent;
+using namespace lucent::test;
+
+namespace {
+
+constexpr int kSide = 96;
+
+// Authenticates and answers the uid of the server's first series.
+QString firstSeries(RemoteTestClient& client) {
+    if (!client.waitConnected() || !client.authenticate()) {
+        return {};
+    }
+    client.send({{"type", "list"}});
+    const QJsonArray series = client.waitForText("series")["series"].toArray();
+    return series.isEmpty() ? QString() : series[0].toObject()["uid"].toString();
+}
+
+// The newest text message of this type after index `from` (waits for one).
+QJsonObject nextText(RemoteTestClient& client, const QString& type, qsizetype from,
+                     int timeoutMs = 20000) {
+    return client.waitForText(type, timeoutMs, from);
+}
+
+// Waits until the client holds a frame of at least this seq; null if none came.
+const ReceivedFrame* frameOf(RemoteTestClient& client, std::uint64_t seq, int timeoutMs = 60000) {
+    (void)QTest::qWaitFor(
+        [&] { return !client.frames.isEmpty() && client.frames.back().header.seq >= seq; },
+        timeoutMs);
+    return !client.frames.isEmpty() && client.frames.back().header.seq >= seq
+               ? &client.frames.back()
+               : nullptr;
+}
+
+// Creates a session with the presenter's first series open at kSide; the id.
+QString startSession(RemoteTestClient& presenter, std::uint64_t* seq) {
+    const QString uid = firstSeries(presenter);
+    if (uid.isEmpty()) {
+        return {};
+    }
+    presenter.send({{"type", "session-create"}});
+    const QString id = presenter.waitForText("session-created")["session"].toString();
+    presenter.send({{"type", "open"}, {"series", uid}});
+    presenter.send({{"type", "size"}, {"width", kSide}, {"height", kSide}});
+    *seq = 2;
+    return presenter.waitForText("opened").isEmpty() ? QString() : id;
+}
+
+// Authenticates and joins; the member number the session gave it.
+quint64 join(RemoteTestClient& follower, const QString& session) {
+    if (!follower.waitConnected() || !follower.authenticate()) {
+        return 0;
+    }
+    const qsizetype from = follower.texts.size();
+    follower.send({{"type", "session-join"}, {"session", session}});
+    const QJsonObject state = nextText(follower, "session-state", from);
+    return state["role"].toString() == "follower" ? quint64(state["you"].toInteger()) : 0;
+}
+
+} // namespace
+
+class TestRemoteSessions : public QObject {
+    Q_OBJECT
+
+private slots:
+    void presenterControlsFollowersWatchAndControlIsHandedOver() {
+        ServerProcess server;
+        QVERIFY(server.port());
+        RemoteTestClient presenter(server.port());
+        std::uint64_t seq = 0;
+        const QString session = startSession(presenter, &seq);
+        QVERIFY(!session.isEmpty());
+        QVERIFY(frameOf(presenter, seq));
+
+        RemoteTestClient follower(server.port());
+        const quint64 followerId = join(follower, session);
+        QVERIFY(followerId > 0);
+        QVERIFY(!follower.waitForText("opened").isEmpty()); // a late joiner gets the series
+        QVERIFY(frameOf(follower, seq));                    // and the last frame at once
+        const QJsonObject state = follower.texts.back()["type"] == "session-state"
+                                      ? follower.texts.back()
+                                      : follower.waitForText("session-state");
+        QCOMPARE(state["members"].toInt(), 2);
+
+        presenter.send({{"type", "camera"}, {"azimuth", 40}});
+        ++seq;
+        const ReceivedFrame* mine = frameOf(presenter, seq);
+        const ReceivedFrame* theirs = frameOf(follower, seq);
+        QVERIFY(mine && theirs);
+        QCOMPARE(theirs->header.seq, seq);
+        QCOMPARE(theirs->image, mine->image); // the same bytes, encoded once
+
+        // A follower's view message is refused, not fatal.
+        qsizetype from = follower.texts.size();
+        follower.send({{"type", "camera"}, {"azimuth", 90}});
+        const QJsonObject refused = nextText(follower, "error", from);
+        QCOMPARE(refused["code"].toString(), "not-presenter");
+        QVERIFY(refused["message"].toString().contains("control"));
+        QVERIFY(!refused["fatal"].toBool());
+        follower.send({{"type", "session-handover"}, {"to", 1}});
+        QCOMPARE(nextText(follower, "error", from + 1)["code"].toString(), "not-presenter");
+
+        // The presenter hands control over.
+        from = follower.texts.size();
+        const qsizetype presenterFrom = presenter.texts.size();
+        presenter.send({{"type", "session-handover"}, {"to", qint64(followerId)}});
+        QCOMPARE(nextText(follower, "session-state", from)["role"].toString(), "presenter");
+        QCOMPARE(nextText(presenter, "session-state", presenterFrom)["role"].toString(),
+                 "follower");
+        follower.send({{"type", "camera"}, {"azimuth", 120}});
+        ++seq;
+        QVERIFY(frameOf(follower, seq));
+        QVERIFY(frameOf(presenter, seq));
+        QCOMPARE(presenter.frames.back().image, follower.frames.back().image);
+        from = presenter.texts.size();
+        presenter.send({{"type", "camera"}, {"azimuth", 10}});
+        QCOMPARE(nextText(presenter, "error", from)["code"].toString(), "not-presenter");
+        QVERIFY(!presenter.disconnected && !follower.disconnected);
+
+        // Leaving: the remaining member presents alone.
+        from = presenter.texts.size();
+        follower.send({{"type", "session-leave"}});
+        QVERIFY(!follower.waitForText("session-left").isEmpty());
+        const QJsonObject alone = nextText(presenter, "session-state", from);
+        QCOMPARE(alone["members"].toInt(), 1);
+        QCOMPARE(alone["role"].toString(), "presenter");
+    }
+
+    void fiftyFollowersReceiveTheSameFrames() {
+        ServerProcess server("cpu", {}, {"--max-clients", "60"});
+        QVERIFY(server.port());
+        RemoteTestClient presenter(server.port());
+        std::uint64_t seq = 0;
+        const QString session = startSession(presenter, &seq);
+        QVERIFY(!session.isEmpty());
+        std::vector<std::unique_ptr<RemoteTestClient>> followers;
+        for (int n = 0; n < 50; ++n) {
+            followers.push_back(std::make_unique<RemoteTestClient>(server.port()));
+        }
+        for (auto& f : followers) {
+            QVERIFY(join(*f, session) > 0);
+        }
+        for (int turn = 1; turn <= 3; ++turn) {
+            presenter.send({{"type", "camera"}, {"azimuth", 30.0 * turn}});
+            ++seq;
+            const ReceivedFrame* shown = frameOf(presenter, seq);
+            QVERIFY(shown);
+            for (auto& f : followers) {
+                const ReceivedFrame* got = frameOf(*f, seq);
+                QVERIFY(got);
+                QCOMPARE(got->header.seq, seq);
+                QCOMPARE(got->image, shown->image);
+                QCOMPARE(got->header.renderMs, shown->header.renderMs); // one render
+            }
+        }
+        const qsizetype from = presenter.texts.size();
+        followers.front()->abort();
+        QCOMPARE(nextText(presenter, "session-state", from)["members"].toInt(), 50);
+    }
+
+    void killedClientsFreeTheirPlacesAndSessions() {
+        ServerProcess server("cpu", {}, {"--max-sessions", "1", "--max-session-members", "2"});
+        QVERIFY(server.port());
+        auto a = std::make_unique<RemoteTestClient>(server.port());
+        std::uint64_t seq = 0;
+        const QString session = startSession(*a, &seq);
+        QVERIFY(!session.isEmpty());
+        RemoteTestClient b(server.port());
+        QVERIFY(join(b, session) > 0);
+
+        RemoteTestClient c(server.port());
+        QVERIFY(c.waitConnected() && c.authenticate());
+        c.send({{"type", "session-join"}, {"session", session}});
+        const QJsonObject full = c.waitForText("error");
+        QCOMPARE(full["code"].toString(), "session-full");
+        QVERIFY(!full["fatal"].toBool());
+        qsizetype from = c.texts.size();
+        c.send({{"type", "session-create"}});
+        QCOMPARE(nextText(c, "error", from)["code"].toString(), "session-limit");
+
+        // The presenter is killed: the follower presents, and the place is free.
+        from = b.texts.size();
+        a->abort();
+        a.reset();
+        const QJsonObject passed = nextText(b, "session-state", from);
+        QCOMPARE(passed["role"].toString(), "presenter");
+        QCOMPARE(passed["members"].toInt(), 1);
+        b.send({{"type", "camera"}, {"azimuth", 33}});
+        QVERIFY(frameOf(b, seq + 1));
+        from = c.texts.size();
+        c.send({{"type", "session-join"}, {"session", session}});
+        QCOMPARE(nextText(c, "session-state", from)["members"].toInt(), 2);
+        from = c.texts.size();
+        c.send({{"type", "session-leave"}});
+        QVERIFY(!nextText(c, "session-left", from).isEmpty());
+
+        // The last member is killed: the session ends and another may start.
+        b.abort();
+        QTest::qWait(300);
+        from = c.texts.size();
+        c.send({{"type", "session-join"}, {"session", session}});
+        QCOMPARE(nextText(c, "error", from)["code"].toString(), "not-found");
+        from = c.texts.size();
+        c.send({{"type", "session-create"}});
+        QVERIFY(!nextText(c, "session-created", from).isEmpty());
+        QVERIFY(!c.disconnected);
+    }
+
+    void badSessionMessagesCloseOnlyTheirConnection() {
+        ServerProcess server;
+        QVERIFY(server.port());
+        RemoteTestClient presenter(server.port());
+        std::uint64_t seq = 0;
+        const QString session = startSession(presenter, &seq);
+        QVERIFY(!session.isEmpty());
+        RemoteTestClient follower(server.port());
+        QVERIFY(join(follower, session) > 0);
+
+        auto expectClosed = [&](const QString& text, const QString& code) {
+            RemoteTestClient bad(server.port());
+            QVERIFY(bad.waitConnected() && bad.authenticate());
+            bad.sendRaw(text);
+            const QJsonObject error = bad.waitForText("error");
+            QVERIFY2(error["code"].toString() == code, qPrintable(text.left(80)));
+            QVERIFY(error["fatal"].toBool());
+            QVERIFY(bad.waitDisconnected());
+        };
+        expectClosed("{\"type\":\"session-leave\"}", "out-of-order");
+        expectClosed("{\"type\":\"session-handover\",\"to\":1}", "out-of-order");
+        expectClosed("{\"type\":\"session-join\",\"session\":", "malformed");
+        expectClosed("{\"type\":\"session-create\",\"x\":\"" + QString(100 * 1024, 'x') + "\"}",
+                     "too-large");
+        expectClosed("{\"type\":\"session-start\"}", "unknown-type");
+        {
+            RemoteTestClient twice(server.port());
+            QVERIFY(twice.waitConnected() && twice.authenticate());
+            twice.send({{"type", "session-join"}, {"session", session}});
+            QVERIFY(!twice.waitForText("session-state").isEmpty());
+            twice.send({{"type", "session-create"}});
+            QCOMPARE(twice.waitForText("error")["code"].toString(), "out-of-order");
+            QVERIFY(twice.waitDisconnected());
+        }
+        {
+            RemoteTestClient fields(server.port());
+            QVERIFY(fields.waitConnected() && fields.authenticate());
+            fields.sendRaw("{\"type\":\"session-join\",\"session\":42}");
+            QCOMPARE(fields.waitForText("error")["code"].toString(), "bad-request");
+            const qsizetype from = fields.texts.size();
+            fields.send({{"type", "session-join"}, {"session", "no-such-session"}});
+            QCOMPARE(nextText(fields, "error", from)["code"].toString(), "not-found");
+            QTest::qWait(200);
+            QVERIFY(!fields.disconnected);
+        }
+        // The session is still served, and counts its members right.
+        const qsizetype from = presenter.texts.size();
+        presenter.send({{"type", "camera"}, {"azimuth", 77}});
+        QVERIFY(frameOf(presenter, seq + 1));
+        QVERIFY(frameOf(follower, seq + 1));
+        presenter.send({{"type", "render"}});
+        QVERIFY(frameOf(follower, seq + 2));
+        QVERIFY(!presenter.disconnected && !follower.disconnected);
+        Q_UNUSED(from);
+    }
+
+    void followersSeeOnlyDeidentifiedData() {
+        const QString data = QString(LUCENT_TEST_DATA_DIR) + "/dcm_qa_ct/Philips_S21570/S2010";
+        if (!QFileInfo(data).isDir()) {
+            QSKIP("the real DICOM data (../shared/data) is absent");
+        }
+        const Catalog original = scanPath(data.toStdString());
+        QCOMPARE(original.series.size(), std::size_t(1));
+        const SeriesEntry& entry = original.series[0];
+        QVERIFY(!entry.patientName.empty() && !entry.patientId.empty());
+
+        ServerProcess server("cpu", data);
+        QVERIFY(server.port());
+        RemoteTestClient presenter(server.port());
+        std::uint64_t seq = 0;
+        const QString session = startSession(presenter, &seq);
+        QVERIFY(!session.isEmpty());
+        RemoteTestClient follower(server.port());
+        QVERIFY(join(follower, session) > 0);
+        const QJsonObject opened = follower.waitForText("opened");
+        QVERIFY(!opened.isEmpty());
+        const glm::ivec3 d = entry.geometry.dims;
+        QCOMPARE(opened["dims"].toArray(), QJsonArray({d.x, d.y, d.z}));
+        QVERIFY(opened["series"].toString().toStdString() != entry.id);
+        QVERIFY(frameOf(follower, seq));
+        QCOMPARE(follower.frames.back().header.width, kSide);
+        follower.send({{"type", "list"}});
+        const QJsonArray listed = follower.waitForText("series")["series"].toArray();
+        QCOMPARE(listed.size(), 1);
+        QCOMPARE(listed[0].toObject()["uid"].toString(), opened["series"].toString());
+
+        // Nothing the follower received names the patient, the study or the place.
+        const QString received = follower.allText();
+        qInfo("a follower received:\n%s", qPrintable(received.left(1500)));
+        for (const std::string& secret :
+             {entry.patientName, entry.patientId, entry.id, entry.seriesUid, entry.studyUid,
+              entry.description, entry.studyDate, std::string("QMC")}) {
+            if (!secret.empty()) {
+                QVERIFY2(!received.contains(QString::fromStdString(secret)), secret.c_str());
+            }
+        }
+        // The copy on disk is de-identified too (and the original untouched).
+        const Catalog copies = scanPath((server.storeDir() + "/deidentified").toStdString());
+        QCOMPARE(copies.series.size(), std::size_t(1));
+        QVERIFY(copies.series[0].patientName.empty() && copies.series[0].patientId.empty());
+        QCOMPARE(copies.series[0].id, opened["series"].toString().toStdString());
+        QCOMPARE(scanPath(data.toStdString()).series[0].patientName, entry.patientName);
+        QVERIFY(!server.log().contains(QString::fromStdString(entry.patientName)));
+    }
+};
+
+QTEST_GUILESS_MAIN(TestRemoteSessions)
+#include "test_remote_sessions.moc"
