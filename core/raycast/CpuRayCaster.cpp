@@ -207,8 +207,13 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
         sf.tableLo = tLo;
         sf.tableScale = double(kTableSize - 1) / (tHi - tLo);
     }
+    // Pre-integration: double precision integrates each segment exactly (the
+    // reference), float looks segments up in a table.
     PreintegrationTable preTable;
-    if (sf.preintegrate) {
+    std::optional<SegmentPreintegrator> exactSegments;
+    if (sf.preintegrate && exact) {
+        sd.exactSegments = &exactSegments.emplace(desc.transferFunction, sampling.step);
+    } else if (sf.preintegrate) {
         preTable = buildPreintegrationTable(desc.transferFunction, tLo, tHi, kPreintegrationSize,
                                             sampling.step);
         sf.preTable = sd.preTable = &preTable;
@@ -219,9 +224,9 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
     // (Widened by a cell of the table the samples are classified with.)
     const TransferFunction& tf = desc.transferFunction;
     const auto visible = valueVisibility(desc, tLo, tHi,
-                                         sf.preintegrate ? kPreintegrationSize
-                                         : exact         ? 0
-                                                         : kTableSize);
+                                         exact             ? 0
+                                         : sf.preintegrate ? kPreintegrationSize
+                                                           : kTableSize);
     using LevelData = Cache::LevelData;
     auto levelData = [&](const BrickGrid& level) {
         LevelData out{std::vector<std::uint8_t>(level.count(), 0),

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/raycast/RenderDescription.h"
+#include "core/tf/SegmentPreintegrator.h"
 
 namespace lucent {
 
@@ -38,6 +39,8 @@ template <class Real> struct RaySetup {
         nullptr; // the same with alpha per dt_ref (pre-classification)
     double tableLo = 0.0, tableScale = 1.0;
     const PreintegrationTable* preTable = nullptr;
+    // Double precision (exactTf): each segment integrated exactly, no table.
+    const SegmentPreintegrator* exactSegments = nullptr;
     // Samples whose value lies outside [visibleLo, visibleHi] are transparent
     // (post-classification DVR): they need no table lookup.
     double visibleLo = -std::numeric_limits<double>::infinity();

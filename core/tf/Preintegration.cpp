@@ -1,6 +1,7 @@
 // Pre-integrated classification (Engel, Kraus, Ertl 2001): the colour and opacity
 // of a ray segment whose data value goes linearly from sf (front) to sb (back).
 // The method and its accuracy are described at preintegrateSegment() in the header.
+#include "core/tf/SegmentPreintegrator.h"
 #include "core/tf/TransferFunction.h"
 
 #include <algorithm>
@@ -153,6 +154,24 @@ void checkStepRatio(double stepRatio) {
 }
 
 } // namespace
+
+struct SegmentPreintegrator::Impl {
+    explicit Impl(const TransferFunction& tf) : integrate(tf) {}
+    SegmentIntegrator integrate;
+};
+
+SegmentPreintegrator::SegmentPreintegrator(const TransferFunction& tf, double stepRatio)
+    : stepRatio_(stepRatio) {
+    tf.validate();
+    checkStepRatio(stepRatio);
+    impl_ = std::make_unique<Impl>(tf);
+}
+
+SegmentPreintegrator::~SegmentPreintegrator() = default;
+
+glm::dvec4 SegmentPreintegrator::operator()(double sf, double sb) const {
+    return impl_->integrate(sf, sb, stepRatio_);
+}
 
 glm::dvec4 preintegrateSegment(const TransferFunction& tf, double sf, double sb, double stepRatio) {
     tf.validate();
