@@ -112,7 +112,7 @@ std::optional<std::string> ViewStream::apply(const ClientMessage& message) {
         description_.width = size->width;
         description_.height = size->height;
     } else if (const auto* interaction = std::get_if<InteractionUpdate>(&message)) {
-        stillOwed_ = interacting_ && !interaction->active;
+        stillOwed_ = !interaction->active;
         interacting_ = interaction->active;
     }
     // RenderRequest: nothing changes but a frame is owed.
