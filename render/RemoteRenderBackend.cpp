@@ -287,6 +287,14 @@ void RemoteRenderBackend::chooseSeries(const QJsonArray& offered) {
         fail(tr("no volume is loaded and the settings name no series"));
         return;
     }
+    offered_.clear();
+    for (const QJsonValue& entry : offered) {
+        const QJsonObject s = entry.toObject();
+        const QJsonArray d = s["dims"].toArray();
+        offered_.push_back({s["uid"].toString(), s["description"].toString(),
+                            s["modality"].toString(),
+                            glm::ivec3(d.at(0).toInt(), d.at(1).toInt(), d.at(2).toInt())});
+    }
     // The server names further parts of one UID "UID#n": the one of our size.
     QString chosen;
     for (const QJsonValue& entry : offered) {

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include <QElapsedTimer>
 #include <QSize>
@@ -27,6 +28,14 @@ struct RemoteServerSettings {
     // Empty when usable, else what is wrong, naming the field.
     QString problem() const;
     bool operator==(const RemoteServerSettings&) const = default;
+};
+
+// A series a server offers (its `series` reply).
+struct OfferedSeries {
+    QString uid; // what `open` takes
+    QString description;
+    QString modality;
+    glm::ivec3 dims{0};
 };
 
 // A lucent-server client (docs/protocol.md, v1) behind RenderBackend:
@@ -68,6 +77,9 @@ public:
     QString serverBackend() const { return serverBackend_; }
     // The id of the series open on the server; empty before.
     QString openSeries() const { return openSeries_; }
+    // What the server offered in its last `series` reply (kept after a failure,
+    // so that the user can pick one).
+    const std::vector<OfferedSeries>& offeredSeries() const { return offered_; }
     // View messages the server has accepted or owes a frame for on this connection.
     std::uint64_t sentSeq() const { return seqSent_; }
 
@@ -117,6 +129,7 @@ private:
     QString statusMessage_;
     QString serverBackend_;
     QString openSeries_;
+    std::vector<OfferedSeries> offered_;
     QString refusal_; // a fatal refusal, reported when the server closes
     bool retryAfterRefusal_ = true;
     bool wasOpen_ = false; // this connection got as far as an open series

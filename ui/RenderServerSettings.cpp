@@ -1,6 +1,7 @@
 #include "ui/RenderServerSettings.h"
 
 #include <QActionGroup>
+#include <QComboBox>
 #include <QDialogButtonBox>
 #include <QFormLayout>
 #include <QLabel>
@@ -27,21 +28,45 @@ void saveRenderServerSettings(QSettings& settings, const RemoteServerSettings& s
     settings.setValue("renderServer/series", server.series);
 }
 
-RenderServerSettings::RenderServerSettings(const RemoteServerSettings& initial, QWidget* parent)
+RenderServerSettings::RenderServerSettings(const RemoteServerSettings& initial,
+                                           const std::vector<OfferedSeries>& offered,
+                                           QWidget* parent)
     : QDialog(parent), url_(new QLineEdit(initial.url.toString(), this)),
-      token_(new QLineEdit(initial.token, this)), series_(new QLineEdit(initial.series, this)),
-      problem_(new QLabel(this)) {
+      token_(new QLineEdit(initial.token, this)), series_(new QComboBox(this)),
+      seriesNote_(new QLabel(this)), problem_(new QLabel(this)) {
     setWindowTitle(tr("Render Server"));
     url_->setPlaceholderText(QStringLiteral("ws://render-host:8765/"));
     token_->setEchoMode(QLineEdit::Password);
     token_->setPlaceholderText(tr("one line of the server's token file"));
-    series_->setPlaceholderText(tr("empty: the series loaded here"));
+    series_->setEditable(true);
+    series_->setInsertPolicy(QComboBox::NoInsert);
+    series_->addItem(QString());
+    for (const OfferedSeries& s : offered) {
+        series_->addItem(s.uid);
+        series_->setItemData(series_->count() - 1,
+                             tr("%1 %2, %3 x %4 x %5")
+                                 .arg(s.modality, s.description)
+                                 .arg(s.dims.x)
+                                 .arg(s.dims.y)
+                                 .arg(s.dims.z),
+                             Qt::ToolTipRole);
+    }
+    series_->setCurrentText(initial.series);
+    series_->lineEdit()->setPlaceholderText(tr("empty: the series loaded here"));
+    const auto describe = [this] {
+        const int at = series_->findText(series_->currentText());
+        seriesNote_->setText(at > 0 ? series_->itemData(at, Qt::ToolTipRole).toString()
+                                    : QString());
+    };
+    connect(series_, &QComboBox::currentTextChanged, this, describe);
+    describe();
     problem_->setStyleSheet(QStringLiteral("color: #c04000"));
     problem_->setWordWrap(true);
     auto* form = new QFormLayout;
     form->addRow(tr("Server &URL:"), url_);
     form->addRow(tr("&Token:"), token_);
     form->addRow(tr("&Series UID:"), series_);
+    form->addRow(QString(), seriesNote_);
     auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, this);
     connect(buttons, &QDialogButtonBox::accepted, this, &RenderServerSettings::accept);
     connect(buttons, &QDialogButtonBox::rejected, this, &RenderServerSettings::reject);
@@ -55,7 +80,7 @@ RemoteServerSettings RenderServerSettings::settings() const {
     RemoteServerSettings s;
     s.url = QUrl(url_->text().trimmed(), QUrl::StrictMode);
     s.token = token_->text().trimmed();
-    s.series = series_->text().trimmed();
+    s.series = series_->currentText().trimmed();
     return s;
 }
 
@@ -84,7 +109,8 @@ void addRenderBackendMenu(QMenu* menu, VolumeView* view) {
     QObject::connect(local, &QAction::triggered, view, [view] { view->renderLocally(); });
     QObject::connect(server, &QAction::triggered, view, [view, follow] {
         QSettings settings;
-        RenderServerSettings dialog(loadRenderServerSettings(settings), view->window());
+        RenderServerSettings dialog(loadRenderServerSettings(settings),
+                                    view->remoteBackend().offeredSeries(), view->window());
         if (dialog.exec() == QDialog::Accepted) {
             saveRenderServerSettings(settings, dialog.settings());
             view->renderOnServer(dialog.settings());

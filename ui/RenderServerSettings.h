@@ -7,6 +7,7 @@
 
 #include "render/RemoteRenderBackend.h"
 
+class QComboBox;
 class QLabel;
 class QLineEdit;
 class QMenu;
@@ -24,7 +25,10 @@ class RenderServerSettings : public QDialog {
     Q_OBJECT
 
 public:
-    explicit RenderServerSettings(const RemoteServerSettings& initial, QWidget* parent = nullptr);
+    // offered: the series the server listed last time, to pick from.
+    explicit RenderServerSettings(const RemoteServerSettings& initial,
+                                  const std::vector<OfferedSeries>& offered = {},
+                                  QWidget* parent = nullptr);
 
     RemoteServerSettings settings() const;
     // Accepts only usable settings; otherwise shows what is wrong, naming the field.
@@ -32,13 +36,15 @@ public:
 
     QLineEdit* urlEdit() const { return url_; }
     QLineEdit* tokenEdit() const { return token_; }
-    QLineEdit* seriesEdit() const { return series_; }
+    // Editable: a Series UID, or one the server offered; empty: the one loaded here.
+    QComboBox* seriesPicker() const { return series_; }
     QLabel* problemLabel() const { return problem_; }
 
 private:
     QLineEdit* url_;
     QLineEdit* token_;
-    QLineEdit* series_;
+    QComboBox* series_;
+    QLabel* seriesNote_;
     QLabel* problem_;
 };
 

@@ -6,6 +6,7 @@
 // itself), a wrong token, bad settings, the settings dialog and the menu.
 #include <QAction>
 #include <QApplication>
+#include <QComboBox>
 #include <QElapsedTimer>
 #include <QLabel>
 #include <QLineEdit>
@@ -329,6 +330,17 @@ void TestVolumeViewRemote::badSettingsAndMissingSeries() {
     QVERIFY2(waitForStatus(BackendStatus::Failed), qPrintable(view_->notice()));
     QVERIFY2(view_->notice().contains("does not have series 1.2.3.4.5"),
              qPrintable(view_->notice()));
+    // What the server offers can be picked in the dialog, and that one opens.
+    const auto& offered = view_->remoteBackend().offeredSeries();
+    QCOMPARE(offered.size(), std::size_t(1));
+    QCOMPARE(offered[0].dims, volume_->dims());
+    RenderServerSettings dialog(settings, offered);
+    QCOMPARE(dialog.seriesPicker()->count(), 2); // empty (the loaded one) and the offered one
+    dialog.seriesPicker()->setCurrentIndex(1);
+    QCOMPARE(dialog.settings().series, QString::fromStdString(volume_->seriesUid));
+    view_->renderOnServer(dialog.settings());
+    QVERIFY2(waitForCurrentFrame(false), qPrintable(view_->notice()));
+    QCOMPARE(view_->remoteBackend().openSeries(), dialog.settings().series);
 }
 
 void TestVolumeViewRemote::settingsDialogAndMenu() {
