@@ -15,6 +15,10 @@
 
 namespace lucent::test {
 
+// A second token that cannot ride in a WebSocket subprotocol ('/', '=' are
+// separators): the browser client sends it in the first message instead.
+inline constexpr char kTokenNotASubprotocol[] = "b64/token+for=tests==";
+
 class WebServerProcess {
 public:
     // Starts lucent-server serving `data` (the synthetic CT when empty) with `extraArgs`.
@@ -34,7 +38,7 @@ public:
             error_ = "cannot write the token file";
             return;
         }
-        tokens.write(QByteArray("# test tokens\n") + kToken + "\n");
+        tokens.write(QByteArray("# test tokens\n") + kToken + "\n" + kTokenNotASubprotocol + "\n");
         tokens.close();
         process_.setProcessChannelMode(QProcess::SeparateChannels);
         process_.start(QString(LUCENT_BIN_DIR) + "/lucent-server",

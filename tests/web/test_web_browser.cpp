@@ -6,6 +6,7 @@
 // real data are missing.
 #include <QDir>
 #include <QFileInfo>
+#include <QJsonArray>
 #include <QTest>
 
 #include "WebDriver.h"
@@ -49,6 +50,7 @@ class TestWebBrowser : public QObject {
     Q_OBJECT
 private slots:
     void dragRotatesTheRemoteView();
+    void followsATeachingSession();
 
 private:
     bool waitForNewStill(WebDriver& driver, int before, QJsonObject* pixels);
@@ -156,6 +158,64 @@ void TestWebBrowser::dragRotatesTheRemoteView() {
             "no frame after the server came back: " +
             driver.execute("return document.getElementById('status').textContent;").toString()));
     QVERIFY(reconnected["lit"].toInt() > 100);
+}
+
+void TestWebBrowser::followsATeachingSession() {
+    const BrowserTools tools = findBrowserTools();
+    if (!tools.missing().isEmpty()) {
+        QSKIP(qPrintable(tools.missing()));
+    }
+    if (!QFileInfo(kSeriesDir).isDir()) {
+        QSKIP(qPrintable("real data absent: " + kSeriesDir));
+    }
+    WebServerProcess server({}, kSeriesDir);
+    QVERIFY2(server.started(), qPrintable(server.startError()));
+
+    // A presenter (a protocol client) opens the series and starts a session.
+    RemoteTestClient presenter(server.port());
+    QVERIFY(presenter.waitConnected());
+    QVERIFY(presenter.authenticate());
+    presenter.send({{"type", "list"}});
+    const QJsonArray series = presenter.waitForText("series")["series"].toArray();
+    QVERIFY(!series.isEmpty());
+    presenter.send({{"type", "open"}, {"series", series[0].toObject()["uid"].toString()}});
+    QVERIFY(!presenter.waitForText("opened").isEmpty());
+    presenter.send({{"type", "session-create"}});
+    const QString sessionId = presenter.waitForText("session-created")["session"].toString();
+    QVERIFY(!sessionId.isEmpty());
+    presenter.send({{"type", "size"}, {"width", 200}, {"height", 160}});
+
+    // The browser joins as a follower and shows the session's frames.
+    WebDriver driver(tools);
+    QVERIFY2(driver.start(640, 480), qPrintable(driver.error()));
+    QVERIFY(driver.navigate(QString("http://127.0.0.1:%1/").arg(server.port())));
+    QVERIFY(driver.sendKeys(driver.findElement("#token"), kTokenNotASubprotocol));
+    QVERIFY(driver.click(driver.findElement("#connect")));
+    QVERIFY(driver.waitUntil("return !document.getElementById('join-session').disabled;", 20000));
+    QVERIFY(driver.sendKeys(driver.findElement("#session-id"), sessionId));
+    QVERIFY(driver.click(driver.findElement("#join-session")));
+    QVERIFY2(
+        driver.waitUntil("const s = window.lucent.session();"
+                         "return s !== null && s.role === 'follower' && "
+                         "window.lucent.stats.framesDrawn > 0;",
+                         30000),
+        qPrintable(
+            driver.execute("return document.getElementById('status').textContent;").toString()));
+    const QJsonObject first = driver.execute(kCanvasPixels).toObject();
+    QVERIFY(first["lit"].toInt() > 100);
+    // A follower's drags change nothing: the presenter holds the view.
+    QVERIFY(driver.drag(driver.findElement("#view"), "mouse", 0, 0, 100, 0, 4));
+    QCOMPARE(driver.execute("return window.lucent.view.azimuth;").toDouble(), 0.0);
+    QVERIFY(driver.execute("return document.getElementById('preset').disabled;").toBool());
+
+    // The presenter turns the view: the follower's canvas follows.
+    const int drawn = framesDrawn(driver);
+    presenter.send({{"type", "camera"}, {"azimuth", 90}});
+    QVERIFY(driver.waitUntil(QString("return window.lucent.stats.framesDrawn > %1;").arg(drawn),
+                             30000));
+    QVERIFY(QTest::qWaitFor(
+        [&] { return driver.execute(kCanvasPixels)["hash"].toInt() != first["hash"].toInt(); },
+        10000));
 }
 
 QTEST_GUILESS_MAIN(TestWebBrowser)
