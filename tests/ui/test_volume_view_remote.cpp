@@ -113,6 +113,7 @@ private slots:
     void init();
     void cleanup();
     void remoteFramesMatchLocalRender();
+    void cameraBurstIsPaced();
     void reconnectsAfterServerRestart();
     void wrongTokenIsNamed();
     void badSettingsAndMissingSeries();
@@ -264,6 +265,41 @@ void TestVolumeViewRemote::remoteFramesMatchLocalRender() {
           view_->backend() == VolumeView::Backend::Gpu ? "GPU" : "CPU", p);
     // The GPU against the CPU reference: the bound of test_volume_view.
     QVERIFY2(p >= 35.0, qPrintable(QString("local again: psnr %1 dB").arg(p)));
+}
+
+void TestVolumeViewRemote::cameraBurstIsPaced() {
+    // 200 camera changes 2 ms apart: the server takes 60 at once and 60 a
+    // second, so the view paces them and the last one wins.
+    ServerRun server;
+    const QString started = server.start();
+    QVERIFY2(started.isEmpty(), qPrintable(started));
+    view_->renderOnServer(server.settings());
+    QVERIFY2(waitForCurrentFrame(false), qPrintable(view_->notice()));
+    QStringList failures;
+    QObject::connect(&view_->remoteBackend(), &RenderBackend::frameFailed, view_.get(),
+                     [&failures](const QString& why) { failures << why; });
+    const std::uint64_t seqBefore = view_->remoteBackend().sentSeq();
+    Camera camera = view_->camera();
+    QElapsedTimer clock;
+    clock.start();
+    for (int n = 1; n <= 200; ++n) {
+        camera.azimuth = n * 0.9;
+        view_->setCamera(camera);
+        QTest::qWait(2);
+    }
+    const qint64 burstMs = clock.elapsed();
+    QVERIFY2(waitForCurrentFrame(false), qPrintable(view_->notice()));
+    QVERIFY2(failures.isEmpty(), qPrintable(failures.join("; ")));
+    QVERIFY2(!view_->notice().contains("rate"), qPrintable(view_->notice()));
+    const std::uint64_t sent = view_->remoteBackend().sentSeq() - seqBefore;
+    qInfo("200 camera changes in %lld ms went out as %llu camera messages", burstMs,
+          (unsigned long long)sent);
+    // At most one per kCameraIntervalMs, and the last one after the burst.
+    QVERIFY2(sent >= 2 &&
+                 sent <= std::uint64_t(burstMs / RemoteRenderBackend::kCameraIntervalMs + 2),
+             qPrintable(QString("%1 camera messages in %2 ms").arg(sent).arg(burstMs)));
+    const double p = checkedPsnr(view_->lastFrame(), cpuReference(), "burst");
+    QVERIFY2(p >= 40.0, qPrintable(QString("after the burst: psnr %1 dB").arg(p)));
 }
 
 void TestVolumeViewRemote::reconnectsAfterServerRestart() {
