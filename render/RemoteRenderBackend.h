@@ -8,8 +8,8 @@
 #include <QElapsedTimer>
 #include <QSize>
 #include <QTimer>
-#include <QUrl>
 
+#include "render/RemoteServerSettings.h"
 #include "render/RenderBackend.h"
 
 class QJsonArray;
@@ -17,18 +17,6 @@ class QJsonObject;
 class QWebSocket;
 
 namespace lucent {
-
-// Where the remote backend renders. The token goes in the first message,
-// never in the URL or a log.
-struct RemoteServerSettings {
-    QUrl url;       // ws://HOST:PORT/ or wss://HOST:PORT/
-    QString token;  // one of the server's --token-file lines
-    QString series; // the series to open; empty: the loaded volume's Series UID
-
-    // Empty when usable, else what is wrong, naming the field.
-    QString problem() const;
-    bool operator==(const RemoteServerSettings&) const = default;
-};
 
 // A series a server offers (its `series` reply).
 struct OfferedSeries {
