@@ -220,8 +220,17 @@
     setStatus("opening ...");
   }
 
+  function showPanel(shown) {
+    ui.panel.classList.toggle("collapsed", !shown);
+    ui.togglePanel.setAttribute("aria-expanded", String(shown));
+    requestAnimationFrame(() => canvasView.resize());
+  }
+
   function onOpened(message) {
     opened = true;
+    if (window.matchMedia("(max-width: 700px)").matches) {
+      showPanel(false); // a phone: the view gets the screen; "Controls" brings the panel back
+    }
     sentSize = "";
     view.series = message.series;
     setStatus("showing a " + message.dims.join("x") + " volume", "good");
@@ -382,9 +391,7 @@
     }
   });
   ui.togglePanel.addEventListener("click", () => {
-    const collapsed = ui.panel.classList.toggle("collapsed");
-    ui.togglePanel.setAttribute("aria-expanded", String(!collapsed));
-    requestAnimationFrame(() => canvasView.resize());
+    showPanel(ui.panel.classList.contains("collapsed"));
   });
   window.addEventListener("online", () => {
     if (token && !stopReconnecting && (!socket || socket.readyState === WebSocket.CLOSED)) {
