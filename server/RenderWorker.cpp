@@ -10,6 +10,7 @@
 #include "render/GlError.h"
 #include "render/GpuRayCaster.h"
 #include "render/OffscreenContext.h"
+#include "server/protocol/PngEncoder.h"
 
 namespace lucent::remote {
 namespace {
@@ -23,16 +24,18 @@ double millisecondsSince(const QElapsedTimer& timer) {
 
 // PNG (lossless) or JPEG of an opaque RGBA image; throws std::runtime_error.
 QByteArray encode(const ImageRGBA8& image, Quality quality, int jpegQuality) {
+    if (quality == Quality::Still) {
+        const std::string png = encodePng(image.pixels, image.width, image.height);
+        return QByteArray(png.data(), qsizetype(png.size()));
+    }
     const QImage rgba(image.pixels.data(), image.width, image.height, image.width * 4,
                       QImage::Format_RGBA8888);
     const QImage rgb = rgba.convertToFormat(QImage::Format_RGB888);
     QByteArray bytes;
     QBuffer buffer(&bytes);
     buffer.open(QIODevice::WriteOnly);
-    QImageWriter writer(&buffer, quality == Quality::Interactive ? "jpeg" : "png");
-    if (quality == Quality::Interactive) {
-        writer.setQuality(jpegQuality);
-    }
+    QImageWriter writer(&buffer, "jpeg");
+    writer.setQuality(jpegQuality);
     if (!writer.write(rgb)) {
         throw std::runtime_error("image encoding failed: " + writer.errorString().toStdString());
     }

@@ -1,7 +1,12 @@
 // Protocol v1 parser and frame layout (no network).
 #include <QTest>
 
+#include <QImage>
+
+#include <random>
+
 #include "server/protocol/AdaptiveQuality.h"
+#include "server/protocol/PngEncoder.h"
 #include "server/protocol/ProtocolMessages.h"
 
 using namespace lucent;
@@ -212,6 +217,35 @@ private slots:
         QCOMPARE(g.header.jpegQuality, 55);
         QVERIFY_THROWS_EXCEPTION(ProtocolError, parseFrameMessage(message.substr(0, 10)));
         QVERIFY_THROWS_EXCEPTION(ProtocolError, parseFrameMessage("\xff\xff"));
+    }
+
+    void pngEncoderIsLossless() {
+        std::mt19937 random(7);
+        for (const auto& [w, h] : {std::pair{1, 1}, {17, 5}, {256, 193}}) {
+            std::vector<std::uint8_t> rgba(std::size_t(w) * h * 4);
+            for (int y = 0; y < h; ++y) {
+                for (int x = 0; x < w; ++x) {
+                    std::uint8_t* p = &rgba[(std::size_t(y) * w + x) * 4];
+                    const bool dark = (x / 8 + y / 8) % 2 == 0; // runs and noise
+                    p[0] = dark ? 0 : std::uint8_t(random());
+                    p[1] = dark ? 0 : std::uint8_t(x * 3 + y);
+                    p[2] = dark ? 0 : std::uint8_t(200 - y);
+                    p[3] = 255;
+                }
+            }
+            const std::string png = encodePng(rgba, w, h);
+            const QImage decoded =
+                QImage::fromData(QByteArray(png.data(), qsizetype(png.size())), "PNG")
+                    .convertToFormat(QImage::Format_RGBA8888);
+            QCOMPARE(decoded.width(), w);
+            QCOMPARE(decoded.height(), h);
+            for (int y = 0; y < h; ++y) {
+                QVERIFY(std::equal(rgba.begin() + std::ptrdiff_t(y) * w * 4,
+                                   rgba.begin() + std::ptrdiff_t(y + 1) * w * 4,
+                                   decoded.constScanLine(y)));
+            }
+        }
+        QVERIFY_THROWS_EXCEPTION(std::invalid_argument, encodePng({}, 2, 2));
     }
 
     void errorReplyIsJson() {
