@@ -259,6 +259,15 @@ quint16 HttpFrontDoor::port() const {
 
 void HttpFrontDoor::onPendingConnection() {
     while (QTcpSocket* socket = server_->nextPendingConnection()) {
+        if (waitingForHead_.size() >= kMaxConnectionsWaitingForHead) {
+            qCInfo(lcHttp) << "too many connections without a request head; one closed";
+            socket->abort();
+            socket->deleteLater();
+            continue;
+        }
+        waitingForHead_.insert(socket);
+        connect(socket, &QObject::destroyed, this,
+                [this, socket] { waitingForHead_.remove(socket); });
         auto* deadline = new QTimer(socket);
         deadline->setObjectName(kHeadTimerName);
         deadline->setSingleShot(true);
@@ -278,6 +287,7 @@ void HttpFrontDoor::onReadable(QTcpSocket* socket) {
     const qsizetype end = peeked.indexOf("\r\n\r\n");
     if (end < 0) {
         if (peeked.size() > kMaxRequestHeadBytes) {
+            waitingForHead_.remove(socket);
             disconnect(socket, &QTcpSocket::readyRead, this, nullptr);
             respond(socket, 431, "text/plain; charset=utf-8",
                     "the request head is larger than " + QByteArray::number(kMaxRequestHeadBytes) +
@@ -286,6 +296,7 @@ void HttpFrontDoor::onReadable(QTcpSocket* socket) {
         }
         return;
     }
+    waitingForHead_.remove(socket);
     disconnect(socket, &QTcpSocket::readyRead, this, nullptr);
     const std::optional<HttpRequestHead> request = parseHttpRequestHead(peeked.left(end + 4));
     if (request && request->isWebSocketUpgrade()) {

@@ -10,6 +10,7 @@
 #include <QList>
 #include <QObject>
 #include <QPair>
+#include <QSet>
 #include <QSslConfiguration>
 #include <QString>
 
@@ -50,6 +51,8 @@ std::optional<HttpRequestHead> parseHttpRequestHead(const QByteArray& head);
 inline constexpr qsizetype kMaxRequestHeadBytes = 16 * 1024;
 // A connection that has not sent a whole request head by then is closed.
 inline constexpr int kRequestHeadTimeoutMs = 10000;
+// At most this many connections may wait for their request head; more are closed at once.
+inline constexpr int kMaxConnectionsWaitingForHead = 128;
 
 class HttpFrontDoor : public QObject {
     Q_OBJECT
@@ -76,6 +79,7 @@ private:
 
     QWebSocketServer& webSockets_;
     QTcpServer* server_ = nullptr; // child; a QSslServer when secure
+    QSet<const QTcpSocket*> waitingForHead_;
     bool secure_ = false;
 };
 

@@ -50,6 +50,7 @@ private slots:
     void refusesOversizedAndMalformedHeads();
     void webSocketsShareThePort();
     void aSlowClientDoesNotBlockOthers();
+    void idleConnectionsAreBounded();
 };
 
 void TestWebHttp::parsesRequestHeads() {
@@ -184,6 +185,31 @@ void TestWebHttp::aSlowClientDoesNotBlockOthers() {
         },
         10000));
     QVERIFY(answer.startsWith("HTTP/1.1 200 "));
+}
+
+void TestWebHttp::idleConnectionsAreBounded() {
+    WebServerProcess server;
+    QVERIFY2(server.started(), qPrintable(server.startError()));
+    std::vector<std::unique_ptr<QTcpSocket>> idle;
+    for (int n = 0; n < remote::kMaxConnectionsWaitingForHead; ++n) {
+        idle.push_back(std::make_unique<QTcpSocket>());
+        idle.back()->connectToHost(QHostAddress::LocalHost, server.port());
+        QVERIFY(idle.back()->waitForConnected(5000));
+    }
+    // The server has accepted them all (each holds a place) before the next one comes.
+    QTest::qWait(500);
+    // One more waiting connection is closed at once, with no answer.
+    QElapsedTimer clock;
+    clock.start();
+    QCOMPARE(rawExchange(server.port(), "GET / HTTP/1.1\r\n\r\n", 5000), QByteArray());
+    QVERIFY2(clock.elapsed() < 4000, "the extra connection was not closed at once");
+    // Once the idle ones go, pages are served again.
+    idle.clear();
+    QVERIFY(QTest::qWaitFor(
+        [&] {
+            return rawExchange(server.port(), "GET / HTTP/1.1\r\n\r\n").startsWith("HTTP/1.1 200 ");
+        },
+        10000));
 }
 
 QTEST_GUILESS_MAIN(TestWebHttp)
