@@ -25,6 +25,8 @@ constexpr char kClientRoot[] = ":/web/";
 constexpr char kHeadTimerName[] = "lucent-request-head-timer";
 // Time a connection has to receive its answer once its request head is read.
 constexpr int kAnswerTimeoutMs = 60000;
+// Certificate and key files are read up to this size (a PEM chain is a few KiB).
+constexpr qint64 kMaxPemBytes = 1 << 20;
 
 std::runtime_error tlsError(const QString& message) {
     return std::runtime_error(message.toStdString());
@@ -35,7 +37,7 @@ QByteArray readWhole(const QString& path, const QString& what) {
     if (!file.open(QIODevice::ReadOnly)) {
         throw tlsError(what + " " + path + " cannot be read: " + file.errorString());
     }
-    return file.readAll();
+    return file.read(kMaxPemBytes);
 }
 
 QSslKey parsePrivateKey(const QByteArray& pem) {
