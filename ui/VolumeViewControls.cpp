@@ -301,15 +301,15 @@ void VolumeViewControls::applyFront(const MeasuredFront& front) {
     const int level = quality_->currentIndex();
     const double budget = level == kTarget ? double(targetMs_->value()) : kBudgets[level];
     const RenderDescription d = view_->description();
-    const double scale = front.timeScale(d.width, d.height);
+    const TimeModel time = front.timeModel(d.width, d.height);
     const QualityChoice choice =
-        chooseQuality(front.points, budget, d.transferFunction.shading.enabled, scale);
+        chooseQuality(front.points, budget, d.transferFunction.shading.enabled, time);
     if (!chosenByQuality_) {
         manualSampling_ = view_->sampling();
         chosenByQuality_ = true;
     }
     const InteractiveQuality drag =
-        chooseInteractive(front.points, choice.setting, std::min(kFastBudgetMs, budget), scale, 2);
+        chooseInteractive(front.points, choice.setting, std::min(kFastBudgetMs, budget), time, 2);
     view_->setInteractiveQuality(drag);
     SamplingSettings s = view_->sampling();
     const RenderDescription chosen = choice.setting.applyTo(d);

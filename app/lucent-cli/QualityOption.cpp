@@ -35,7 +35,7 @@ std::string applyQuality(const QualityRequest& request, RenderDescription& desc,
     }
     const QualityChoice choice =
         chooseQuality(front->points, request.budgetMs, desc.transferFunction.shading.enabled,
-                      front->timeScale(desc.width, desc.height));
+                      front->timeModel(desc.width, desc.height));
     if (!choice.message.empty()) {
         err << "lucent-cli render: --quality " << request.name.c_str() << ": "
             << choice.message.c_str() << "\n";

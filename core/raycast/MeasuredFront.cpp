@@ -72,11 +72,11 @@ std::optional<MeasuredFront> loadFront(const std::filesystem::path& cacheDir,
     }
     MeasuredFront front;
     std::string line;
-    // "# lucent quality front WxH", "# key", the CSV header, the rows.
+    // "# lucent quality front WxH fixed_ms=F", "# key", the CSV header, the rows.
     if (!std::getline(in, line) || line.rfind(kMagic, 0) != 0 ||
-        std::sscanf(line.c_str() + std::string(kMagic).size(), " %dx%d", &front.width,
-                    &front.height) != 2 ||
-        front.width < 1 || front.height < 1) {
+        std::sscanf(line.c_str() + std::string(kMagic).size(), " %dx%d fixed_ms=%lf", &front.width,
+                    &front.height, &front.fixedMs) != 3 ||
+        front.width < 1 || front.height < 1 || !(front.fixedMs >= 0.0)) {
         return std::nullopt;
     }
     if (!std::getline(in, line) || line != "# " + key) {
@@ -109,7 +109,8 @@ void saveFront(const std::filesystem::path& cacheDir, const MeasuredFront& front
     const std::filesystem::path partial = path.string() + ".part";
     {
         std::ofstream out(partial, std::ios::trunc);
-        out << kMagic << " " << front.width << "x" << front.height << "\n"
+        out << kMagic << " " << front.width << "x" << front.height << " fixed_ms=" << front.fixedMs
+            << "\n"
             << "# " << front.key << "\n"
             << qualityCsvHeader() << "\n";
         for (const QualityPoint& p : front.points) {
@@ -142,6 +143,21 @@ MeasuredFront measureQuickFront(const RenderDescription& description, const std:
     base.height = front.height;
     front.points = measureQuality(base, quickSweep(description.transferFunction.shading.enabled),
                                   render, reference, 2, progress);
+    // The fastest front point again at half the size: t = fixed + perPixel * pixels
+    // through both sizes. Noise can put it outside [0, t]; it is clamped there.
+    const auto fastest =
+        std::min_element(front.points.begin(), front.points.end(),
+                         [](const QualityPoint& a, const QualityPoint& b) { return a.ms < b.ms; });
+    if (fastest != front.points.end()) {
+        RenderDescription half = fastest->setting.applyTo(base);
+        half.width = std::max(16, base.width / 2);
+        half.height = std::max(16, base.height / 2);
+        const std::vector<QualityPoint> small =
+            measureQuality(half, {fastest->setting}, render, reference, 3);
+        const double s = double(half.width) * half.height / (double(base.width) * base.height);
+        const double fixed = (small.front().ms - s * fastest->ms) / (1.0 - s);
+        front.fixedMs = std::clamp(fixed, 0.0, fastest->ms);
+    }
     return front;
 }
 

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/raycast/QualityChoice.h"
 #include "core/raycast/QualityFront.h"
 
 namespace lucent {
@@ -26,10 +27,17 @@ struct MeasuredFront {
     std::string key;
     int width = kQuickFrontSize; // the size the times were measured at
     int height = kQuickFrontSize;
+    // The part of a frame's time that does not grow with the pixels, from the
+    // fastest front point timed again at half the size.
+    double fixedMs = 0.0;
     std::vector<QualityPoint> points;
 
     // Requested pixels over measured pixels: the factor on the front's times.
     double timeScale(int requestedWidth, int requestedHeight) const;
+    // The front's times at the requested size.
+    TimeModel timeModel(int requestedWidth, int requestedHeight) const {
+        return {timeScale(requestedWidth, requestedHeight), fixedMs};
+    }
 };
 
 // The series UID with the dims, spacing, voxel type and a hash of (a lattice

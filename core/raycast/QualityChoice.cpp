@@ -36,7 +36,7 @@ QualityRequest parseQualityRequest(const std::string& text) {
 }
 
 QualityChoice chooseQuality(const std::vector<QualityPoint>& points, double budgetMs, bool shading,
-                            double timeScale) {
+                            const TimeModel& time) {
     QualityChoice choice;
     const QualityPoint* best = nullptr;
     const QualityPoint* fastest = nullptr;
@@ -47,7 +47,7 @@ QualityChoice chooseQuality(const std::vector<QualityPoint>& points, double budg
         if (!fastest || p.ms < fastest->ms) {
             fastest = &p;
         }
-        if (p.ms * timeScale <= budgetMs && (!best || p.psnrDb > best->psnrDb)) {
+        if (time.predict(p.ms) <= budgetMs && (!best || p.psnrDb > best->psnrDb)) {
             best = &p;
         }
     }
@@ -59,7 +59,7 @@ QualityChoice chooseQuality(const std::vector<QualityPoint>& points, double budg
     }
     const QualityPoint& chosen = best ? *best : *fastest;
     choice.setting = chosen.setting;
-    choice.predictedMs = chosen.ms * timeScale;
+    choice.predictedMs = time.predict(chosen.ms);
     choice.psnrDb = chosen.psnrDb;
     choice.fromFront = true;
     choice.withinBudget = best != nullptr;
@@ -75,11 +75,11 @@ QualityChoice chooseQuality(const std::vector<QualityPoint>& points, double budg
 }
 
 InteractiveQuality chooseInteractive(const std::vector<QualityPoint>& points,
-                                     const QualitySetting& still, double budgetMs, double timeScale,
+                                     const QualitySetting& still, double budgetMs, TimeModel time,
                                      int imageDivisor) {
     InteractiveQuality quality;
     quality.imageDivisor = std::max(1, imageDivisor);
-    const double dragScale = timeScale / double(quality.imageDivisor * quality.imageDivisor);
+    time.scale /= double(quality.imageDivisor * quality.imageDivisor);
     const QualityPoint* best = nullptr;
     const QualityPoint* coarsest = nullptr;
     for (const QualityPoint& p : points) {
@@ -92,7 +92,7 @@ InteractiveQuality chooseInteractive(const std::vector<QualityPoint>& points,
         if (!coarsest || s.step > coarsest->setting.step) {
             coarsest = &p;
         }
-        if (p.ms * dragScale <= budgetMs && (!best || p.psnrDb > best->psnrDb)) {
+        if (time.predict(p.ms) <= budgetMs && (!best || p.psnrDb > best->psnrDb)) {
             best = &p;
         }
     }

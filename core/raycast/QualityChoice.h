@@ -9,6 +9,7 @@
 //   balanced 250 ms  (a still frame that follows the hand without a wait)
 //   best    2000 ms  (a still frame worth waiting two seconds for)
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,17 @@ struct QualityRequest {
 // the text when it is none of these or not a positive finite time.
 QualityRequest parseQualityRequest(const std::string& text);
 
+// A front's times at the size asked for: a fixed part per frame (dispatch,
+// read-back, threads) and a part that grows with the pixels.
+struct TimeModel {
+    double scale = 1.0;   // requested pixels over measured pixels
+    double fixedMs = 0.0; // the part that does not grow with the pixels
+    double predict(double measuredMs) const {
+        const double fixed = std::min(fixedMs, measuredMs);
+        return fixed + (measuredMs - fixed) * scale;
+    }
+};
+
 struct QualityChoice {
     QualitySetting setting;   // what to render with
     double predictedMs = 0.0; // the front's time scaled to the requested image size
@@ -40,12 +52,12 @@ struct QualityChoice {
     std::string message; // why the budget could not be met, or there was no front
 };
 
-// The most accurate front point (`pareto` set, same shading) whose time times
-// `timeScale` (requested pixels over measured pixels) is within `budgetMs`.
+// The most accurate front point (`pareto` set, same shading) whose time at
+// the requested size (`time`) is within `budgetMs`.
 // None that fast: the fastest front point, with a message. No front point for
 // this shading: the default setting (with that shading) and a message.
 QualityChoice chooseQuality(const std::vector<QualityPoint>& points, double budgetMs, bool shading,
-                            double timeScale = 1.0);
+                            const TimeModel& time = {});
 
 // While dragging: the frame is `imageDivisor` smaller on each side and the
 // step grows by a factor; the factor is that of the most accurate measured
@@ -53,7 +65,7 @@ QualityChoice chooseQuality(const std::vector<QualityPoint>& points, double budg
 // still one) that fits `budgetMs` at the drag size, else the coarsest such
 // point. Without such points: a step factor of 2.
 InteractiveQuality chooseInteractive(const std::vector<QualityPoint>& points,
-                                     const QualitySetting& still, double budgetMs, double timeScale,
+                                     const QualitySetting& still, double budgetMs, TimeModel time,
                                      int imageDivisor = 2);
 
 // "linear step 0.5 post, ~120 ms, 38.8 dB" for status lines and --stats.

@@ -74,9 +74,15 @@ private slots:
         QCOMPARE(c.setting.step, 0.5);
         QCOMPARE(chooseQuality(pts, 1e9, true).psnrDb, 55.0);
         // Times scale with the pixels: four times the pixels, a quarter of the budget.
-        c = chooseQuality(pts, 250, true, 4.0);
+        c = chooseQuality(pts, 250, true, {4.0});
         QCOMPARE(c.psnrDb, 38.0);
         QCOMPARE(c.predictedMs, 160.0);
+        // A fixed part of each frame does not grow with the pixels.
+        QCOMPARE(chooseQuality(pts, 130, true, {4.0}).psnrDb, 36.0); // linear 0.5: 160 ms
+        c = chooseQuality(pts, 130, true, {4.0, 10.0});              // 10 + 30 * 4
+        QCOMPARE(c.psnrDb, 38.0);
+        QCOMPARE(c.predictedMs, 130.0);
+        QCOMPARE((TimeModel{4.0, 50.0}.predict(20.0)), 20.0); // never more than the time itself
         // The other shading has its own front.
         c = chooseQuality(pts, 50, false);
         QVERIFY(!c.setting.shading);
@@ -116,19 +122,23 @@ private slots:
         const auto pts = front();
         QualitySetting still = chooseQuality(pts, 250, true).setting; // cubic 0.5
         // A quarter of the pixels while dragging: cubic 1 (100 ms) fits 30 ms * 4.
-        InteractiveQuality q = chooseInteractive(pts, still, 30, 1.0, 2);
+        InteractiveQuality q = chooseInteractive(pts, still, 30, {}, 2);
         QCOMPARE(q.imageDivisor, 2);
         QCOMPARE(q.stepFactor, 2.0);
         // Nothing fits: the coarsest step of that filter.
-        q = chooseInteractive(pts, still, 1, 1.0, 2);
+        q = chooseInteractive(pts, still, 1, {}, 2);
         QCOMPARE(q.stepFactor, 2.0);
         // Everything fits: the still step itself.
-        q = chooseInteractive(pts, still, 1e9, 1.0, 2);
+        q = chooseInteractive(pts, still, 1e9, {}, 2);
         QCOMPARE(q.stepFactor, 1.0);
         still = chooseQuality(pts, 50, true).setting; // linear 0.5
-        q = chooseInteractive(pts, still, 3, 1.0, 2); // linear 2 (10 ms / 4)
+        q = chooseInteractive(pts, still, 3, {}, 2);  // linear 2 (10 ms / 4)
+        // A fixed 8 ms a frame does not shrink with the drag image: nothing fits 3 ms.
+        QCOMPARE(chooseInteractive(pts, still, 3, {1.0, 8.0}, 2).stepFactor, 4.0);
+        // linear 1: 8 + 12 / 4 = 11 ms fits 12; linear 0.5: 8 + 32 / 4 = 16 does not.
+        QCOMPARE(chooseInteractive(pts, still, 12, {1.0, 8.0}, 2).stepFactor, 2.0);
         QCOMPARE(q.stepFactor, 4.0);
-        QCOMPARE(chooseInteractive({}, still, 3, 1.0, 2).stepFactor, 2.0);
+        QCOMPARE(chooseInteractive({}, still, 3, {}, 2).stepFactor, 2.0);
     }
 
     void cachedFrontReadsBackAsWritten() {
@@ -141,6 +151,7 @@ private slots:
         f.key = frontKey(d, "cpu");
         f.width = 128;
         f.height = 96;
+        f.fixedMs = 1.5;
         f.points = front();
         const std::filesystem::path cache = dir.filePath("cache/lucent").toStdString();
         QVERIFY(!loadFront(cache, f.key));
@@ -148,6 +159,7 @@ private slots:
         const auto back = loadFront(cache, f.key);
         QVERIFY(back);
         QCOMPARE(back->width, 128);
+        QCOMPARE(back->fixedMs, 1.5);
         QCOMPARE(back->points.size(), f.points.size());
         for (std::size_t n = 0; n < f.points.size(); ++n) {
             QCOMPARE(back->points[n].setting.step, f.points[n].setting.step);

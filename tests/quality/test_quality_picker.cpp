@@ -74,10 +74,11 @@ private slots:
 
         controls.qualityPicker()->setCurrentIndex(4); // Target time
         controls.qualityTarget()->setValue(1);
-        const double scale = front->timeScale(view.description().width, view.description().height);
+        const TimeModel time =
+            front->timeModel(view.description().width, view.description().height);
         bool reachable = false;
         for (const QualityPoint& p : front->points) {
-            reachable = reachable || (p.pareto && p.setting.shading && p.ms * scale <= 1.0);
+            reachable = reachable || (p.pareto && p.setting.shading && time.predict(p.ms) <= 1.0);
         }
         if (!reachable) {
             QVERIFY2(controls.qualityStatus().contains("fastest"),
