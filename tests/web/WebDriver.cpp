@@ -97,7 +97,7 @@ QJsonValue WebDriver::call(const QByteArray& verb, const QString& path, const QJ
     return value;
 }
 
-bool WebDriver::start(int width, int height) {
+bool WebDriver::start(int width, int height, bool acceptInsecureCertificates) {
     if (!tools_.missing().isEmpty()) {
         error_ = tools_.missing();
         return false;
@@ -130,6 +130,7 @@ bool WebDriver::start(int width, int height) {
                           QString("--window-size=%1,%2").arg(width).arg(height)};
     const QJsonObject capabilities{
         {"alwaysMatch", QJsonObject{{"browserName", "chrome"},
+                                    {"acceptInsecureCerts", acceptInsecureCertificates},
                                     {"goog:chromeOptions",
                                      QJsonObject{{"binary", tools_.chromium}, {"args", args}}},
                                     {"goog:loggingPrefs", QJsonObject{{"browser", "ALL"}}}}}};

@@ -28,9 +28,9 @@ public:
     WebDriver(const WebDriver&) = delete;
     WebDriver& operator=(const WebDriver&) = delete;
 
-    // Starts chromedriver and a headless session with this window size.
-    // False with error() set on failure.
-    bool start(int width, int height);
+    // Starts chromedriver and a headless session with this window size (trusting
+    // any TLS certificate when asked). False with error() set on failure.
+    bool start(int width, int height, bool acceptInsecureCertificates = false);
     QString error() const { return error_; }
 
     bool navigate(const QString& url);

@@ -2,8 +2,9 @@
 // opens the page a real lucent-server serves on loopback, authenticates, opens
 // a real CT series, and a mouse drag, a touch drag and a pinch each bring new
 // frames that change the canvas. The server is then restarted on the same port
-// and the page reconnects by itself. Skips when chromium, chromedriver or the
-// real data are missing.
+// and the page reconnects by itself. A follower of a teaching session sees the
+// presenter's view; the page works over https:// and wss:// too. Skips when
+// chromium, chromedriver or the real data are missing.
 #include <QDir>
 #include <QFileInfo>
 #include <QJsonArray>
@@ -51,6 +52,7 @@ class TestWebBrowser : public QObject {
 private slots:
     void dragRotatesTheRemoteView();
     void followsATeachingSession();
+    void worksOverTls();
 
 private:
     bool waitForNewStill(WebDriver& driver, int before, QJsonObject* pixels);
@@ -216,6 +218,35 @@ void TestWebBrowser::followsATeachingSession() {
     QVERIFY(QTest::qWaitFor(
         [&] { return driver.execute(kCanvasPixels)["hash"].toInt() != first["hash"].toInt(); },
         10000));
+}
+
+void TestWebBrowser::worksOverTls() {
+    const BrowserTools tools = findBrowserTools();
+    if (!tools.missing().isEmpty()) {
+        QSKIP(qPrintable(tools.missing()));
+    }
+    if (!QFileInfo(kSeriesDir).isDir()) {
+        QSKIP(qPrintable("real data absent: " + kSeriesDir));
+    }
+    QTemporaryDir dir;
+    const SelfSigned files = makeSelfSigned(dir.path());
+    if (files.certificate.isEmpty()) {
+        QSKIP("the openssl command is missing or failed; cannot make a test certificate");
+    }
+    WebServerProcess server({"--tls-cert", files.certificate, "--tls-key", files.key}, kSeriesDir);
+    QVERIFY2(server.started(), qPrintable(server.startError()));
+    WebDriver driver(tools);
+    QVERIFY2(driver.start(640, 480, true), qPrintable(driver.error()));
+    QVERIFY2(driver.navigate(QString("https://127.0.0.1:%1/").arg(server.port())),
+             qPrintable(driver.error()));
+    QVERIFY(driver.sendKeys(driver.findElement("#token"), kToken));
+    QVERIFY(driver.click(driver.findElement("#connect")));
+    QVERIFY(driver.waitUntil("return document.getElementById('series-list').options.length > 0;",
+                             20000));
+    QVERIFY(driver.click(driver.findElement("#open")));
+    QJsonObject pixels;
+    QVERIFY2(waitForNewStill(driver, 0, &pixels), "no frame over wss://");
+    QVERIFY(pixels["lit"].toInt() > 100);
 }
 
 QTEST_GUILESS_MAIN(TestWebBrowser)
