@@ -145,6 +145,10 @@ void TestWebBrowser::dragRotatesTheRemoteView() {
             .toDouble();
     QVERIFY2(cssWidth > 300 && cssWidth <= 390, qPrintable(QString::number(cssWidth)));
 
+    // No script errors so far (the console holds no SEVERE entries).
+    const QString console = driver.consoleLog();
+    QVERIFY2(!console.contains("SEVERE"), qPrintable(console));
+
     // The server goes away and comes back on the same port: the page reconnects,
     // opens the same series again and shows the same view.
     server.reset();
