@@ -5,6 +5,7 @@
 // their own connection, and a real DICOM series reaches followers
 // de-identified.
 #include <QJsonArray>
+#include <QProcess>
 #include <QTest>
 
 #include <memory>
@@ -217,6 +218,44 @@ private slots:
         c.send({{"type", "session-create"}});
         QVERIFY(!nextText(c, "session-created", from).isEmpty());
         QVERIFY(!c.disconnected);
+    }
+
+    void aKilledFollowerProcessLeavesItsSession() {
+        ServerProcess server;
+        QVERIFY(server.port());
+        RemoteTestClient presenter(server.port());
+        std::uint64_t seq = 0;
+        const QString session = startSession(presenter, &seq);
+        QVERIFY(!session.isEmpty());
+        QProcess follower;
+        follower.start(QString(LUCENT_BIN_DIR) + "/remote_follower",
+                       {QString::number(server.port()), kToken, session});
+        QString out;
+        QVERIFY(QTest::qWaitFor(
+            [&] {
+                out += QString::fromUtf8(follower.readAllStandardOutput());
+                return out.contains("frame");
+            },
+            30000));
+        QVERIFY2(out.contains("joined"), qPrintable(out));
+        QVERIFY(QTest::qWaitFor(
+            [&] {
+                for (const QJsonObject& t : presenter.texts) {
+                    if (t["type"] == "session-state" && t["members"].toInt() == 2) {
+                        return true;
+                    }
+                }
+                return false;
+            },
+            10000));
+        const qsizetype from = presenter.texts.size();
+        follower.kill(); // SIGKILL: no close handshake
+        QVERIFY(follower.waitForFinished(10000));
+        const QJsonObject state = nextText(presenter, "session-state", from);
+        QCOMPARE(state["members"].toInt(), 1);
+        QCOMPARE(state["role"].toString(), "presenter");
+        presenter.send({{"type", "camera"}, {"azimuth", 5}});
+        QVERIFY(frameOf(presenter, seq + 1));
     }
 
     void badSessionMessagesCloseOnlyTheirConnection() {
