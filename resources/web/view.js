@@ -1,7 +1,8 @@
 // Lucent browser client: the canvas. Decodes and draws frames (newest wins),
 // sizes the canvas to its box, and turns mouse and touch gestures (pointer
 // events) into camera changes: one pointer rotates, right button or shift
-// pans, the wheel and two-finger pinches zoom, two fingers also pan.
+// pans, the wheel and two-finger pinches zoom, two fingers also pan; arrow
+// keys rotate and + and - zoom.
 "use strict";
 
 window.createLucentView = (canvas, handlers) => {
@@ -186,6 +187,26 @@ window.createLucentView = (canvas, handlers) => {
       }
     }, 250);
   }, { passive: false });
+
+  // Keys on the focused canvas: arrows rotate, + and - zoom, 0 resets.
+  const kKeySteps = {
+    ArrowLeft: { azimuth: 5 }, ArrowRight: { azimuth: -5 },
+    ArrowUp: { elevation: -5 }, ArrowDown: { elevation: 5 },
+    "+": { zoomFactor: 1.1 }, "=": { zoomFactor: 1.1 }, "-": { zoomFactor: 1 / 1.1 },
+  };
+  canvas.addEventListener("keydown", (event) => {
+    if (!enabled) {
+      return;
+    }
+    if (event.key === "0") {
+      handlers.onReset();
+    } else if (kKeySteps[event.key]) {
+      handlers.onCamera(kKeySteps[event.key]);
+    } else {
+      return;
+    }
+    event.preventDefault();
+  });
 
   canvas.addEventListener("dblclick", () => {
     if (enabled) {

@@ -10,6 +10,8 @@
 #include <QJsonArray>
 #include <QTest>
 
+#include <cmath>
+
 #include "WebDriver.h"
 #include "WebServerFixture.h"
 
@@ -134,6 +136,16 @@ void TestWebBrowser::dragRotatesTheRemoteView() {
     QVERIFY2(waitForNewStill(driver, drawn, &afterPinch), "no frame after the pinch");
     QVERIFY(driver.execute("return window.lucent.view.zoom;").toDouble() > zoom * 1.5);
     QVERIFY(afterPinch["hash"].toInt() != afterTouch["hash"].toInt());
+
+    // Keys on the focused canvas turn the view too.
+    const double azimuth = driver.execute("return window.lucent.view.azimuth;").toDouble();
+    drawn = framesDrawn(driver);
+    QVERIFY2(driver.sendKeys(canvas, QString(QChar(0xE012)) + QChar(0xE012)),
+             qPrintable(driver.error())); // two Left arrows
+    QJsonObject afterKeys;
+    QVERIFY2(waitForNewStill(driver, drawn, &afterKeys), "no frame after the arrow keys");
+    QCOMPARE(driver.execute("return window.lucent.view.azimuth;").toDouble(),
+             std::fmod(azimuth + 10.0, 360.0));
 
     // Phone size: the canvas still fills the width and gets frames of its new size.
     drawn = framesDrawn(driver);
