@@ -329,6 +329,15 @@ void RemoteRenderBackend::sync() {
         cameraTimer_.start(int(kCameraIntervalMs - cameraClock_.elapsed()));
         return;
     }
+    // A drag is an interaction: adaptive JPEG frames until its end, which owes
+    // one lossless still (after `open` the server is not interacting). The
+    // start goes before the changes and the end after them, so that no still
+    // is rendered for a half-way camera.
+    const bool interacting = sent_.interactive.value_or(false);
+    if (wanted_->interactive && !interacting) {
+        sendView({{"type", "interaction"}, {"state", "start"}});
+    }
+    sent_.interactive = wanted_->interactive;
     const QSize size(std::clamp(d.width, kMinSide, remote::kMaxImageSide),
                      std::clamp(d.height, kMinSide, remote::kMaxImageSide));
     if (sent_.size != size) {
@@ -366,10 +375,8 @@ void RemoteRenderBackend::sync() {
         sent_.camera = d.camera;
         cameraClock_.start();
     }
-    if (sent_.interactive != wanted_->interactive) {
-        sendView(
-            {{"type", "quality"}, {"quality", wanted_->interactive ? "interactive" : "still"}});
-        sent_.interactive = wanted_->interactive;
+    if (!wanted_->interactive && interacting) {
+        sendView({{"type", "interaction"}, {"state", "end"}});
     }
     if (firstViewSeq_ == 0) {
         firstViewSeq_ = seqSent_;
@@ -395,6 +402,8 @@ void RemoteRenderBackend::onBinary(const QByteArray& message) {
         out.interactive = frame.header.quality == remote::Quality::Interactive;
         out.current = frame.header.seq == seqSent_;
         out.renderMs = frame.header.renderMs;
+        out.jpegQuality = frame.header.format == "jpeg" ? frame.header.jpegQuality : 0;
+        out.scale = frame.header.scale;
         emit frameReady(out);
     } catch (const std::exception& e) {
         emit frameFailed(tr("a frame from the server cannot be read: %1").arg(e.what()));

@@ -29,8 +29,9 @@ struct OfferedSeries {
 // A lucent-server client (docs/protocol.md, v1) behind RenderBackend:
 // authenticates, lists the server's series and opens the one matching the
 // loaded volume (or the one the settings name), sends only the parts of the
-// view that changed (size, transfer function, mode, clip box, camera,
-// quality), decodes the PNG (still) and JPEG (interactive) frames, and tells
+// view that changed (size, transfer function, mode, clip box, camera; a drag
+// as interaction start/end, so the server adapts its JPEG frames to hold the
+// frame rate), decodes the PNG (still) and JPEG (interactive) frames, tells
 // from their `seq` whether they show the newest request. A lost connection is
 // reopened by itself with growing delays and the whole view sent again; the
 // status says connecting, connected, reconnecting or failed (with the

@@ -32,6 +32,8 @@ struct BackendFrame {
     bool interactive = false;
     bool current = true;   // it shows the newest request
     double renderMs = 0.0; // where the renderer reports it
+    int jpegQuality = 0;   // a server's JPEG quality; 0: lossless
+    double scale = 1.0;    // the image's size against the view's, as the renderer chose it
 };
 
 // Where the backend stands; local backends are always Ready, a remote one
