@@ -27,6 +27,9 @@ std::string hex(std::uint64_t v) {
 }
 
 constexpr const char* kMagic = "# lucent quality front";
+// Per setting: the median of at least 3 frames, up to 12 until they took 60 ms.
+constexpr int kFrames = 3;
+constexpr double kMinTotalMs = 60.0;
 
 } // namespace
 
@@ -142,7 +145,7 @@ MeasuredFront measureQuickFront(const RenderDescription& description, const std:
     base.width = front.width;
     base.height = front.height;
     front.points = measureQuality(base, quickSweep(description.transferFunction.shading.enabled),
-                                  render, reference, 2, progress);
+                                  render, reference, kFrames, progress, kMinTotalMs);
     // The fastest front point again at half the size: t = fixed + perPixel * pixels
     // through both sizes. Noise can put it outside [0, t]; it is clamped there.
     const auto fastest =
@@ -153,7 +156,7 @@ MeasuredFront measureQuickFront(const RenderDescription& description, const std:
         half.width = std::max(16, base.width / 2);
         half.height = std::max(16, base.height / 2);
         const std::vector<QualityPoint> small =
-            measureQuality(half, {fastest->setting}, render, reference, 3);
+            measureQuality(half, {fastest->setting}, render, reference, kFrames, {}, kMinTotalMs);
         const double s = double(half.width) * half.height / (double(base.width) * base.height);
         const double fixed = (small.front().ms - s * fastest->ms) / (1.0 - s);
         front.fixedMs = std::clamp(fixed, 0.0, fastest->ms);

@@ -128,7 +128,7 @@ double medianOf(std::vector<double> v) {
 std::vector<QualityPoint>
 measureQuality(const RenderDescription& base, const std::vector<QualitySetting>& settings,
                const QualityRender& render, const QualityRender& reference, int frames,
-               const std::function<void(std::size_t, std::size_t)>& progress) {
+               const std::function<void(std::size_t, std::size_t)>& progress, double minTotalMs) {
     using Clock = std::chrono::steady_clock;
     // One reference per shading state: shading is part of what is compared.
     std::optional<ImageRGBA8> refShaded, refFlat;
@@ -145,10 +145,13 @@ measureQuality(const RenderDescription& base, const std::vector<QualitySetting>&
         p.setting = setting;
         RenderResult last = render(d); // warms tables and uploads
         std::vector<double> ms;
-        for (int n = 0; n < std::max(1, frames); ++n) {
+        double total = 0.0;
+        const int least = std::max(1, frames);
+        for (int n = 0; n < least || (total < minTotalMs && n < 4 * least); ++n) {
             const auto start = Clock::now();
             last = render(d);
             ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+            total += ms.back();
         }
         p.ms = medianOf(ms);
         p.samples = last.stats.samples;

@@ -71,13 +71,16 @@ std::vector<QualitySetting> quickSweep(bool shading);
 using QualityRender = std::function<RenderResult(const RenderDescription&)>;
 
 // Measures each setting on `base`: one warm-up frame, then the median time of
-// `frames` frames, the samples, and PSNR and SSIM against `reference`'s image
-// of qualityReference() (rendered once per shading state); marks the front.
-// `progress(done, total)` is called after each setting when given.
+// `frames` frames (more, up to 4 * frames, until they took `minTotalMs`: short
+// frames need more to outvote a stall), the samples, and PSNR and SSIM against
+// `reference`'s image of qualityReference() (rendered once per shading
+// state); marks the front. `progress(done, total)` is called after each
+// setting when given.
 std::vector<QualityPoint>
 measureQuality(const RenderDescription& base, const std::vector<QualitySetting>& settings,
                const QualityRender& render, const QualityRender& reference, int frames,
-               const std::function<void(std::size_t, std::size_t)>& progress = {});
+               const std::function<void(std::size_t, std::size_t)>& progress = {},
+               double minTotalMs = 0.0);
 
 // The bench's CSV: header (no newline) and one row per point (with newline).
 std::string qualityCsvHeader();
