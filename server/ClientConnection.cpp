@@ -59,6 +59,22 @@ ClientConnection::ClientConnection(quint64 id, QWebSocket* socket, RenderServer&
             [this] { sendError("auth-timeout", "no auth message within the time allowed", true); });
     authTimer_.start(kAuthTimeoutMs);
     cameraClock_.start();
+    lastHeard_.start();
+    connect(socket, &QWebSocket::pong, this, [this] { lastHeard_.restart(); });
+    connect(&keepaliveTimer_, &QTimer::timeout, this, &ClientConnection::onKeepalive);
+    keepaliveTimer_.start(1000 * server.keepaliveSeconds());
+}
+
+void ClientConnection::onKeepalive() {
+    if (!socket_ || closing_) {
+        return;
+    }
+    if (lastHeard_.elapsed() > 3 * keepaliveTimer_.interval()) {
+        qCInfo(lcClient) << "client" << id_ << "silent; dropped";
+        socket_->abort(); // disconnected() follows: it leaves its session
+        return;
+    }
+    socket_->ping();
 }
 
 void ClientConnection::start() {
@@ -128,6 +144,7 @@ void ClientConnection::onText(const QString& text) {
     if (closing_) {
         return;
     }
+    lastHeard_.restart();
     const QByteArray utf8 = text.toUtf8();
     try {
         handle(parseClientMessage(std::string_view(utf8.constData(), std::size_t(utf8.size()))));

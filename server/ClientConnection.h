@@ -60,6 +60,7 @@ private:
     void onText(const QString& text);
     void onBinary(const QByteArray& data);
     void onBytesWritten();
+    void onKeepalive();
     void authenticate(const std::string& token);
     void handle(const ClientMessage& message);
     void handleSession(const ClientMessage& message);
@@ -71,6 +72,8 @@ private:
     QPointer<QWebSocket> socket_;
     RenderServer& server_;
     QTimer authTimer_;
+    QTimer keepaliveTimer_;
+    QElapsedTimer lastHeard_; // since the last message or pong
     bool authenticated_ = false;
     bool closing_ = false;
 

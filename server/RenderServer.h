@@ -38,6 +38,9 @@ struct ServerOptions {
     int maxClients = 64;
     int maxSessions = 16;
     int maxSessionMembers = 64; // the presenter included
+    // Each client is pinged this often; one silent for three intervals (no
+    // pong, no message) is dropped, which frees its place in a session.
+    int keepaliveSeconds = 20;
     // The store: de-identified copies for teaching sessions go under it.
     std::filesystem::path storeDir;
     std::optional<TlsFiles> tls; // https:// and wss:// on the same port when set
@@ -63,6 +66,7 @@ public:
 
     // For connections.
     bool acceptsToken(const std::string& token) const;
+    int keepaliveSeconds() const { return options_.keepaliveSeconds; }
     const std::vector<std::shared_ptr<const SeriesEntry>>& series() const { return series_; }
     std::shared_ptr<const SeriesEntry> findSeries(const std::string& uid) const;
     void submit(const RenderJob& job);

@@ -55,6 +55,8 @@ int main(int argc, char** argv) {
         {"max-sessions", "Teaching sessions at once.", "N", "16"},
         {"max-session-members", "Members of one teaching session, the presenter included.", "N",
          "64"},
+        {"keepalive", "Ping clients this often; drop one silent for three times as long.", "S",
+         "20"},
         {"check", "Check the configuration, list the series, and exit."},
     });
     QTextStream err(stderr);
@@ -97,6 +99,11 @@ int main(int argc, char** argv) {
     }
     if (!parser.isSet("store") || !parser.isSet("token-file")) {
         err << "lucent-server: --store DIR and --token-file FILE are required\n";
+        return kUsage;
+    }
+    options.keepaliveSeconds = parser.value("keepalive").toInt(&ok);
+    if (!ok || options.keepaliveSeconds < 1 || options.keepaliveSeconds > 3600) {
+        err << "lucent-server: --keepalive must be a number of seconds from 1 to 3600\n";
         return kUsage;
     }
     if (parser.isSet("tls-cert") != parser.isSet("tls-key")) {

@@ -10,6 +10,8 @@
 
 #include <memory>
 
+#include <signal.h>
+
 #include "RemoteTestFixture.h"
 #include "core/io/Catalog.h"
 
@@ -220,8 +222,16 @@ private slots:
         QVERIFY(!c.disconnected);
     }
 
+    void aKilledFollowerProcessLeavesItsSession_data() {
+        QTest::addColumn<bool>("freeze");
+        QTest::newRow("killed") << false;
+        // Stopped (SIGSTOP): its connection stays open but it answers no
+        // ping; the server's keepalive drops it.
+        QTest::newRow("frozen") << true;
+    }
     void aKilledFollowerProcessLeavesItsSession() {
-        ServerProcess server;
+        QFETCH(bool, freeze);
+        ServerProcess server("cpu", {}, {"--keepalive", "1"});
         QVERIFY(server.port());
         RemoteTestClient presenter(server.port());
         std::uint64_t seq = 0;
@@ -249,9 +259,21 @@ private slots:
             },
             10000));
         const qsizetype from = presenter.texts.size();
-        follower.kill(); // SIGKILL: no close handshake
-        QVERIFY(follower.waitForFinished(10000));
+        QElapsedTimer clock;
+        clock.start();
+        if (freeze) {
+            QCOMPARE(::kill(pid_t(follower.processId()), SIGSTOP), 0);
+        } else {
+            follower.kill(); // SIGKILL: no close handshake
+            QVERIFY(follower.waitForFinished(10000));
+        }
         const QJsonObject state = nextText(presenter, "session-state", from);
+        qInfo("the session saw the follower go after %lld ms", qlonglong(clock.elapsed()));
+        if (freeze) {
+            QVERIFY(clock.elapsed() >= 2000); // not before three silent seconds, give or take one
+            follower.kill();
+            QVERIFY(follower.waitForFinished(10000));
+        }
         QCOMPARE(state["members"].toInt(), 1);
         QCOMPARE(state["role"].toString(), "presenter");
         presenter.send({{"type", "camera"}, {"azimuth", 5}});
