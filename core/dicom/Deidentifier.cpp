@@ -207,6 +207,14 @@ void Deidentifier::deidentifyFile(const fs::path& input, const fs::path& output)
     }
     gdcm::File& file = reader.GetFile();
     gdcm::DataSet& ds = file.GetDataSet();
+    // The profile protects attributes, not pixels: text burnt into the image
+    // would reach the viewer.
+    const gdcm::Tag burnedIn(0x0028, 0x0301);
+    if (ds.FindDataElement(burnedIn) && valueOf(ds.GetDataElement(burnedIn)) == "YES") {
+        throw DeidentifyError("de-identify: " + input.string() +
+                              " has burned-in annotation (0028,0301): its pixels may identify "
+                              "the patient");
+    }
     protect(file, ds, *this);
     replaceText(ds, gdcm::Tag(0x0012, 0x0062), gdcm::VR::CS, "YES");
     replaceText(ds, gdcm::Tag(0x0012, 0x0063), gdcm::VR::LO,

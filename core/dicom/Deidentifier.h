@@ -25,7 +25,8 @@ public:
 class Deidentifier {
 public:
     // Writes a de-identified copy of `input` to `output`. Throws
-    // DeidentifyError naming the file it cannot read or write.
+    // DeidentifyError naming the file it cannot read or write, or one whose
+    // Burned In Annotation (0028,0301) is YES (the profile cannot clean pixels).
     void deidentifyFile(const std::filesystem::path& input, const std::filesystem::path& output);
 
     // The replacement of a UID: new, and the same every time for the same UID.

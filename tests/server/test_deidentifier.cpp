@@ -168,6 +168,27 @@ private slots:
         QVERIFY_THROWS_EXCEPTION(DeidentifyError, deidentifySeries({bogus}, root / "taken"));
     }
 
+    void refusesBurnedInAnnotation() {
+        const fs::path source = dataPath("dcm_qa_ct/Philips_S21570/S2010");
+        if (!fs::is_directory(source)) {
+            QSKIP("the real DICOM data (../shared/data) is absent");
+        }
+        QTemporaryDir dir;
+        const fs::path root = dir.path().toStdString();
+        const fs::path marked = root / "burned.dcm";
+        DcmFileFormat file;
+        QVERIFY(file.loadFile(filesOf(source).front().c_str()).good());
+        QVERIFY(file.getDataset()->putAndInsertString(DCM_BurnedInAnnotation, "YES").good());
+        QVERIFY(file.saveFile(marked.c_str()).good());
+        try {
+            deidentifySeries({marked}, root / "copy");
+            QFAIL("no error");
+        } catch (const DeidentifyError& e) {
+            QVERIFY2(std::string(e.what()).find("burned-in") != std::string::npos, e.what());
+        }
+        QVERIFY(!fs::exists(root / "copy"));
+    }
+
     void uidsMapConsistently() {
         Deidentifier d;
         const std::string a = d.replacementUid("1.2.3.4");
