@@ -60,6 +60,7 @@ RenderServer::RenderServer(ServerOptions options,
     connect(socketServer_, &QWebSocketServer::newConnection, this, &RenderServer::onNewConnection);
     // A client that offers subprotocols gets this one (its token may ride in another).
     socketServer_->setSupportedSubprotocols({QString::fromLatin1(kSubprotocol)});
+    removeStaleCopies();
 }
 
 RenderServer::~RenderServer() {

@@ -93,6 +93,8 @@ private:
     void onFrameRendered(const RenderedFrame& frame);
     void copyFinished(const std::string& originalId, std::shared_ptr<const SeriesEntry> copy,
                       const QString& error);
+    // Copies of an earlier run are stale (their sessions are gone): removed at start.
+    void removeStaleCopies();
 
     ServerOptions options_;
     std::vector<std::shared_ptr<const SeriesEntry>> series_;

@@ -25,6 +25,20 @@ QString newSessionId() {
 
 } // namespace
 
+void RenderServer::removeStaleCopies() {
+    if (options_.storeDir.empty()) {
+        return;
+    }
+    std::error_code error;
+    const auto removed = std::filesystem::remove_all(options_.storeDir / "deidentified", error);
+    if (error) {
+        qCWarning(lcSessions) << "stale de-identified copies could not be removed:"
+                              << error.message().c_str();
+    } else if (removed > 0) {
+        qCInfo(lcSessions) << "removed" << removed << "stale de-identified file(s)";
+    }
+}
+
 void RenderServer::registerView(ViewStream* view) {
     views_.insert(view->id(), view);
 }

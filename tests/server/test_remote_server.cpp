@@ -235,6 +235,19 @@ private slots:
         QVERIFY(!server.log().contains(kToken));
     }
 
+    void staleDeidentifiedCopiesGoAtStart() {
+        QTemporaryDir store;
+        QVERIFY(QDir(store.path()).mkpath("deidentified/1.2.3/sub"));
+        QVERIFY(QDir(store.path()).mkpath("deidentified/.partial-4.5.6-7"));
+        QFile stale(store.filePath("deidentified/1.2.3/00001.dcm"));
+        QVERIFY(stale.open(QIODevice::WriteOnly) && stale.write("x") == 1);
+        stale.close();
+        ServerProcess server("cpu", {}, {"--store", store.path()}); // the last --store counts
+        QVERIFY(server.port());
+        QVERIFY(!QFileInfo::exists(store.filePath("deidentified")));
+        QVERIFY(QFileInfo(store.path()).isDir());
+    }
+
     void badMessagesCloseOnlyTheirConnection() {
         ServerProcess server;
         QVERIFY(server.port());
