@@ -146,19 +146,20 @@ MeasuredFront measureQuickFront(const RenderDescription& description, const std:
     base.height = front.height;
     front.points = measureQuality(base, quickSweep(description.transferFunction.shading.enabled),
                                   render, reference, kFrames, progress, kMinTotalMs);
-    // The fastest front point again at half the size: t = fixed + perPixel * pixels
-    // through both sizes. Noise can put it outside [0, t]; it is clamped there.
+    // The fastest front point again at twice the size (frames are asked for
+    // larger than the quick size, and llvmpipe's tiles make small sizes a poor
+    // guide): t = fixed + perPixel * pixels through both sizes. Noise can put
+    // it outside [0, t]; it is clamped there.
     const auto fastest =
         std::min_element(front.points.begin(), front.points.end(),
                          [](const QualityPoint& a, const QualityPoint& b) { return a.ms < b.ms; });
     if (fastest != front.points.end()) {
-        RenderDescription half = fastest->setting.applyTo(base);
-        half.width = std::max(16, base.width / 2);
-        half.height = std::max(16, base.height / 2);
-        const std::vector<QualityPoint> small =
-            measureQuality(half, {fastest->setting}, render, reference, kFrames, {}, kMinTotalMs);
-        const double s = double(half.width) * half.height / (double(base.width) * base.height);
-        const double fixed = (small.front().ms - s * fastest->ms) / (1.0 - s);
+        RenderDescription twice = fastest->setting.applyTo(base);
+        twice.width = 2 * base.width;
+        twice.height = 2 * base.height;
+        RenderResult frame;
+        const double largeMs = timeFrames(render, twice, kFrames, kMinTotalMs, frame);
+        const double fixed = (4.0 * fastest->ms - largeMs) / 3.0;
         front.fixedMs = std::clamp(fixed, 0.0, fastest->ms);
     }
     return front;

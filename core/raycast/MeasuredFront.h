@@ -28,7 +28,7 @@ struct MeasuredFront {
     int width = kQuickFrontSize; // the size the times were measured at
     int height = kQuickFrontSize;
     // The part of a frame's time that does not grow with the pixels, from the
-    // fastest front point timed again at half the size.
+    // fastest front point timed again at twice the size.
     double fixedMs = 0.0;
     std::vector<QualityPoint> points;
 

@@ -125,11 +125,26 @@ double medianOf(std::vector<double> v) {
 
 } // namespace
 
+double timeFrames(const QualityRender& render, const RenderDescription& d, int frames,
+                  double minTotalMs, RenderResult& last) {
+    using Clock = std::chrono::steady_clock;
+    last = render(d); // warms tables and uploads
+    std::vector<double> ms;
+    double total = 0.0;
+    const int least = std::max(1, frames);
+    for (int n = 0; n < least || (total < minTotalMs && n < 4 * least); ++n) {
+        const auto start = Clock::now();
+        last = render(d);
+        ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+        total += ms.back();
+    }
+    return medianOf(ms);
+}
+
 std::vector<QualityPoint>
 measureQuality(const RenderDescription& base, const std::vector<QualitySetting>& settings,
                const QualityRender& render, const QualityRender& reference, int frames,
                const std::function<void(std::size_t, std::size_t)>& progress, double minTotalMs) {
-    using Clock = std::chrono::steady_clock;
     // One reference per shading state: shading is part of what is compared.
     std::optional<ImageRGBA8> refShaded, refFlat;
     std::vector<QualityPoint> points;
@@ -143,17 +158,8 @@ measureQuality(const RenderDescription& base, const std::vector<QualitySetting>&
         const RenderDescription d = setting.applyTo(base);
         QualityPoint p;
         p.setting = setting;
-        RenderResult last = render(d); // warms tables and uploads
-        std::vector<double> ms;
-        double total = 0.0;
-        const int least = std::max(1, frames);
-        for (int n = 0; n < least || (total < minTotalMs && n < 4 * least); ++n) {
-            const auto start = Clock::now();
-            last = render(d);
-            ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
-            total += ms.back();
-        }
-        p.ms = medianOf(ms);
+        RenderResult last;
+        p.ms = timeFrames(render, d, frames, minTotalMs, last);
         p.samples = last.stats.samples;
         p.psnrDb = psnr(last.image, *ref);
         p.ssim = ssim(last.image, *ref);

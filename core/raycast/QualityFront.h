@@ -70,6 +70,11 @@ std::vector<QualitySetting> quickSweep(bool shading);
 // Renders one frame with the renderer being measured.
 using QualityRender = std::function<RenderResult(const RenderDescription&)>;
 
+// One warm-up frame, then the median time in ms of `frames` frames (more, up
+// to 4 * frames, until they took `minTotalMs`); the last frame in `last`.
+double timeFrames(const QualityRender& render, const RenderDescription& description, int frames,
+                  double minTotalMs, RenderResult& last);
+
 // Measures each setting on `base`: one warm-up frame, then the median time of
 // `frames` frames (more, up to 4 * frames, until they took `minTotalMs`: short
 // frames need more to outvote a stall), the samples, and PSNR and SSIM against
