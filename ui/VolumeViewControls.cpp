@@ -192,7 +192,8 @@ void VolumeViewControls::updateQuality() {
     const int level = quality_->currentIndex();
     if (level == kManual || !view_->volume()) {
         if (chosenByQuality_) {
-            view_->setInteractiveQuality({});
+            drag_ = {};
+            view_->setInteractiveQuality(drag_);
             view_->setSampling(manualSampling_);
             chosenByQuality_ = false;
         }
@@ -310,6 +311,7 @@ void VolumeViewControls::applyFront(const MeasuredFront& front) {
     }
     const InteractiveQuality drag =
         chooseInteractive(front.points, choice.setting, std::min(kFastBudgetMs, budget), time, 2);
+    drag_ = drag;
     view_->setInteractiveQuality(drag);
     SamplingSettings s = view_->sampling();
     const RenderDescription chosen = choice.setting.applyTo(d);

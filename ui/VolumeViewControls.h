@@ -48,6 +48,8 @@ public:
     // Where fronts are kept (default: QStandardPaths::CacheLocation).
     void setQualityCacheDir(const QString& dir);
     QString qualityCacheDir() const { return cacheDir_; }
+    // What the view was last given for dragging (default while Manual).
+    const InteractiveQuality& dragQuality() const { return drag_; }
 
     ~VolumeViewControls() override;
 
@@ -79,6 +81,7 @@ private:
     std::map<std::string, MeasuredFront> fronts_; // by frontKey(), this session
     SamplingSettings manualSampling_;             // the view's own, for Manual
     bool chosenByQuality_ = false;
+    InteractiveQuality drag_;
     std::shared_ptr<Measurement> measuring_;
     std::unique_ptr<QThread> thread_;
 };

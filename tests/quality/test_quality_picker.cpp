@@ -1,9 +1,11 @@
-// The quality picker of the 3D view's controls, on a real VolumeView (CPU
-// backend, offscreen): Fast measures the volume's front once in the
-// background and sets the view's sampling to a point of it; Best picks a
-// point at least as accurate at once from the same front; an unreachable
-// target falls back to the fastest with a message; Manual gives the view its
-// own sampling back; a second panel reads the front from the cache dir.
+// The quality picker of the 3D view's controls, on a real VolumeView: on the
+// CPU, Fast measures the volume's front once in the background and sets the
+// view's sampling to a point of it, and dragging to a coarser measured step
+// of the same filter; Best picks a point at least as accurate at once from
+// the same front; an unreachable target falls back to the fastest with a
+// message; Manual gives the view its own sampling back; a second panel reads
+// the front from the cache dir. On the GPU (llvmpipe under Xvfb) the front is
+// measured with the GPU ray caster in an offscreen context of its own.
 #include <QApplication>
 #include <QComboBox>
 #include <QDir>
@@ -11,6 +13,11 @@
 #include <QSpinBox>
 #include <QTemporaryDir>
 #include <QTest>
+
+#include <cstdio>
+#include <vector>
+
+#include <unistd.h>
 
 #include "core/raycast/MeasuredFront.h"
 #include "tests/raycast/RaycastScenes.h"
@@ -64,6 +71,17 @@ private slots:
         QVERIFY2(front, "the measured front is in the cache dir");
         const QualityPoint* fast = pointOf(*front, view);
         QVERIFY2(fast && fast->pareto, qPrintable(controls.qualityStatus()));
+        // Dragging: a measured step of the same filter, no finer than the still one.
+        const InteractiveQuality drag = controls.dragQuality();
+        QCOMPARE(drag.imageDivisor, 2);
+        QVERIFY(drag.stepFactor >= 1.0);
+        bool dragMeasured = false;
+        for (const QualityPoint& p : front->points) {
+            dragMeasured =
+                dragMeasured || (p.setting.interpolation == fast->setting.interpolation &&
+                                 p.setting.step == fast->setting.step * drag.stepFactor);
+        }
+        QVERIFY2(dragMeasured, qPrintable(controls.qualityStatus()));
 
         controls.qualityPicker()->setCurrentIndex(3); // Best: from the same front, at once
         QCOMPARE(chosen.size(), 2);
@@ -87,6 +105,7 @@ private slots:
 
         controls.qualityPicker()->setCurrentIndex(0); // Manual: the view's own sampling
         QCOMPARE(view.sampling().step, 0.75);
+        QCOMPARE(controls.dragQuality().stepFactor, InteractiveQuality{}.stepFactor);
         QVERIFY(controls.qualityStatus().isEmpty());
 
         // Another panel (a new session) finds the front in the cache dir.
@@ -98,12 +117,52 @@ private slots:
         QCOMPARE(pointOf(*front, view), best);
         QCOMPARE(QDir(cache_.path()).entryList({"quality-front-*.csv"}).size(), 1);
     }
+
+    void glViewMeasuresOnTheGpu() {
+        VolumeView view(nullptr, VolumeView::Backend::Gpu);
+        view.resize(160, 128);
+        view.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&view));
+        if (view.backend() != VolumeView::Backend::Gpu) {
+            QSKIP(qPrintable("the view is not on the GPU: " + view.notice()));
+        }
+        view.setVolume(std::make_shared<Volume>(
+            test::makeVolume({40, 36, 32}, test::blobs, VoxelType::Int16)));
+        view.setTransferFunction(test::rampTf(false));
+        QTemporaryDir cache;
+        VolumeViewControls controls(&view);
+        controls.setQualityCacheDir(cache.path());
+        QSignalSpy chosen(&controls, &VolumeViewControls::qualityChosen);
+        controls.qualityPicker()->setCurrentIndex(2); // Balanced
+        QVERIFY(chosen.wait(240000));
+        QVERIFY2(!controls.qualityStatus().contains("on the CPU"),
+                 qPrintable(controls.qualityStatus()));
+        const auto front =
+            loadFront(cache.path().toStdString(), frontKey(view.description(), "gl"));
+        QVERIFY2(front, "the GL front is in the cache dir");
+        const QualityPoint* balanced = pointOf(*front, view);
+        QVERIFY2(balanced && balanced->pareto, qPrintable(controls.qualityStatus()));
+    }
 };
 
 int main(int argc, char** argv) {
-    if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) {
-        qputenv("QT_QPA_PLATFORM", "offscreen");
+    // The GL view needs a display: without one, run again under Xvfb.
+    if (qEnvironmentVariableIsEmpty("DISPLAY") && qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM") &&
+        qEnvironmentVariableIsEmpty("LUCENT_UNDER_XVFB")) {
+        qputenv("LUCENT_UNDER_XVFB", "1");
+        std::vector<char*> args = {const_cast<char*>("xvfb-run"), const_cast<char*>("-a"),
+                                   const_cast<char*>("-s"),
+                                   const_cast<char*>("-screen 0 1280x1024x24")};
+        for (int n = 0; n < argc; ++n) {
+            args.push_back(argv[n]);
+        }
+        args.push_back(nullptr);
+        execvp("xvfb-run", args.data());
+        std::fprintf(stderr, "test_quality_picker: no DISPLAY and xvfb-run cannot be started "
+                             "(packaging/install-deps.sh installs xvfb and xauth)\n");
+        return 1;
     }
+    QSurfaceFormat::setDefaultFormat(VolumeView::surfaceFormat());
     QApplication app(argc, argv);
     TestQualityPicker test;
     return QTest::qExec(&test, argc, argv);
