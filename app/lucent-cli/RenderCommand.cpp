@@ -157,7 +157,7 @@ int renderRemote(const QCommandLineParser& p, QTextStream& err) {
         r.elevation = number(p, "elevation", 0.0);
         r.zoom = number(p, "zoom", 1.0);
         for (const char* local : {"step", "interp", "precision", "preclassify", "preintegrate",
-                                  "no-shading", "no-leaping", "brick", "gpu-budget"}) {
+                                  "no-shading", "no-leaping", "brick", "gpu-budget", "quality"}) {
             if (p.isSet(local)) {
                 err << "lucent-cli render: --" << local
                     << " is not sent to a remote backend (the server chooses its sampling)\n";
