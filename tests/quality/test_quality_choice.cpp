@@ -7,6 +7,7 @@
 
 #include <fstream>
 
+#include "core/raycast/CpuRayCaster.h"
 #include "core/raycast/MeasuredFront.h"
 #include "core/raycast/QualityChoice.h"
 #include "tests/raycast/RaycastScenes.h"
@@ -139,6 +140,44 @@ private slots:
         QCOMPARE(chooseInteractive(pts, still, 12, {1.0, 8.0}, 2).stepFactor, 2.0);
         QCOMPARE(q.stepFactor, 4.0);
         QCOMPARE(chooseInteractive({}, still, 3, {}, 2).stepFactor, 2.0);
+    }
+
+    // The quick front with the real CPU ray caster on a small volume: every
+    // setting of the quick sweep, one shading, a front, a fixed part no longer
+    // than the fastest frame, and a choice that is one of its points.
+    void quickFrontIsMeasured() {
+        const Volume v = test::makeVolume({30, 26, 22}, test::blobs, VoxelType::Int16);
+        RenderDescription d = test::describe(v, test::rampTf(true), 64);
+        d.width = 96; // the quick size keeps the aspect
+        CpuRayCaster cpu(v);
+        std::size_t calls = 0;
+        const MeasuredFront f = measureQuickFront(
+            d, "cpu", [&](const RenderDescription& r) { return cpu.render(r); },
+            [&](const RenderDescription& r) { return cpu.render(r); },
+            [&](std::size_t done, std::size_t total) {
+                QCOMPARE(done, ++calls);
+                QCOMPARE(total, quickSweep(true).size());
+            });
+        QCOMPARE(calls, quickSweep(true).size());
+        QCOMPARE(f.key, frontKey(d, "cpu"));
+        QCOMPARE(f.width, kQuickFrontSize);
+        QCOMPARE(f.height, int(std::lround(kQuickFrontSize * 64.0 / 96.0)));
+        QCOMPARE(f.points.size(), quickSweep(true).size());
+        double fastest = 1e300;
+        for (const QualityPoint& p : f.points) {
+            QVERIFY(p.setting.shading);
+            QVERIFY(p.ms > 0.0 && p.samples > 0 && p.psnrDb > 10.0);
+            fastest = std::min(fastest, p.ms);
+        }
+        QVERIFY(f.fixedMs >= 0.0 && f.fixedMs <= fastest);
+        // Cubic at step 0.25 is nearest the reference (tricubic, step 1/16).
+        const auto best = std::max_element(
+            f.points.begin(), f.points.end(),
+            [](const QualityPoint& a, const QualityPoint& b) { return a.psnrDb < b.psnrDb; });
+        QVERIFY(best->setting.interpolation == Interpolation::Cubic);
+        QVERIFY(best->pareto);
+        const QualityChoice c = chooseQuality(f.points, 1e9, true, f.timeModel(96, 64));
+        QCOMPARE(c.psnrDb, best->psnrDb);
     }
 
     void cachedFrontReadsBackAsWritten() {
