@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
 #include "render/GlError.h"
@@ -25,12 +26,12 @@ glm::ivec3 slotGrid(std::size_t capacity, int slotSize) {
 } // namespace
 
 BrickPool::BrickPool(int slotSize, const TexelFormat& format, std::size_t capacity,
-                     bool withGradients)
+                     bool withGradients, std::size_t maxSlots)
     : slotSize_(slotSize), format_(format), withGradients_(withGradients), slots_(0) {
     slotsPerAxis_ = slotGrid(capacity, slotSize);
     const std::size_t fits =
         std::size_t(slotsPerAxis_.x) * std::size_t(slotsPerAxis_.y) * std::size_t(slotsPerAxis_.z);
-    slots_ = BrickSlots(std::min(capacity, fits));
+    slots_ = BrickSlots(std::min(fits, std::max(capacity, maxSlots)));
     texture_ = makeTexture(GL_TEXTURE_3D);
     const glm::ivec3 size = textureSize();
     glTextureStorage3D(texture_.get(), 1, format_.internalFormat, size.x, size.y, size.z);
@@ -68,6 +69,29 @@ glm::ivec3 BrickPool::slotOrigin(std::uint32_t slot) const {
     const int y = int((slot / std::uint32_t(slotsPerAxis_.x)) % std::uint32_t(slotsPerAxis_.y));
     const int z = int(slot / std::uint32_t(slotsPerAxis_.x * slotsPerAxis_.y));
     return {x, y, z};
+}
+
+void BrickPool::adopt(const BrickPool& smaller) {
+    if (smaller.slotSize_ != slotSize_ ||
+        smaller.format_.internalFormat != format_.internalFormat ||
+        smaller.slots_.resident() > slots_.capacity() ||
+        (hasGradients() && !smaller.hasGradients())) {
+        throw std::logic_error("a brick pool can adopt only a smaller pool of the same kind");
+    }
+    const std::size_t resident = smaller.slots_.resident();
+    for (std::uint32_t slot = 0; slot < resident; ++slot) {
+        const glm::ivec3 from = smaller.slotOrigin(slot) * slotSize_;
+        const glm::ivec3 to = slotOrigin(slot) * slotSize_;
+        glCopyImageSubData(smaller.texture(), GL_TEXTURE_3D, 0, from.x, from.y, from.z, texture(),
+                           GL_TEXTURE_3D, 0, to.x, to.y, to.z, slotSize_, slotSize_, slotSize_);
+        if (hasGradients()) {
+            glCopyImageSubData(smaller.gradientTexture(), GL_TEXTURE_3D, 0, from.x, from.y, from.z,
+                               gradientTexture(), GL_TEXTURE_3D, 0, to.x, to.y, to.z, slotSize_,
+                               slotSize_, slotSize_);
+        }
+    }
+    slots_ = smaller.slots_.withCapacity(slots_.capacity());
+    checkGl("moving " + std::to_string(resident) + " bricks into a larger pool");
 }
 
 void BrickPool::uploadGradients(std::uint32_t slot, const std::int16_t* texels) {

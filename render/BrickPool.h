@@ -22,11 +22,13 @@ struct TexelFormat {
 
 class BrickPool {
 public:
-    // A pool of at most `capacity` slots; fewer when one 3D texture cannot hold
-    // them. With gradients, a second texture of the same layout holds each
-    // slot's gradient (RGBA16 snorm, see extractGradientBrick). Throws GlError
-    // when the driver refuses the memory.
-    BrickPool(int slotSize, const TexelFormat& format, std::size_t capacity, bool withGradients);
+    // A pool of at least `capacity` slots (fewer only when one 3D texture
+    // cannot hold them): as many as its texture's shape holds, up to
+    // `maxSlots`. With gradients, a second texture of the same layout holds
+    // each slot's gradient (RGBA16 snorm, see extractGradientBrick). Throws
+    // GlError when the driver refuses the memory.
+    BrickPool(int slotSize, const TexelFormat& format, std::size_t capacity, bool withGradients,
+              std::size_t maxSlots);
     static constexpr std::size_t kGradientBytes = 8; // per texel
 
     int slotSize() const { return slotSize_; }
@@ -37,9 +39,13 @@ public:
     glm::ivec3 textureSize() const { return slotsPerAxis_ * slotSize_; }
     glm::ivec3 slotOrigin(std::uint32_t slot) const; // in slots
     BrickSlots& slots() { return slots_; }
-    std::size_t bytes() const;
+    std::size_t bytes() const;     // the textures' memory, used slots or not
     std::size_t slotBytes() const; // one slot's texels, values and gradients
 
+    // Takes over a smaller pool's bricks, slot for slot, by copies on the GPU
+    // (nothing is uploaded again). Needs the same slot size and format, room
+    // for every resident brick, and gradients only where `smaller` has them.
+    void adopt(const BrickPool& smaller);
     // Copies one brick's texels (slotSize^3 of the client type) into a slot.
     void upload(std::uint32_t slot, const void* texels);
     // Four int16 per texel (x, y, z, 0).

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -80,6 +81,8 @@ struct GpuRayCaster::State {
     std::unique_ptr<BrickPool> pool;
     std::tuple<int, bool> poolKind{0, false};
     std::string poolNote; // why the pool is smaller than the budget, if it is
+    std::size_t driverSlotLimit = std::numeric_limits<std::size_t>::max(); // after a refusal
+    bool gradientsRefused = false; // the driver refused the memory for the gradient cache
     SceneTextures scene;
 
     State(const Volume& v, GpuOptions o) : volume(v), options(o) {}
@@ -163,42 +166,21 @@ GpuRenderResult GpuRayCaster::render(const RenderDescription& desc) {
     // The pool: one per brick size and content; a change starts a new one.
     const TexelFormat format = texelFormat(s.volume.type(), cubic, s.options.halfFloatCoefficients);
     const std::size_t texelsPerSlot = std::size_t(slotSize) * slotSize * slotSize;
-    if (!s.pool || s.poolKind != std::tuple(brickSize, cubic)) {
+    if (s.pool && s.poolKind != std::tuple(brickSize, cubic)) {
         s.pool.reset();
-        const std::size_t allLevel0 = s.grid(brickSize, cubic, 0).count();
-        const bool gradients =
-            !cubic && s.options.gradientCache &&
-            allLevel0 * texelsPerSlot * (format.gpuBytes + BrickPool::kGradientBytes) <= s.budget;
+    }
+    const std::size_t allLevel0 = s.grid(brickSize, cubic, 0).count();
+    // The most slots the budget (and what the driver accepted) allows.
+    const auto slotLimit = [&](bool gradients) {
         const std::size_t slotBytes =
             texelsPerSlot * (format.gpuBytes + (gradients ? BrickPool::kGradientBytes : 0));
-        std::size_t capacity = std::min(s.budget / slotBytes, allLevel0);
-        if (capacity == 0) {
-            throw BudgetError("the GPU budget of " + std::to_string(s.budget >> 20) +
-                              " MiB holds no brick of " + std::to_string(slotBytes >> 10) + " KiB");
-        }
-        // Where the driver refuses the memory: without the gradient cache, then
-        // half as many slots, until it accepts (coarser levels take the rest).
-        bool withGradients = gradients;
-        while (!s.pool) {
-            try {
-                s.pool = std::make_unique<BrickPool>(slotSize, format, capacity, withGradients);
-            } catch (const GlOutOfMemory& e) {
-                if (withGradients) {
-                    withGradients = false;
-                    capacity = std::min(s.budget / (texelsPerSlot * format.gpuBytes), allLevel0);
-                } else if (capacity > 1) {
-                    capacity /= 2;
-                } else {
-                    throw BudgetError(std::string(e.what()) + ", even for one brick");
-                }
-                s.poolNote = std::string("the driver refused the memory asked for; the pool "
-                                         "holds ") +
-                             std::to_string(capacity) + " bricks";
-            }
-        }
-        s.poolKind = {brickSize, cubic};
+        return std::min({s.budget / slotBytes, allLevel0, s.driverSlotLimit});
+    };
+    if (slotLimit(false) == 0) {
+        throw BudgetError("the GPU budget of " + std::to_string(s.budget >> 20) +
+                          " MiB holds no brick of " +
+                          std::to_string((texelsPerSlot * format.gpuBytes) >> 10) + " KiB");
     }
-    BrickPool& pool = *s.pool;
 
     // Table range: the voxels', or the coefficients' (a spline overshoots its samples).
     double tLo = s.valueLo, tHi = s.valueHi;
@@ -214,34 +196,99 @@ GpuRenderResult GpuRayCaster::render(const RenderDescription& desc) {
     const auto visible =
         valueVisibility(desc, tLo, tHi, preintegrate ? kPreintegrationSize : kTableSize);
 
-    // The finest level whose bricks in view fit the pool.
+    // The finest level whose bricks in view fit the slots the budget holds.
     const VolumeGeometry& g = s.volume.geometry();
     const ViewFrame frame = makeViewFrame(g, desc.camera, desc.width, desc.height);
     const BoxTest inView = [&](const glm::dvec3& lo, const glm::dvec3& hi) {
         return boxInView(g, frame, lo, hi);
     };
     const bool neighbours = preintegrate || desc.mode == RenderMode::Isosurface;
-    std::vector<const BrickGrid*> levels{&s.grid(brickSize, cubic, 0)};
-    std::optional<ResidencyPlan> plan;
-    for (;;) {
-        try {
-            plan = planResidency(levels, visible, desc.clip, neighbours, pool.slots().capacity(),
-                                 inView);
-            break;
-        } catch (const BudgetError& e) {
-            if (int(levels.size()) >= s.levelCount()) {
-                throw BudgetError(std::string(e.what()) + " (budget " +
-                                  std::to_string(s.budget >> 20) + " MiB, " + s.budgetSource + ")");
+    std::size_t plannedSlots = 0;
+    const auto planWithin = [&](std::size_t slots) {
+        plannedSlots = slots;
+        std::vector<const BrickGrid*> levels{&s.grid(brickSize, cubic, 0)};
+        for (;;) {
+            try {
+                return planResidency(levels, visible, desc.clip, neighbours, slots, inView);
+            } catch (const BudgetError& e) {
+                if (int(levels.size()) >= s.levelCount()) {
+                    throw BudgetError(std::string(e.what()) + " (budget " +
+                                      std::to_string(s.budget >> 20) + " MiB, " + s.budgetSource +
+                                      ")");
+                }
+                levels.push_back(&s.grid(brickSize, cubic, int(levels.size())));
             }
-            levels.push_back(&s.grid(brickSize, cubic, int(levels.size())));
+        }
+    };
+    // Gradients cached when the full-resolution bricks this scene needs fit
+    // the budget with them; a pool that had to drop them keeps without.
+    std::optional<ResidencyPlan> plan;
+    bool gradients = false;
+    if (!cubic && s.options.gradientCache && !s.gradientsRefused &&
+        (!s.pool || s.pool->hasGradients()) && slotLimit(true) > 0) {
+        try {
+            plannedSlots = slotLimit(true);
+            plan = planResidency({&s.grid(brickSize, cubic, 0)}, visible, desc.clip, neighbours,
+                                 plannedSlots, inView);
+            gradients = true;
+        } catch (const BudgetError&) {
         }
     }
+    if (!plan) {
+        plan = planWithin(slotLimit(false));
+    }
+
+    // Sized to what the scene needs (with an eighth of headroom), grown when a
+    // transfer function needs more, never shrunk: a grown pool takes over the
+    // bricks already resident by copies on the GPU, uploading none again.
+    const std::size_t need = plan->bricks.size();
+    if (!s.pool || s.pool->hasGradients() != gradients || s.pool->slots().capacity() < need) {
+        const std::size_t old = s.pool ? s.pool->slots().capacity() : 0;
+        bool withGradients = gradients;
+        std::size_t limit = slotLimit(withGradients);
+        std::size_t capacity = std::min(limit, std::max(need + need / 8 + 1, old + old / 2));
+        std::unique_ptr<BrickPool> grown;
+        // Where the driver refuses the memory: without the gradient cache, then
+        // half as many slots, until it accepts (coarser levels take the rest).
+        while (!grown) {
+            try {
+                grown =
+                    std::make_unique<BrickPool>(slotSize, format, capacity, withGradients, limit);
+            } catch (const GlOutOfMemory& e) {
+                if (withGradients) {
+                    withGradients = false;
+                    s.gradientsRefused = true;
+                    limit = slotLimit(false);
+                    capacity = std::min(limit, std::max(need + need / 8 + 1, old));
+                } else if (capacity > 1) {
+                    capacity /= 2;
+                    s.driverSlotLimit = capacity;
+                    limit = capacity;
+                } else {
+                    throw BudgetError(std::string(e.what()) + ", even for one brick");
+                }
+                s.poolNote = std::string("the driver refused the memory asked for; the pool "
+                                         "holds ") +
+                             std::to_string(capacity) + " bricks";
+            }
+        }
+        if (s.pool && s.pool->slots().resident() <= grown->slots().capacity() &&
+            (s.pool->hasGradients() || !grown->hasGradients())) {
+            grown->adopt(*s.pool);
+        }
+        s.pool = std::move(grown);
+        s.poolKind = {brickSize, cubic};
+        if (s.pool->slots().capacity() < need) {
+            plan = planWithin(s.pool->slots().capacity());
+        }
+    }
+    BrickPool& pool = *s.pool;
     const int level = plan->level;
-    const BrickGrid& grid = *levels[std::size_t(level)];
+    const BrickGrid& grid = s.grid(brickSize, cubic, level);
     if (level > 0) {
         out.gpu.lodReason = "level 0 needs " + std::to_string(plan->rejected.front()) +
                             " bricks; the budget of " + std::to_string(s.budget >> 20) +
-                            " MiB holds " + std::to_string(pool.slots().capacity());
+                            " MiB holds " + std::to_string(plannedSlots);
     }
 
     // Upload what is missing, in batches: bricks extracted in parallel, then copied.
@@ -261,6 +308,7 @@ GpuRenderResult GpuRayCaster::render(const RenderDescription& desc) {
     out.gpu.bricksResident = pool.slots().resident();
     out.gpu.residentBytes = pool.slots().resident() * pool.slotBytes();
     out.gpu.poolSlots = pool.slots().capacity();
+    out.gpu.poolBytes = pool.bytes();
     out.gpu.budgetBytes = s.budget;
     out.gpu.budgetSource = s.budgetSource + (s.poolNote.empty() ? "" : "; " + s.poolNote);
 

@@ -15,12 +15,11 @@ struct GpuOptions {
     std::size_t budgetBytes = 0;
     // The B-spline coefficients in 32-bit floats (exact) or 16-bit floats (half the memory).
     bool halfFloatCoefficients = false;
-    // Keep each brick's gradient next to its voxels (8 more bytes a voxel,
-    // five times the memory of int16 voxels) when every brick of the
-    // full-resolution level fits the budget that way: shading then reads one
-    // texel instead of six (nearest and trilinear). Off by default: the pool
-    // holds only what the scene needs.
-    bool gradientCache = false;
+    // Keep each resident brick's gradient next to its voxels (8 more bytes a
+    // voxel) when the full-resolution bricks the scene needs fit the budget
+    // that way: shading then reads one texel instead of six (nearest and
+    // trilinear). Either way the pool holds only what the scene needs.
+    bool gradientCache = true;
 };
 
 // What a GPU frame did beyond the common statistics.
@@ -30,6 +29,7 @@ struct GpuFrameStats {
     std::size_t bricksResident = 0;
     std::size_t residentBytes = 0; // GPU memory the resident bricks take (values and gradients)
     std::size_t poolSlots = 0;
+    std::size_t poolBytes = 0; // GPU memory the pool's textures take, free slots included
     std::size_t budgetBytes = 0;
     bool gradientsCached = false;
     std::string budgetSource; // where the budget came from

@@ -230,7 +230,8 @@ int runRender(const QStringList& args) {
         {"no-leaping", "Switch empty-space leaping off."},
         {"brick", "Brick size in voxels (default 64).", "N"},
         {"gpu-budget", "GPU memory budget (GPU backend).", "MiB"},
-        {"gradient-cache", "GPU: keep each brick's gradient (8 bytes a voxel) for faster shading."},
+        {"gradient-cache", "GPU: keep each brick's gradient for faster shading (the default)."},
+        {"no-gradient-cache", "GPU: compute gradients from six fetches (less memory, slower)."},
         {"quality",
          "Sampling chosen from this volume's measured front: fast (50 ms a frame), balanced "
          "(250 ms), best (2000 ms) or a time per frame such as 120ms. Excludes --step, --interp, "
@@ -288,7 +289,10 @@ int runRender(const QStringList& args) {
             throw UsageError("--gpu-budget must be a number of MiB above 0");
         }
         gpuOptions.budgetBytes = std::size_t(budget * 1024.0 * 1024.0);
-        gpuOptions.gradientCache = parser.isSet("gradient-cache");
+        if (parser.isSet("gradient-cache") && parser.isSet("no-gradient-cache")) {
+            throw UsageError("--gradient-cache and --no-gradient-cache exclude each other");
+        }
+        gpuOptions.gradientCache = !parser.isSet("no-gradient-cache");
     } catch (const UsageError& e) {
         err << "lucent-cli render: " << e.what() << "\n";
         return kUsage;
@@ -358,6 +362,9 @@ int runRender(const QStringList& args) {
                                " gradients=" + (gs.gradientsCached ? "cached" : "computed") +
                                " resident_mib=" +
                                QString::number(double(gs.residentBytes) / 1048576.0, 'f', 1)
+                                   .toStdString() +
+                               " pool_mib=" +
+                               QString::number(double(gs.poolBytes) / 1048576.0, 'f', 1)
                                    .toStdString() +
                                " volume_mib=" +
                                QString::number(double(volume.byteCount()) / 1048576.0, 'f', 1)

@@ -145,6 +145,16 @@ std::vector<BrickSlots::Upload> BrickSlots::acquire(const std::vector<std::uint6
     return uploads;
 }
 
+BrickSlots BrickSlots::withCapacity(std::size_t capacity) const {
+    if (capacity < resident()) {
+        throw std::length_error(std::to_string(resident()) + " resident bricks for a pool of " +
+                                std::to_string(capacity) + " slots");
+    }
+    BrickSlots out = *this;
+    out.capacity_ = capacity;
+    return out;
+}
+
 std::optional<std::uint32_t> BrickSlots::slotOf(std::uint64_t key) const {
     const auto it = slotOfKey_.find(key);
     if (it == slotOfKey_.end()) {

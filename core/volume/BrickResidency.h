@@ -67,7 +67,10 @@ public:
     std::vector<Upload> acquire(const std::vector<std::uint64_t>& keys);
     std::optional<std::uint32_t> slotOf(std::uint64_t key) const;
     std::size_t capacity() const { return capacity_; }
-    std::size_t resident() const { return slotOfKey_.size(); }
+    std::size_t resident() const { return slotOfKey_.size(); } // slots 0 .. resident-1
+    // The same bricks in the same slots, with room for more. Throws
+    // std::length_error when the capacity would not hold them.
+    BrickSlots withCapacity(std::size_t capacity) const;
 
 private:
     std::size_t capacity_;

@@ -170,9 +170,9 @@ private slots:
     // trilinear, pre-classified), and the cache is used when it fits.
     void gradientCacheMatchesComputedGradients() {
         const Volume v = madeVolume();
-        GpuOptions on;
-        on.gradientCache = true;
-        GpuRayCaster cached(v, on), computed(v);
+        GpuOptions off;
+        off.gradientCache = false;
+        GpuRayCaster cached(v), computed(v, off); // cached by default
         for (const Interpolation interp : {Interpolation::Nearest, Interpolation::Linear}) {
             RenderDescription d = describe(v, madeTf(), 96);
             d.camera.azimuth = 25.0;

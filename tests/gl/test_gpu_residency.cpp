@@ -45,16 +45,30 @@ private slots:
         QVERIFY(bone.gpu.bricksUploaded > 0);
         QCOMPARE(bone.gpu.bricksUploaded, bone.frame.stats.bricksUsed);
         QVERIFY(bone.frame.stats.bricksUsed < bone.frame.stats.bricksTotal);
+        // The pool is sized to the scene (with some headroom), not to the volume,
+        // and keeps gradients when they fit the budget.
+        QVERIFY(bone.gpu.gradientsCached);
+        QVERIFY2(bone.gpu.poolSlots >= bone.gpu.bricksResident &&
+                     bone.gpu.poolSlots <= bone.gpu.bricksResident * 3 / 2 + 16,
+                 qPrintable(QString("%1 slots for %2 bricks")
+                                .arg(bone.gpu.poolSlots)
+                                .arg(bone.gpu.bricksResident)));
+        QVERIFY(bone.gpu.poolBytes >= bone.gpu.residentBytes);
 
         d.transferFunction = loadPreset("ct-soft-tissue");
         const GpuRenderResult soft = gpu.render(d);
         QVERIFY(soft.frame.stats.bricksUsed >= bone.frame.stats.bricksUsed);
         // Only what bone did not already bring.
         QCOMPARE(soft.gpu.bricksUploaded, soft.gpu.bricksResident - bone.gpu.bricksResident);
+        if (soft.gpu.bricksResident > bone.gpu.poolSlots) {
+            // The pool grew and took the resident bricks over without uploads.
+            QVERIFY(soft.gpu.poolSlots > bone.gpu.poolSlots);
+        }
 
         d.transferFunction = loadPreset("ct-bone");
         const GpuRenderResult again = gpu.render(d);
         QCOMPARE(again.gpu.bricksUploaded, std::size_t(0));
+        // The same image from the bricks the grown pool copied over.
         QCOMPARE(maxDifference(again.frame.premultiplied, bone.frame.premultiplied), 0.0f);
 
         d.camera.azimuth = 90.0; // a new view of the same scene needs no upload either
