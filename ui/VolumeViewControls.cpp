@@ -2,6 +2,7 @@
 
 #include <QComboBox>
 #include <QDoubleSpinBox>
+#include <QEvent>
 #include <QFormLayout>
 #include <QHBoxLayout>
 #include <QLabel>
@@ -125,6 +126,7 @@ VolumeViewControls::VolumeViewControls(VolumeView* view, QWidget* parent)
     // Shading on or off is another front; the choice follows the TF.
     connect(view_, &VolumeView::transferFunctionChanged, this, &VolumeViewControls::updateQuality);
     connect(view_, &VolumeView::backendChanged, this, &VolumeViewControls::updateQuality);
+    view_->installEventFilter(this);
     connect(iso_, &QDoubleSpinBox::valueChanged, view_, &VolumeView::setIsoValue);
     connect(reset, &QPushButton::clicked, view_, &VolumeView::resetCamera);
     connect(view_, &VolumeView::volumeChanged, this, &VolumeViewControls::volumeChanged);
@@ -181,6 +183,14 @@ QString VolumeViewControls::qualityStatus() const {
 
 void VolumeViewControls::setQualityCacheDir(const QString& dir) {
     cacheDir_ = dir;
+}
+
+bool VolumeViewControls::eventFilter(QObject* watched, QEvent* event) {
+    if (watched == view_ && event->type() == QEvent::Resize &&
+        quality_->currentIndex() != kManual) {
+        updateQuality();
+    }
+    return QWidget::eventFilter(watched, event);
 }
 
 void VolumeViewControls::setQualityStatus(const QString& text) {

@@ -57,6 +57,10 @@ Q_SIGNALS:
     // The view's sampling now follows a choice from a measured front.
     void qualityChosen(const QString& status);
 
+protected:
+    // The view's size sets the predicted times: a resize chooses again.
+    bool eventFilter(QObject* watched, QEvent* event) override;
+
 private:
     struct Measurement;
 

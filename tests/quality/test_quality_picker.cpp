@@ -90,6 +90,18 @@ private slots:
         QVERIFY2(best->psnrDb >= fast->psnrDb, qPrintable(controls.qualityStatus()));
         QVERIFY2(best->ms >= fast->ms, qPrintable(controls.qualityStatus()));
 
+        // A larger view: each frame costs more, so Best may step down, never up.
+        view.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&view));
+        const QString smallStatus = controls.qualityStatus();
+        view.resize(640, 512);
+        QVERIFY2(controls.qualityStatus() != smallStatus, qPrintable(smallStatus));
+        const QualityPoint* bestLarge = pointOf(*front, view);
+        QVERIFY(bestLarge && bestLarge->pareto);
+        QVERIFY2(bestLarge->psnrDb <= best->psnrDb, qPrintable(controls.qualityStatus()));
+        view.resize(160, 128);
+        QCOMPARE(pointOf(*front, view), best);
+
         controls.qualityPicker()->setCurrentIndex(4); // Target time
         controls.qualityTarget()->setValue(1);
         const TimeModel time =
