@@ -22,9 +22,6 @@ Q_LOGGING_CATEGORY(lcHttp, "lucent.server.http")
 
 // The embedded browser client (qt_add_resources in server/CMakeLists.txt).
 constexpr char kClientRoot[] = ":/web/";
-constexpr char kHeadTimerName[] = "lucent-request-head-timer";
-// Time a connection has to receive its answer once its request head is read.
-constexpr int kAnswerTimeoutMs = 60000;
 // Certificate and key files are read up to this size (a PEM chain is a few KiB).
 constexpr qint64 kMaxPemBytes = 1 << 20;
 
@@ -87,6 +84,16 @@ QByteArray reasonPhrase(int status) {
         return "OK";
     case 400:
         return "Bad Request";
+    case 401:
+        return "Unauthorized";
+    case 411:
+        return "Length Required";
+    case 413:
+        return "Content Too Large";
+    case 415:
+        return "Unsupported Media Type";
+    case 500:
+        return "Internal Server Error";
     case 404:
         return "Not Found";
     case 405:
@@ -320,9 +327,15 @@ void HttpFrontDoor::onReadable(QTcpSocket* socket) {
 
 void HttpFrontDoor::answer(QTcpSocket* socket, const HttpRequestHead& request) {
     const bool head = request.method == "HEAD";
+    if (request.method == "POST" && upload_.store) {
+        receiveUpload(socket, request);
+        return;
+    }
     if (request.method != "GET" && !head) {
-        respond(socket, 405, "text/plain; charset=utf-8", "only GET and HEAD are served here\n",
-                true, "Allow: GET, HEAD\r\n");
+        respond(socket, 405, "text/plain; charset=utf-8",
+                upload_.store ? "only GET, HEAD and POST /studies are served here\n"
+                              : "only GET and HEAD are served here\n",
+                true, upload_.store ? "Allow: GET, HEAD, POST\r\n" : "Allow: GET, HEAD\r\n");
         return;
     }
     const QString name = clientFileFor(request.target);

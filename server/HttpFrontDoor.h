@@ -14,6 +14,7 @@
 #include <QSslConfiguration>
 #include <QString>
 
+#include <functional>
 #include <optional>
 
 class QTcpServer;
@@ -51,8 +52,28 @@ std::optional<HttpRequestHead> parseHttpRequestHead(const QByteArray& head);
 inline constexpr qsizetype kMaxRequestHeadBytes = 16 * 1024;
 // A connection that has not sent a whole request head by then is closed.
 inline constexpr int kRequestHeadTimeoutMs = 10000;
+// Once its head is read, a request's connection is closed after this long
+// without an answer or (uploads) without a byte of body.
+inline constexpr int kAnswerTimeoutMs = 60000;
+// The object name of the timer (a child of the socket) that enforces both timeouts.
+inline constexpr char kHeadTimerName[] = "lucent-request-head-timer";
 // At most this many connections may wait for their request head; more are closed at once.
 inline constexpr int kMaxConnectionsWaitingForHead = 128;
+
+// POST /studies: instances uploaded into the server's store (server/HttpUpload.cpp).
+struct UploadRoute {
+    qint64 limitBytes = 0;                                     // larger bodies: 413
+    std::function<bool(const QByteArray& token)> acceptsToken; // of "Authorization: Bearer"
+    // Gets the Content-Type and the whole body; answers through `reply` (200
+    // with JSON, else a status and a line of text) on the front door's thread.
+    std::function<void(QByteArray contentType, QByteArray body,
+                       std::function<void(int status, QByteArray body)> reply)>
+        store;
+};
+// A refused upload's body is read and dropped up to this size before the
+// answer (so that the client sees the answer, not a reset); larger ones are
+// answered at once and the connection closed.
+inline constexpr qint64 kMaxDrainedUploadBytes = qint64(64) << 20;
 
 class HttpFrontDoor : public QObject {
     Q_OBJECT
@@ -68,11 +89,17 @@ public:
     void close();
     quint16 port() const;
     bool isSecure() const { return secure_; }
+    // Accepts uploads at POST /studies (none without a route).
+    void setUploadRoute(UploadRoute route) { upload_ = std::move(route); }
 
 private:
     void onPendingConnection();
     void onReadable(QTcpSocket* socket);
     void answer(QTcpSocket* socket, const HttpRequestHead& request);
+    void receiveUpload(QTcpSocket* socket, const HttpRequestHead& request);
+    // Reads `length` bytes of body (dropping them, or keeping them for `done`).
+    void readBody(QTcpSocket* socket, qint64 length, bool keep,
+                  std::function<void(QByteArray)> done);
     void respond(QTcpSocket* socket, int status, const QByteArray& contentType,
                  const QByteArray& body, bool withBody,
                  const QByteArray& extraFields = QByteArray());
@@ -81,6 +108,7 @@ private:
     QTcpServer* server_ = nullptr; // child; a QSslServer when secure
     QSet<const QTcpSocket*> waitingForHead_;
     bool secure_ = false;
+    UploadRoute upload_;
 };
 
 } // namespace lucent::remote

@@ -48,12 +48,14 @@ std::vector<std::string> readTokenFile(const QString& path) {
     return tokens;
 }
 
-RenderServer::RenderServer(ServerOptions options,
-                           std::vector<std::shared_ptr<const SeriesEntry>> series, QObject* parent)
-    : QObject(parent), options_(std::move(options)), series_(std::move(series)),
+RenderServer::RenderServer(ServerOptions options, SeriesList storeSeries, SeriesList dataSeries,
+                           QObject* parent)
+    : QObject(parent), options_(std::move(options)), dataSeries_(std::move(dataSeries)),
+      series_(mergeServedSeries(storeSeries, dataSeries_)),
       socketServer_(new QWebSocketServer("lucent-server", QWebSocketServer::NonSecureMode, this)),
       worker_(std::make_unique<RenderWorker>(options_.backend)) {
     qRegisterMetaType<lucent::remote::RenderedFrame>();
+    scanPool_.setMaxThreadCount(1);
     worker_->moveToThread(&renderThread_);
     renderThread_.setObjectName("lucent-render");
     connect(worker_.get(), &RenderWorker::frameRendered, this, &RenderServer::onFrameRendered);
@@ -64,6 +66,7 @@ RenderServer::RenderServer(ServerOptions options,
 }
 
 RenderServer::~RenderServer() {
+    scanPool_.waitForDone();
     copyPool_.waitForDone();
     socketServer_->close();
     for (const auto& client : std::as_const(clients_)) {
@@ -96,6 +99,13 @@ bool RenderServer::listen(QString* error) {
     qCInfo(lcServer) << "rendering with" << backendDescription_;
     // One port for the browser client's files and the WebSocket upgrades.
     frontDoor_ = new HttpFrontDoor(*socketServer_, this);
+    frontDoor_->setUploadRoute(
+        {options_.uploadLimitBytes,
+         [this](const QByteArray& token) { return acceptsToken(token.toStdString()); },
+         [this](QByteArray contentType, QByteArray body,
+                std::function<void(int, QByteArray)> reply) {
+             ingestUpload(std::move(contentType), std::move(body), std::move(reply));
+         }});
     return frontDoor_->listen(options_.address, options_.port, options_.tls, error);
 }
 

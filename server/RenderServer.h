@@ -23,6 +23,7 @@
 #include "core/io/SeriesEntry.h"
 #include "server/HttpFrontDoor.h"
 #include "server/RenderWorker.h"
+#include "server/ServedSeries.h"
 
 namespace lucent::remote {
 
@@ -44,6 +45,8 @@ struct ServerOptions {
     // The store: de-identified copies for teaching sessions go under it.
     std::filesystem::path storeDir;
     std::optional<TlsFiles> tls; // https:// and wss:// on the same port when set
+    // Uploads (POST /studies) larger than this are refused with 413.
+    qint64 uploadLimitBytes = qint64(512) << 20;
 };
 
 // The tokens of a token file: one per line, blank lines and lines starting
@@ -53,8 +56,9 @@ std::vector<std::string> readTokenFile(const QString& path);
 class RenderServer : public QObject {
     Q_OBJECT
 public:
-    // `series`: what clients may list and open (volumes only).
-    RenderServer(ServerOptions options, std::vector<std::shared_ptr<const SeriesEntry>> series,
+    // What clients may list and open (volumes only): the store's series, which
+    // rescanStore() refreshes, and those of the data path, fixed.
+    RenderServer(ServerOptions options, SeriesList storeSeries, SeriesList dataSeries,
                  QObject* parent = nullptr);
     ~RenderServer() override;
 
@@ -67,9 +71,18 @@ public:
     // For connections.
     bool acceptsToken(const std::string& token) const;
     int keepaliveSeconds() const { return options_.keepaliveSeconds; }
-    const std::vector<std::shared_ptr<const SeriesEntry>>& series() const { return series_; }
+    const SeriesList& series() const { return series_; }
     std::shared_ptr<const SeriesEntry> findSeries(const std::string& uid) const;
     void submit(const RenderJob& job);
+
+    // Scans the store's files again (on a worker thread) and serves what it
+    // holds from then on; `done` runs on this thread when the new list is in
+    // place. Scans asked for while one runs are done once, after it.
+    void rescanStore(std::function<void()> done = {});
+    // Stores the instances of an upload (POST /studies; see UploadIngest.h),
+    // then rescans; `reply` gets the HTTP status and body on this thread.
+    void ingestUpload(QByteArray contentType, QByteArray body,
+                      std::function<void(int, QByteArray)> reply);
 
     // Views and the frames rendered for them.
     quint64 newViewId() { return nextViewId_++; }
@@ -96,8 +109,16 @@ private:
     // Copies of an earlier run are stale (their sessions are gone): removed at start.
     void removeStaleCopies();
 
+    void setStoreSeries(const SeriesList& storeSeries);
+
     ServerOptions options_;
-    std::vector<std::shared_ptr<const SeriesEntry>> series_;
+    SeriesList dataSeries_;
+    SeriesList series_;    // the store's, then the data path's
+    QThreadPool scanPool_; // one thread: store scans and uploads, in order
+    bool scanRunning_ = false;
+    std::vector<std::function<void()>> scanWaiters_; // of the running scan
+    std::vector<std::function<void()>> scanQueued_;  // of the next one
+    bool scanAgain_ = false;
     QWebSocketServer* socketServer_;     // child
     HttpFrontDoor* frontDoor_ = nullptr; // child, made by listen(): the port, HTTP and TLS
     QThread renderThread_;

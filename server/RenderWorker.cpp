@@ -53,7 +53,7 @@ RenderDescription scaledInteractiveDescription(const RenderDescription& still, d
 }
 
 struct RenderWorker::LoadedSeries {
-    std::string id;
+    std::shared_ptr<const SeriesEntry> entry; // held: its address identifies it
     std::unique_ptr<Volume> volume;
     std::unique_ptr<GpuRayCaster> gpu;
     std::unique_ptr<CpuRayCaster> cpu;
@@ -87,9 +87,9 @@ void RenderWorker::stop() {
     context_.reset();
 }
 
-RenderWorker::LoadedSeries& RenderWorker::loaded(const SeriesEntry& entry) {
+RenderWorker::LoadedSeries& RenderWorker::loaded(const std::shared_ptr<const SeriesEntry>& entry) {
     for (auto it = loaded_.begin(); it != loaded_.end(); ++it) {
-        if ((*it)->id == entry.id) {
+        if ((*it)->entry == entry) {
             loaded_.splice(loaded_.begin(), loaded_, it);
             return *loaded_.front();
         }
@@ -98,8 +98,8 @@ RenderWorker::LoadedSeries& RenderWorker::loaded(const SeriesEntry& entry) {
         loaded_.pop_back(); // frees its GPU resources first: the context is current here
     }
     auto series = std::make_unique<LoadedSeries>();
-    series->id = entry.id;
-    series->volume = std::make_unique<Volume>(loadSeries(entry));
+    series->entry = entry;
+    series->volume = std::make_unique<Volume>(loadSeries(*entry));
     if (context_) {
         try {
             series->gpu = std::make_unique<GpuRayCaster>(*series->volume);
@@ -119,7 +119,7 @@ void RenderWorker::render(const RenderJob& job) {
     frame.view = job.view;
     frame.seq = job.seq;
     try {
-        LoadedSeries& series = loaded(*job.series);
+        LoadedSeries& series = loaded(job.series);
         RenderDescription description = job.description;
         description.volume = series.volume.get();
         const bool interactive = job.quality == Quality::Interactive;

@@ -70,7 +70,9 @@ signals:
 
 private:
     struct LoadedSeries;
-    LoadedSeries& loaded(const SeriesEntry& entry);
+    // The loaded volume of exactly this entry: a series the store has grown since
+    // (a new entry with the same id) is loaded again.
+    LoadedSeries& loaded(const std::shared_ptr<const SeriesEntry>& entry);
 
     Backend backend_;
     std::unique_ptr<OffscreenContext> context_;

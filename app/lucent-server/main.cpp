@@ -8,8 +8,10 @@
 #include <QHostAddress>
 #include <QTextStream>
 
+#include <memory>
 #include <optional>
 
+#include "server/DicomIntake.h"
 #include "server/RenderServer.h"
 #include "server/ServedSeries.h"
 
@@ -57,6 +59,13 @@ int main(int argc, char** argv) {
          "64"},
         {"keepalive", "Ping clients this often; drop one silent for three times as long.", "S",
          "20"},
+        {"dicom-listen", "Receive C-STORE pushes into the store on this port (0: any free one).",
+         "PORT"},
+        {"aet", "AE title of the storage SCP (--dicom-listen).", "TITLE", "LUCENT"},
+        {"arrival-quiet",
+         "Pushed instances are served once none has come for this long (--dicom-listen).", "S",
+         "2"},
+        {"upload-limit", "Uploads (POST /studies) larger than this are refused.", "MIB", "512"},
         {"check", "Check the configuration, list the series, and exit."},
     });
     QTextStream err(stderr);
@@ -106,6 +115,26 @@ int main(int argc, char** argv) {
         err << "lucent-server: --keepalive must be a number of seconds from 1 to 3600\n";
         return kUsage;
     }
+    const qint64 uploadLimitMib = parser.value("upload-limit").toLongLong(&ok);
+    if (!ok || uploadLimitMib < 1 || uploadLimitMib > 16384) {
+        err << "lucent-server: --upload-limit must be a number of MiB from 1 to 16384\n";
+        return kUsage;
+    }
+    options.uploadLimitBytes = uploadLimitMib << 20;
+    int dicomPort = -1;
+    if (parser.isSet("dicom-listen")) {
+        dicomPort = parser.value("dicom-listen").toInt(&ok);
+        if (!ok || dicomPort < 0 || dicomPort > 65535) {
+            err << "lucent-server: --dicom-listen: '" << parser.value("dicom-listen")
+                << "' is not a port number (0 to 65535)\n";
+            return kUsage;
+        }
+    }
+    const double arrivalQuiet = parser.value("arrival-quiet").toDouble(&ok);
+    if (!ok || !(arrivalQuiet >= 0.2 && arrivalQuiet <= 600.0)) {
+        err << "lucent-server: --arrival-quiet must be a number of seconds from 0.2 to 600\n";
+        return kUsage;
+    }
     if (parser.isSet("tls-cert") != parser.isSet("tls-key")) {
         err << "lucent-server: --tls-cert FILE and --tls-key FILE go together\n";
         return kUsage;
@@ -119,31 +148,46 @@ int main(int argc, char** argv) {
             return kBadInput;
         }
     }
-    lucent::remote::ServedSeries served;
+    lucent::remote::ServedSeries stored;
+    lucent::remote::ServedSeries fromData;
     try {
         options.tokens = lucent::remote::readTokenFile(parser.value("token-file"));
-        std::optional<std::filesystem::path> data;
-        if (parser.isSet("data")) {
-            data = parser.value("data").toStdString();
-        }
         options.storeDir = parser.value("store").toStdString();
-        served = lucent::remote::scanServedSeries(options.storeDir, data);
+        stored = lucent::remote::scanStoreSeries(options.storeDir);
+        if (parser.isSet("data")) {
+            fromData = lucent::remote::scanDataSeries(parser.value("data").toStdString());
+        }
     } catch (const std::exception& e) {
         err << "lucent-server: " << e.what() << "\n";
         return kBadInput;
     }
     QTextStream out(stdout);
     // Counts only: series descriptions may identify a patient and stay out of logs.
-    out << served.volumes.size() << " series, " << served.skippedFiles << " file(s) skipped\n";
+    out << lucent::remote::mergeServedSeries(stored.volumes, fromData.volumes).size() << " series, "
+        << stored.skippedFiles + fromData.skippedFiles << " file(s) skipped\n";
     out.flush();
     if (parser.isSet("check")) {
         return 0;
     }
-    lucent::remote::RenderServer server(options, std::move(served.volumes));
+    lucent::remote::RenderServer server(options, std::move(stored.volumes),
+                                        std::move(fromData.volumes));
     QString error;
     if (!server.listen(&error)) {
         err << "lucent-server: " << error << "\n";
         return kBadInput;
+    }
+    std::unique_ptr<lucent::remote::DicomIntake> intake;
+    if (dicomPort >= 0) {
+        try {
+            intake = std::make_unique<lucent::remote::DicomIntake>(
+                options.storeDir, parser.value("aet").toStdString(), dicomPort,
+                int(arrivalQuiet * 1000), [&server] { server.rescanStore(); });
+        } catch (const std::exception& e) {
+            err << "lucent-server: --dicom-listen: " << e.what() << "\n";
+            return kBadInput;
+        }
+        out << "DICOM storage SCP " << QString::fromStdString(intake->aeTitle()) << " on port "
+            << intake->port() << "\n";
     }
     out << "browser client at " << (options.tls ? "https" : "http") << "://"
         << options.address.toString() << ":" << server.port() << "/\n";

@@ -186,6 +186,7 @@ public:
                                      QString::fromUtf8(process_.readAllStandardError())));
         port_ = quint16(out.mid(at + 23).trimmed().toUInt());
         QVERIFY(port_ > 0);
+        startupOutput_ = out;
     }
     ~ServerProcess() {
         process_.terminate();
@@ -197,6 +198,9 @@ public:
     quint16 port() const { return port_; }
     QString storeDir() const { return dir_.filePath("store"); }
     QString volumeFile() const { return volumeFile_; }
+    QString tokenFile() const { return dir_.filePath("tokens"); }
+    // What the server printed on stdout up to "listening on".
+    const QString& startupOutput() const { return startupOutput_; }
     // What the server wrote to stderr so far (its log).
     QString log() { return log_ += QString::fromUtf8(process_.readAllStandardError()); }
 
@@ -206,6 +210,7 @@ private:
     QProcess process_;
     quint16 port_ = 0;
     QString log_;
+    QString startupOutput_;
 };
 
 } // namespace lucent::test
