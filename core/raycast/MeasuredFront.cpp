@@ -59,6 +59,8 @@ std::string frontKey(const RenderDescription& d, const std::string& backend) {
     return "renderer=" + std::to_string(kRendererVersion) + " backend=" + backend +
            " mode=" + renderModeName(d.mode) +
            " shading=" + (d.transferFunction.shading.enabled ? "1" : "0") +
+           " precision=" + (d.sampling.precision == Precision::Double ? "double" : "float") +
+           " leaping=" + (d.sampling.emptySpaceLeaping ? "1" : "0") +
            " volume=" + volumeFingerprint(*d.volume);
 }
 

@@ -2,8 +2,9 @@
 // The quick front of one volume on one backend, measured once and kept in a
 // cache file: a small sweep (quickSweep) at a reduced image size, whose times
 // are scaled to the image size asked for. Keyed by the volume's fingerprint,
-// the backend, the renderer version, the mode and the shading, so another
-// volume, backend or renderer measures its own. Plain C++: the caller gives
+// the backend, the renderer version and what else changes the times (mode,
+// shading, precision, leaping), so another volume, backend or renderer
+// measures its own. Plain C++: the caller gives
 // the cache folder (the user's cache dir in the app and the UI).
 
 #include <filesystem>
@@ -45,7 +46,7 @@ struct MeasuredFront {
 std::string volumeFingerprint(const Volume& volume);
 
 // What a front depends on: volume, backend ("cpu", "gl"), renderer version,
-// mode and shading of `description`.
+// and the mode, shading, precision and empty-space leaping of `description`.
 std::string frontKey(const RenderDescription& description, const std::string& backend);
 
 // The cache file of `key` in `cacheDir` (a name from a hash of the key).

@@ -211,6 +211,12 @@ private slots:
         QVERIFY(frontKey(d, "gl") != f.key);
         d.transferFunction.shading.enabled = !d.transferFunction.shading.enabled;
         QVERIFY(frontKey(d, "cpu") != f.key);
+        d.transferFunction.shading.enabled = !d.transferFunction.shading.enabled;
+        d.sampling.precision = Precision::Double;
+        QVERIFY(frontKey(d, "cpu") != f.key);
+        d.sampling.precision = Precision::Float;
+        QCOMPARE(frontKey(d, "cpu"), f.key);
+        d.transferFunction.shading.enabled = !d.transferFunction.shading.enabled;
         Volume w = test::makeVolume(
             {12, 10, 8}, [](int i, int j, int k) { return double(i * j - k); }, VoxelType::Int16);
         w.voxels<std::int16_t>()[0] = 999;
