@@ -327,15 +327,15 @@ void HttpFrontDoor::onReadable(QTcpSocket* socket) {
 
 void HttpFrontDoor::answer(QTcpSocket* socket, const HttpRequestHead& request) {
     const bool head = request.method == "HEAD";
-    if (request.method == "POST" && upload_.store) {
+    if (request.method == "POST" && upload_.store && isUploadTarget(request.target)) {
         receiveUpload(socket, request);
         return;
     }
     if (request.method != "GET" && !head) {
         respond(socket, 405, "text/plain; charset=utf-8",
-                upload_.store ? "only GET, HEAD and POST /studies are served here\n"
+                upload_.store ? "only GET and HEAD are served here (uploads: POST /studies)\n"
                               : "only GET and HEAD are served here\n",
-                true, upload_.store ? "Allow: GET, HEAD, POST\r\n" : "Allow: GET, HEAD\r\n");
+                true, "Allow: GET, HEAD\r\n");
         return;
     }
     const QString name = clientFileFor(request.target);

@@ -70,6 +70,8 @@ struct UploadRoute {
                        std::function<void(int status, QByteArray body)> reply)>
         store;
 };
+// True for /studies (the upload route's path), with or without a query.
+bool isUploadTarget(const QByteArray& target);
 // A refused upload's body is read and dropped up to this size before the
 // answer (so that the client sees the answer, not a reset); larger ones are
 // answered at once and the connection closed.

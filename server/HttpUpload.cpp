@@ -13,19 +13,15 @@ namespace {
 
 constexpr char kText[] = "text/plain; charset=utf-8";
 
-QByteArray pathOf(const QByteArray& target) {
-    const qsizetype query = target.indexOf('?');
-    return query < 0 ? target : target.left(query);
-}
-
 } // namespace
 
+bool isUploadTarget(const QByteArray& target) {
+    const qsizetype query = target.indexOf('?');
+    const QByteArray path = query < 0 ? target : target.left(query);
+    return path == "/studies" || path == "/studies/";
+}
+
 void HttpFrontDoor::receiveUpload(QTcpSocket* socket, const HttpRequestHead& request) {
-    const QByteArray path = pathOf(request.target);
-    if (path != "/studies" && path != "/studies/") {
-        respond(socket, 404, kText, "uploads go to POST /studies\n", true);
-        return;
-    }
     if (!request.field("transfer-encoding").isEmpty()) {
         respond(socket, 411, kText,
                 "send the upload with a Content-Length (chunked bodies are not accepted)\n", true);
