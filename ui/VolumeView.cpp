@@ -3,12 +3,15 @@
 #include <algorithm>
 #include <cmath>
 
+#include <QKeyEvent>
 #include <QMouseEvent>
 #include <QOpenGLContext>
 #include <QPainter>
+#include <QPen>
 #include <QStackedLayout>
 #include <QWheelEvent>
 
+#include "core/raycast/ViewFrame.h"
 #include "ui/VolumeSurfaces.h"
 
 namespace lucent {
@@ -193,7 +196,6 @@ void VolumeView::setVolume(std::shared_ptr<const Volume> volume) {
     lastFrameCurrent_ = false;
     transferFunction_ = defaultTransferFunction(volume_.get());
     clip_ = ClipBox{};
-    pan_ = {};
     camera_ = Camera{};
     emit volumeChanged();
     emit transferFunctionChanged(transferFunction_);
@@ -217,7 +219,6 @@ void VolumeView::setCamera(const Camera& camera) {
 }
 
 void VolumeView::resetCamera() {
-    pan_ = {};
     setCamera(Camera{});
 }
 
@@ -233,16 +234,38 @@ void VolumeView::setIsoValue(double value) {
 
 void VolumeView::setClipBox(const ClipBox& clip) {
     clip_ = clip;
+    emit clipBoxChanged(clip_);
     requestRender();
+}
+
+void VolumeView::setClipHandlesShown(bool shown) {
+    if (shown == clipHandlesShown_) {
+        return;
+    }
+    clipHandlesShown_ = shown;
+    emit clipHandlesShownChanged(shown);
+    updateSurface();
+}
+
+ClipHandles VolumeView::clipHandles() const {
+    if (!volume_) {
+        return {};
+    }
+    return lucent::clipHandles(volume_->geometry(), camera_, clip_, QSizeF(size()));
+}
+
+double VolumeView::mmPerPixel(const Camera& camera) const {
+    if (!volume_) {
+        return 0.0;
+    }
+    const int w = std::max(1, width()), h = std::max(1, height());
+    const double distance =
+        camera.distance > 0.0 ? camera.distance : fitDistance(volume_->geometry(), camera, w, h);
+    return 2.0 * distance * std::tan(glm::radians(camera.fieldOfView) * 0.5) / camera.zoom / h;
 }
 
 void VolumeView::setSampling(const SamplingSettings& sampling) {
     sampling_ = sampling;
-    requestRender();
-}
-
-void VolumeView::setPan(const QPointF& pan) {
-    pan_ = pan;
     requestRender();
 }
 
@@ -323,13 +346,50 @@ void VolumeView::paintFrame(QPainter& painter) {
         const QImage image(lastFrame_.pixels.data(), lastFrame_.width, lastFrame_.height,
                            4 * lastFrame_.width, QImage::Format_RGBA8888);
         painter.setRenderHint(QPainter::SmoothPixmapTransform, false);
-        painter.drawImage(QRectF(pan_, area.size()), image);
+        painter.drawImage(area, image);
+        if (clipHandlesShown_) {
+            paintClipBox(painter);
+        }
     }
     if (!notice_.isEmpty()) {
         painter.setPen(QColor(255, 200, 80));
         painter.drawText(area.adjusted(6, 4, -6, -4),
                          Qt::AlignLeft | Qt::AlignTop | Qt::TextWordWrap, notice_);
     }
+}
+
+void VolumeView::paintClipBox(QPainter& painter) const {
+    painter.save();
+    painter.setRenderHint(QPainter::Antialiasing, true);
+    // The device may have more pixels than the widget (high-DPI): draw in widget units.
+    painter.scale(double(painter.device()->width()) / std::max(1, width()),
+                  double(painter.device()->height()) / std::max(1, height()));
+    const QSizeF viewSize(size());
+    painter.setPen(QPen(QColor(255, 220, 60, 170), 1.0));
+    for (const auto& [a, b] : clipEdges(volume_->geometry(), camera_, clip_, viewSize)) {
+        if (a != b) {
+            painter.drawLine(a, b);
+        }
+    }
+    const ClipHandles handles = clipHandles();
+    for (std::size_t n = 0; n < handles.size(); ++n) {
+        if (!handles[n].visible) {
+            continue;
+        }
+        const bool active = dragHandle_ == int(n);
+        painter.setPen(QPen(QColor(255, 220, 60), 1.5));
+        painter.setBrush(active ? QColor(255, 220, 60) : QColor(40, 40, 40, 160));
+        painter.drawEllipse(handles[n].screen, kHandleRadius * 0.6, kHandleRadius * 0.6);
+    }
+    painter.restore();
+}
+
+void VolumeView::keyPressEvent(QKeyEvent* event) {
+    if (event->key() == Qt::Key_B && event->modifiers() == Qt::NoModifier) {
+        setClipHandlesShown(!clipHandlesShown_);
+        return;
+    }
+    QWidget::keyPressEvent(event);
 }
 
 void VolumeView::mousePressEvent(QMouseEvent* event) {
@@ -343,7 +403,11 @@ void VolumeView::mousePressEvent(QMouseEvent* event) {
     dragButton_ = b;
     dragStart_ = event->position();
     dragCamera_ = camera_;
-    dragPan_ = pan_;
+    dragClip_ = clip_;
+    dragHandle_.reset();
+    if (b == Qt::LeftButton && clipHandlesShown_) {
+        dragHandle_ = hitClipHandle(clipHandles(), dragStart_, kHandleRadius);
+    }
 }
 
 void VolumeView::mouseMoveEvent(QMouseEvent* event) {
@@ -351,6 +415,16 @@ void VolumeView::mouseMoveEvent(QMouseEvent* event) {
         return;
     }
     const QPointF d = event->position() - dragStart_;
+    if (dragHandle_ && volume_) {
+        const ClipHandles handles =
+            lucent::clipHandles(volume_->geometry(), camera_, dragClip_, QSizeF(size()));
+        const ClipBox moved =
+            dragClipFace(dragClip_, handles[std::size_t(*dragHandle_)], d, volume_->dims());
+        if (moved.lo != clip_.lo || moved.hi != clip_.hi) {
+            setClipBox(moved);
+        }
+        return;
+    }
     Camera c = dragCamera_;
     if (dragButton_ == Qt::LeftButton) {
         c.azimuth = dragCamera_.azimuth + d.x() * kDegreesPerPixel;
@@ -358,7 +432,10 @@ void VolumeView::mouseMoveEvent(QMouseEvent* event) {
     } else if (dragButton_ == Qt::RightButton) {
         c.zoom = std::clamp(dragCamera_.zoom * std::exp(-d.y() * kZoomPerPixel), 0.05, 50.0);
     } else {
-        pan_ = dragPan_ + d;
+        // What lies at the point looked at follows the mouse.
+        const double mm = mmPerPixel(dragCamera_);
+        c.panRight = dragCamera_.panRight - d.x() * mm;
+        c.panUp = dragCamera_.panUp + d.y() * mm;
     }
     setCamera(c);
 }
@@ -368,6 +445,7 @@ void VolumeView::mouseReleaseEvent(QMouseEvent* event) {
         return;
     }
     dragButton_ = Qt::NoButton;
+    dragHandle_.reset();
     requestRender(); // the still frame, at full quality
 }
 
@@ -377,7 +455,16 @@ void VolumeView::wheelEvent(QWheelEvent* event) {
         return;
     }
     Camera c = camera_;
-    c.zoom = std::clamp(c.zoom * std::pow(kWheelZoomPerNotch, notches), 0.05, 50.0);
+    if (event->modifiers() & Qt::ShiftModifier) {
+        // Towards the point looked at (and through it), never onto it.
+        const double now = c.distance > 0.0
+                               ? c.distance
+                               : fitDistance(volume_ ? volume_->geometry() : VolumeGeometry{}, c,
+                                             std::max(1, width()), std::max(1, height()));
+        c.distance = std::max(now * std::pow(kDollyPerNotch, notches), 1e-3);
+    } else {
+        c.zoom = std::clamp(c.zoom * std::pow(kWheelZoomPerNotch, notches), 0.05, 50.0);
+    }
     setCamera(c);
     event->accept();
 }

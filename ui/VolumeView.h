@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 
 #include <QImage>
 #include <QPointF>
@@ -14,6 +15,7 @@
 #include "core/raycast/RenderDescription.h"
 #include "render/LocalRenderBackend.h"
 #include "render/RemoteRenderBackend.h"
+#include "ui/ClipBoxHandles.h"
 
 class QPainter;
 
@@ -27,11 +29,14 @@ namespace lucent {
 // function it renders with, so a switch keeps them.
 //
 // Mouse: left-drag rotates (kDegreesPerPixel of azimuth per pixel right, of
-// elevation per pixel down), right-drag zooms (up = closer), middle-drag pans,
-// the wheel zooms (kWheelZoomPerNotch per notch). While a button is down frames
-// use interactiveDescription() scaled up to the view; on release one frame at
-// full quality follows. Pan moves the rendered image in the view (the shared
-// RenderDescription has no pan of its own).
+// elevation per pixel down), right-drag zooms (up = closer), middle-drag pans
+// the camera (what lies at the point looked at follows the mouse), the wheel
+// zooms (kWheelZoomPerNotch per notch), Shift+wheel moves the eye towards the
+// point looked at (kDollyPerNotch of its distance per notch; on into the
+// volume). B shows the clip box with a handle on each face: a left-drag on a
+// handle moves that face. While a button is down frames use
+// interactiveDescription() scaled up to the view; on release one frame at full
+// quality follows.
 class VolumeView : public QWidget {
     Q_OBJECT
 
@@ -40,6 +45,8 @@ public:
     static constexpr double kDegreesPerPixel = 0.5;
     static constexpr double kZoomPerPixel = 0.01; // zoom *= exp(-dy * this)
     static constexpr double kWheelZoomPerNotch = 1.1;
+    static constexpr double kDollyPerNotch = 0.85; // distance *= this per notch forward
+    static constexpr double kHandleRadius = 8.0;   // pixels
 
     // preferred = Gpu tries OpenGL first and falls back to the CPU by itself.
     explicit VolumeView(QWidget* parent = nullptr, Backend preferred = Backend::Gpu);
@@ -59,7 +66,9 @@ public:
     double isoValue() const { return isoValue_; }
     const ClipBox& clipBox() const { return clip_; }
     const SamplingSettings& sampling() const { return sampling_; }
-    QPointF pan() const { return pan_; }
+    // The clip box's face handles where they are on the view now.
+    bool clipHandlesShown() const { return clipHandlesShown_; }
+    ClipHandles clipHandles() const;
     void setInteractiveQuality(const InteractiveQuality& quality) { quality_ = quality; }
 
     // What a still frame renders now, at this size in device pixels (the view's
@@ -102,7 +111,7 @@ public slots:
     void setIsoValue(double value);
     void setClipBox(const lucent::ClipBox& clip);
     void setSampling(const lucent::SamplingSettings& sampling);
-    void setPan(const QPointF& pan);
+    void setClipHandlesShown(bool shown);
     void requestRender();
 
 signals:
@@ -113,12 +122,15 @@ signals:
     void renderedFrame(const lucent::RenderStats& stats, bool interactive);
     void noticeChanged(const QString& notice);
     void backendChanged(lucent::VolumeView::Backend backend);
+    void clipBoxChanged(const lucent::ClipBox& clip);
+    void clipHandlesShownChanged(bool shown);
 
 protected:
     void mousePressEvent(QMouseEvent* event) override;
     void mouseMoveEvent(QMouseEvent* event) override;
     void mouseReleaseEvent(QMouseEvent* event) override;
     void wheelEvent(QWheelEvent* event) override;
+    void keyPressEvent(QKeyEvent* event) override;
     void resizeEvent(QResizeEvent* event) override;
 
 private:
@@ -128,6 +140,9 @@ private:
     void onFrameFailed(const QString& reason);
     void updateNotice();
     void updateSurface();
+    void paintClipBox(QPainter& painter) const;
+    // Millimetres at the point looked at per view pixel.
+    double mmPerPixel(const Camera& camera) const;
 
     std::shared_ptr<const Volume> volume_;
     std::uint64_t volumeGeneration_ = 0;
@@ -143,7 +158,7 @@ private:
     ClipBox clip_;
     SamplingSettings sampling_;
     InteractiveQuality quality_;
-    QPointF pan_;
+    bool clipHandlesShown_ = false;
 
     Backend backend_ = Backend::Cpu;
     std::unique_ptr<QWidget> surface_; // a child: VolumeGlSurface or VolumeFrameSurface
@@ -157,7 +172,8 @@ private:
     Qt::MouseButton dragButton_ = Qt::NoButton;
     QPointF dragStart_;
     Camera dragCamera_;
-    QPointF dragPan_;
+    std::optional<int> dragHandle_; // the clip face being dragged
+    ClipBox dragClip_;
 };
 
 } // namespace lucent

@@ -1,5 +1,6 @@
 #include "ui/VolumeViewControls.h"
 
+#include <QCheckBox>
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QEvent>
@@ -13,7 +14,9 @@
 #include <QStandardPaths>
 #include <QThread>
 
+#include <algorithm>
 #include <atomic>
+#include <cmath>
 
 #include "core/raycast/QualityChoice.h"
 #include "render/GpuRayCaster.h"
@@ -95,6 +98,11 @@ VolumeViewControls::VolumeViewControls(VolumeView* view, QWidget* parent)
         }
         form->addRow(tr(axes[axis]), row);
     }
+    auto* handles = new QCheckBox(tr("Clip box handles in the view (B)"), this);
+    handles->setObjectName(QStringLiteral("clipHandles"));
+    form->addRow(handles);
+    connect(handles, &QCheckBox::toggled, view_, &VolumeView::setClipHandlesShown);
+    connect(view_, &VolumeView::clipHandlesShownChanged, handles, &QCheckBox::setChecked);
     form->addRow(reset);
 
     connect(presets_, &QComboBox::activated, this, [this](int index) {
@@ -130,6 +138,18 @@ VolumeViewControls::VolumeViewControls(VolumeView* view, QWidget* parent)
     connect(iso_, &QDoubleSpinBox::valueChanged, view_, &VolumeView::setIsoValue);
     connect(reset, &QPushButton::clicked, view_, &VolumeView::resetCamera);
     connect(view_, &VolumeView::volumeChanged, this, &VolumeViewControls::volumeChanged);
+    // Faces dragged in the view move the sliders (without sending the box back).
+    connect(view_, &VolumeView::clipBoxChanged, this, [this](const ClipBox& clip) {
+        for (int axis = 0; axis < 3; ++axis) {
+            for (int end = 0; end < 2; ++end) {
+                QSlider* s = clipSlider(axis, end);
+                const double value = end == 0 ? clip.lo[axis] : clip.hi[axis];
+                const QSignalBlocker blocker(s);
+                s->setValue(int(
+                    std::lround(std::clamp(value, double(s->minimum()), double(s->maximum())))));
+            }
+        }
+    });
     volumeChanged();
 }
 
