@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "render/GlError.h"
 
@@ -25,16 +26,29 @@ glm::ivec3 slotGrid(std::size_t capacity, int slotSize) {
 
 } // namespace
 
+bool BrickPool::sharesTexture(const TexelFormat& format, bool withGradients) {
+    return withGradients && format.internalFormat == GL_R16_SNORM;
+}
+
+std::size_t BrickPool::texelBytes(const TexelFormat& format, bool withGradients) {
+    if (sharesTexture(format, withGradients)) {
+        return kGradientBytes;
+    }
+    return format.gpuBytes + (withGradients ? kGradientBytes : 0);
+}
+
 BrickPool::BrickPool(int slotSize, const TexelFormat& format, std::size_t capacity,
                      bool withGradients, std::size_t maxSlots)
-    : slotSize_(slotSize), format_(format), withGradients_(withGradients), slots_(0) {
+    : slotSize_(slotSize), format_(format), withGradients_(withGradients),
+      shared_(sharesTexture(format, withGradients)), slots_(0) {
     slotsPerAxis_ = slotGrid(capacity, slotSize);
     const std::size_t fits =
         std::size_t(slotsPerAxis_.x) * std::size_t(slotsPerAxis_.y) * std::size_t(slotsPerAxis_.z);
     slots_ = BrickSlots(std::min(fits, std::max(capacity, maxSlots)));
     texture_ = makeTexture(GL_TEXTURE_3D);
     const glm::ivec3 size = textureSize();
-    glTextureStorage3D(texture_.get(), 1, format_.internalFormat, size.x, size.y, size.z);
+    glTextureStorage3D(texture_.get(), 1, shared_ ? GL_RGBA16_SNORM : format_.internalFormat,
+                       size.x, size.y, size.z);
     checkGl("brick pool of " + std::to_string(size.x) + "x" + std::to_string(size.y) + "x" +
             std::to_string(size.z) + " texels (" + std::to_string(bytes() >> 20) + " MiB)");
     const auto linear = [](GLuint t) {
@@ -45,7 +59,7 @@ BrickPool::BrickPool(int slotSize, const TexelFormat& format, std::size_t capaci
         }
     };
     linear(texture_.get());
-    if (withGradients) {
+    if (withGradients && !shared_) {
         gradients_ = makeTexture(GL_TEXTURE_3D);
         glTextureStorage3D(gradients_.get(), 1, GL_RGBA16_SNORM, size.x, size.y, size.z);
         checkGl("gradient pool (" + std::to_string(bytes() >> 20) + " MiB with the values)");
@@ -54,14 +68,13 @@ BrickPool::BrickPool(int slotSize, const TexelFormat& format, std::size_t capaci
 }
 
 std::size_t BrickPool::slotBytes() const {
-    return std::size_t(slotSize_) * slotSize_ * slotSize_ *
-           (format_.gpuBytes + (withGradients_ ? kGradientBytes : 0));
+    return std::size_t(slotSize_) * slotSize_ * slotSize_ * texelBytes(format_, withGradients_);
 }
 
 std::size_t BrickPool::bytes() const {
     const glm::ivec3 s = textureSize();
     return std::size_t(s.x) * std::size_t(s.y) * std::size_t(s.z) *
-           (format_.gpuBytes + (withGradients_ ? kGradientBytes : 0));
+           texelBytes(format_, withGradients_);
 }
 
 glm::ivec3 BrickPool::slotOrigin(std::uint32_t slot) const {
@@ -71,11 +84,15 @@ glm::ivec3 BrickPool::slotOrigin(std::uint32_t slot) const {
     return {x, y, z};
 }
 
+bool BrickPool::canAdopt(const BrickPool& smaller) const {
+    return smaller.slotSize_ == slotSize_ &&
+           smaller.format_.internalFormat == format_.internalFormat && smaller.shared_ == shared_ &&
+           (smaller.withGradients_ || !withGradients_) &&
+           smaller.slots_.resident() <= slots_.capacity();
+}
+
 void BrickPool::adopt(const BrickPool& smaller) {
-    if (smaller.slotSize_ != slotSize_ ||
-        smaller.format_.internalFormat != format_.internalFormat ||
-        smaller.slots_.resident() > slots_.capacity() ||
-        (hasGradients() && !smaller.hasGradients())) {
+    if (!canAdopt(smaller)) {
         throw std::logic_error("a brick pool can adopt only a smaller pool of the same kind");
     }
     const std::size_t resident = smaller.slots_.resident();
@@ -84,7 +101,7 @@ void BrickPool::adopt(const BrickPool& smaller) {
         const glm::ivec3 to = slotOrigin(slot) * slotSize_;
         glCopyImageSubData(smaller.texture(), GL_TEXTURE_3D, 0, from.x, from.y, from.z, texture(),
                            GL_TEXTURE_3D, 0, to.x, to.y, to.z, slotSize_, slotSize_, slotSize_);
-        if (hasGradients()) {
+        if (withGradients_ && !shared_) {
             glCopyImageSubData(smaller.gradientTexture(), GL_TEXTURE_3D, 0, from.x, from.y, from.z,
                                gradientTexture(), GL_TEXTURE_3D, 0, to.x, to.y, to.z, slotSize_,
                                slotSize_, slotSize_);
@@ -97,7 +114,7 @@ void BrickPool::adopt(const BrickPool& smaller) {
 void BrickPool::uploadGradients(std::uint32_t slot, const std::int16_t* texels) {
     const glm::ivec3 at = slotOrigin(slot) * slotSize_;
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTextureSubImage3D(gradients_.get(), 0, at.x, at.y, at.z, slotSize_, slotSize_, slotSize_,
+    glTextureSubImage3D(gradientTexture(), 0, at.x, at.y, at.z, slotSize_, slotSize_, slotSize_,
                         GL_RGBA, GL_SHORT, texels);
 }
 
@@ -125,24 +142,35 @@ std::size_t BrickPool::uploadBricks(const std::vector<BrickSlots::Upload>& uploa
 #pragma omp parallel for schedule(dynamic)
             for (std::size_t n = 0; n < count; ++n) {
                 const Brick& b = grid.bricks()[std::uint32_t(uploads[first + n].key)];
+                T* values = dst + n * texels;
                 extractBrick<T>(voxels.data(), source.dims(), b.first, overlap, slotSize_, edge,
-                                dst + n * texels);
+                                values);
                 if (hasGradients()) {
+                    std::int16_t* g = gradients.data() + n * texels * 4;
                     extractGradientBrick<T>(voxels.data(), source.dims(), b.first, overlap,
-                                            slotSize_, gradientUnit,
-                                            gradients.data() + n * texels * 4);
+                                            slotSize_, gradientUnit, g);
+                    if constexpr (std::is_same_v<T, std::int16_t>) {
+                        if (shared_) {
+                            for (std::size_t t = 0; t < texels; ++t) {
+                                g[4 * t + 3] = values[t];
+                            }
+                        }
+                    }
                 }
             }
         });
         for (std::size_t n = 0; n < count; ++n) {
-            upload(uploads[first + n].slot, staging.data() + n * texels * format_.clientBytes);
+            if (!shared_) {
+                upload(uploads[first + n].slot, staging.data() + n * texels * format_.clientBytes);
+            }
             if (hasGradients()) {
                 uploadGradients(uploads[first + n].slot, gradients.data() + n * texels * 4);
             }
         }
         checkGl("uploading bricks");
     }
-    return uploads.size() * texels * (format_.clientBytes + (hasGradients() ? kGradientBytes : 0));
+    return uploads.size() * texels *
+           (shared_ ? kGradientBytes : format_.clientBytes + (hasGradients() ? kGradientBytes : 0));
 }
 
 } // namespace lucent

@@ -172,8 +172,7 @@ GpuRenderResult GpuRayCaster::render(const RenderDescription& desc) {
     const std::size_t allLevel0 = s.grid(brickSize, cubic, 0).count();
     // The most slots the budget (and what the driver accepted) allows.
     const auto slotLimit = [&](bool gradients) {
-        const std::size_t slotBytes =
-            texelsPerSlot * (format.gpuBytes + (gradients ? BrickPool::kGradientBytes : 0));
+        const std::size_t slotBytes = texelsPerSlot * BrickPool::texelBytes(format, gradients);
         return std::min({s.budget / slotBytes, allLevel0, s.driverSlotLimit});
     };
     if (slotLimit(false) == 0) {
@@ -272,8 +271,7 @@ GpuRenderResult GpuRayCaster::render(const RenderDescription& desc) {
                              std::to_string(capacity) + " bricks";
             }
         }
-        if (s.pool && s.pool->slots().resident() <= grown->slots().capacity() &&
-            (s.pool->hasGradients() || !grown->hasGradients())) {
+        if (s.pool && grown->canAdopt(*s.pool)) {
             grown->adopt(*s.pool);
         }
         s.pool = std::move(grown);
@@ -366,6 +364,7 @@ GpuRenderResult GpuRayCaster::render(const RenderDescription& desc) {
         flag(sampling.emptySpaceLeaping) + "\n#define LUCENT_LEVEL0 " + flag(level == 0) +
         "\n#define LUCENT_CELLS_IN_ONE_BRICK " + flag(brickSize % kCellSize == 0) +
         "\n#define LUCENT_GRADIENT_TEXTURE " + flag(pool.hasGradients()) +
+        "\n#define LUCENT_GRADIENT_IN_POOL " + flag(pool.gradientsShareTexture()) +
         "\n#define LUCENT_SPECULAR_INT " +
         std::to_string(integerPower(desc.transferFunction.shading)) + "\n";
     auto& program = s.programs[defines];

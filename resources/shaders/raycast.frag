@@ -27,8 +27,11 @@ const int kMode = LUCENT_MODE, kInterp = LUCENT_INTERP;
 const bool kPreclassify = LUCENT_PRECLASSIFY, kPreintegrate = LUCENT_PREINTEGRATE;
 const bool kShading = LUCENT_SHADING, kLeap = LUCENT_LEAP, kLevel0 = LUCENT_LEVEL0;
 const bool kCellsInOneBrick = LUCENT_CELLS_IN_ONE_BRICK;
-// Each brick's central differences sit in a second pool (nearest, trilinear).
+// Each brick's central differences sit in a second pool (nearest, trilinear),
+// or, for int16 voxels, in the pool itself: texel = (gradient xyz, value), so
+// a shaded sample reads one texel for both.
 const bool kGradientTexture = LUCENT_GRADIENT_TEXTURE;
+const bool kGradientInPool = LUCENT_GRADIENT_IN_POOL;
 uniform float uEarlyTermination, uIso;
 uniform vec4 uLight; // ambient, diffuse, specular, specular power
 uniform mat3 uGradientToWorld;
@@ -79,12 +82,23 @@ void enterBrick(ivec3 b) {
 
 // --- filters (positions in the level's index space, inside the current brick's reach)
 
+// The gradient read with the last value, where they share the pool's texels.
+vec3 gPoolGradient = vec3(0.0);
+
+float poolValue(vec4 texel) {
+    if (kGradientInPool) {
+        gPoolGradient = texel.xyz;
+        return texel.a * uValueScale;
+    }
+    return texel.r * uValueScale;
+}
+
 float fetchTexel(ivec3 v) {
-    return texelFetch(uPool, ivec3(gSlotBase) + v, 0).r * uValueScale;
+    return poolValue(texelFetch(uPool, ivec3(gSlotBase) + v, 0));
 }
 
 float linearAt(vec3 q) {
-    return texture(uPool, (gSlotBase + q + 0.5) * uInvPoolSize).r * uValueScale;
+    return poolValue(texture(uPool, (gSlotBase + q + 0.5) * uInvPoolSize));
 }
 
 vec3 clampToVolume(vec3 q) {
@@ -250,8 +264,8 @@ float specularTerm(float ndotl) {
     return pow(ndotl, uLight.w);
 }
 
-vec3 shade(vec3 base, vec3 q, vec3 w) {
-    vec3 g = uGradientToWorld * gradientAt(q);
+vec3 shadeWith(vec3 base, vec3 gradient, vec3 w) {
+    vec3 g = uGradientToWorld * gradient;
     float len = length(g);
     if (len < 1e-6) {
         return base;
@@ -259,6 +273,17 @@ vec3 shade(vec3 base, vec3 q, vec3 w) {
     float ndotl = min(1.0, abs(dot(g, w)) / len);
     float diffuse = uLight.x + uLight.y * ndotl;
     return base * diffuse + vec3(uLight.z * specularTerm(ndotl));
+}
+
+vec3 shade(vec3 base, vec3 q, vec3 w) {
+    return shadeWith(base, gradientAt(q), w);
+}
+
+// Shading at q, whose value was the last the pool gave (pre-classification
+// reads neighbours after it): the gradient read with it, where it came along.
+vec3 shadeLast(vec3 base, vec3 q, vec3 w) {
+    return kGradientInPool && !kPreclassify ? shadeWith(base, gPoolGradient * uGradientScale, w)
+                                            : shade(base, q, w);
 }
 
 // --- leaping ------------------------------------------------------------------
@@ -476,7 +501,7 @@ void main() {
         if (k.a <= 0.0) {
             continue;
         }
-        vec3 rgb = kShading ? shade(k.rgb, p, w) : k.rgb;
+        vec3 rgb = kShading ? shadeLast(k.rgb, p, w) : k.rgb;
         float weight = (1.0 - acc.a) * k.a;
         acc += vec4(weight * rgb, weight);
         if (acc.a >= uEarlyTermination) {
