@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include <QFontMetrics>
 #include <QPainter>
 
 namespace lucent {
@@ -130,8 +131,18 @@ void paintSliceOverlay(QPainter& painter, const QRect& rect, const SliceOverlay&
     painter.setPen(QColor(220, 220, 220));
     painter.drawText(inner, Qt::AlignTop | Qt::AlignLeft, o.topLeft.join(u'\n'));
     painter.drawText(inner, Qt::AlignTop | Qt::AlignRight, o.topRight.join(u'\n'));
-    painter.drawText(inner, Qt::AlignBottom | Qt::AlignLeft, o.bottomLeft);
-    painter.drawText(inner, Qt::AlignBottom | Qt::AlignRight, o.bottomRight);
+    // A corner line that would run under the bottom orientation letter breaks
+    // at its double spaces instead.
+    const QFontMetrics metrics(font);
+    const int room = inner.width() / 2 - metrics.horizontalAdvance(label(o.plane.v)) - 4;
+    const auto fitted = [&](QString text) {
+        if (metrics.horizontalAdvance(text) > room) {
+            text.replace(QStringLiteral("  "), QStringLiteral("\n"));
+        }
+        return text;
+    };
+    painter.drawText(inner, Qt::AlignBottom | Qt::AlignLeft, fitted(o.bottomLeft));
+    painter.drawText(inner, Qt::AlignBottom | Qt::AlignRight, fitted(o.bottomRight));
     paintScaleBar(painter, rect, o.plane.pixelSize);
 }
 
