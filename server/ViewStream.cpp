@@ -94,6 +94,9 @@ std::optional<std::string> ViewStream::apply(const ClientMessage& message) {
         c.azimuth = camera->azimuth.value_or(c.azimuth);
         c.elevation = camera->elevation.value_or(c.elevation);
         c.zoom = camera->zoom.value_or(c.zoom);
+        c.distance = camera->distance.value_or(c.distance);
+        c.panRight = camera->panRight.value_or(c.panRight);
+        c.panUp = camera->panUp.value_or(c.panUp);
     } else if (const auto* tf = std::get_if<TransferFunctionUpdate>(&message)) {
         try {
             description_.transferFunction =

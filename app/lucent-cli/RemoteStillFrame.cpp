@@ -56,10 +56,18 @@ RemoteStillFrame requestStillFrame(const RemoteStillRequest& r, int timeoutMs) {
                 }
                 change(mode);
             }
-            change({{"type", "camera"},
-                    {"azimuth", r.azimuth},
-                    {"elevation", r.elevation},
-                    {"zoom", r.zoom}});
+            QJsonObject camera{{"type", "camera"},
+                               {"azimuth", r.azimuth},
+                               {"elevation", r.elevation},
+                               {"zoom", r.zoom}};
+            for (const auto& [key, value] :
+                 {std::pair{"distance", r.distance}, std::pair{"pan_right", r.panRight},
+                  std::pair{"pan_up", r.panUp}}) {
+                if (value) {
+                    camera[QLatin1String(key)] = *value;
+                }
+            }
+            change(camera);
             change({{"type", "quality"}, {"quality", "still"}});
         }
     });

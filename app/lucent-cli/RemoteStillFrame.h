@@ -29,6 +29,8 @@ struct RemoteStillRequest {
     std::optional<QString> mode;
     std::optional<double> iso;
     double azimuth = 0.0, elevation = 0.0, zoom = 1.0;
+    // Sent only when set (servers before camera pan and distance refuse the fields).
+    std::optional<double> distance, panRight, panUp; // mm; distance 0: fit the volume
 };
 
 struct RemoteStillFrame {

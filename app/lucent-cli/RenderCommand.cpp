@@ -163,11 +163,14 @@ int renderRemote(const QCommandLineParser& p, QTextStream& err) {
                     << " is not sent to a remote backend (the server chooses its sampling)\n";
             }
         }
-        for (const char* camera : {"distance", "pan-right", "pan-up"}) {
-            if (p.isSet(camera)) {
-                err << "lucent-cli render: --" << camera
-                    << " is not sent to a remote backend (protocol v1 cameras orbit the centre)\n";
-            }
+        if (p.isSet("distance")) {
+            r.distance = number(p, "distance", 0.0);
+        }
+        if (p.isSet("pan-right")) {
+            r.panRight = number(p, "pan-right", 0.0);
+        }
+        if (p.isSet("pan-up")) {
+            r.panUp = number(p, "pan-up", 0.0);
         }
     } catch (const std::exception& e) {
         err << "lucent-cli render: " << e.what() << "\n";

@@ -58,11 +58,22 @@ glm::dvec3 vector3(const Json& value, const char* key) {
 }
 
 CameraUpdate parseCamera(const Json& m) {
-    checkKeys(m, "camera", {"azimuth", "elevation", "zoom"});
-    CameraUpdate c{optionalNumber(m, "azimuth", "camera"), optionalNumber(m, "elevation", "camera"),
-                   optionalNumber(m, "zoom", "camera")};
+    checkKeys(m, "camera", {"azimuth", "elevation", "zoom", "distance", "pan_right", "pan_up"});
+    CameraUpdate c{
+        optionalNumber(m, "azimuth", "camera"),   optionalNumber(m, "elevation", "camera"),
+        optionalNumber(m, "zoom", "camera"),      optionalNumber(m, "distance", "camera"),
+        optionalNumber(m, "pan_right", "camera"), optionalNumber(m, "pan_up", "camera")};
     if (c.zoom && !(*c.zoom > 0.01 && *c.zoom < 100.0)) {
         badRequest("camera: 'zoom' must lie between 0.01 and 100");
+    }
+    if (c.distance && !(*c.distance >= 0.0 && *c.distance <= kMaxCameraDistance)) {
+        badRequest("camera: 'distance' must lie between 0 (fit the volume) and 100000 mm");
+    }
+    for (const auto& [pan, key] :
+         {std::pair{c.panRight, "pan_right"}, std::pair{c.panUp, "pan_up"}}) {
+        if (pan && !(std::abs(*pan) <= kMaxCameraPan)) {
+            badRequest(std::string("camera: '") + key + "' must lie between -100000 and 100000 mm");
+        }
     }
     return c;
 }

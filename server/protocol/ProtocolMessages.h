@@ -37,7 +37,13 @@ struct CameraUpdate {
     std::optional<double> azimuth;
     std::optional<double> elevation;
     std::optional<double> zoom;
+    std::optional<double> distance; // mm from the eye to the centre; 0: fit the volume
+    std::optional<double> panRight; // mm, the view centre moved along the screen's right
+    std::optional<double> panUp;    // mm, along the screen's up
 };
+// Camera distance and pan lie within these (mm).
+inline constexpr double kMaxCameraDistance = 100000.0;
+inline constexpr double kMaxCameraPan = 100000.0;
 // Exactly one of the two.
 struct TransferFunctionUpdate {
     std::optional<std::string> preset;

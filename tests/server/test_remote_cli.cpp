@@ -60,6 +60,58 @@ private slots:
         QVERIFY2(p >= 40.0, qPrintable(QString("remote vs local: %1 dB").arg(p)));
     }
 
+    // --distance, --pan-right and --pan-up reach the server: the remote still
+    // equals the local render of the same camera, and differs from the centred one.
+    void panAndDistanceAreSent_data() {
+        QTest::addColumn<QStringList>("arguments");
+        QTest::addColumn<double>("distance");
+        QTest::addColumn<double>("panRight");
+        QTest::addColumn<double>("panUp");
+        QTest::newRow("pan") << QStringList{"--pan-right", "9", "--pan-up", "-6"} << 0.0 << 9.0
+                             << -6.0;
+        QTest::newRow("distance") << QStringList{"--distance", "70"} << 70.0 << 0.0 << 0.0;
+        QTest::newRow("both") << QStringList{"--distance", "120",      "--pan-right",
+                                             "-7.5",       "--pan-up", "4"}
+                              << 120.0 << -7.5 << 4.0;
+    }
+    void panAndDistanceAreSent() {
+        QFETCH(QStringList, arguments);
+        QFETCH(double, distance);
+        QFETCH(double, panRight);
+        QFETCH(double, panUp);
+        ServerProcess server("cpu");
+        const QString uid = onlySeries(server.port());
+        QVERIFY(!uid.isEmpty());
+        QTemporaryDir dir;
+        const QString png = dir.filePath("remote.png");
+        const QString url = QString("ws://127.0.0.1:%1").arg(server.port());
+        const CliRun r = runCli(QStringList{"render", uid, "-o", png, "--backend", url, "--token",
+                                            kToken, "--size", "96x96", "--preset", "ct-bone",
+                                            "--azimuth", "20", "--zoom", "1.4"} +
+                                arguments);
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        QVERIFY2(!r.err.contains("not sent"), qPrintable(r.err));
+        const Volume v = loadPath(server.volumeFile().toStdString());
+        RenderDescription d;
+        d.volume = &v;
+        d.width = 96;
+        d.height = 96;
+        d.transferFunction = loadPreset("ct-bone");
+        d.camera.azimuth = 20.0;
+        d.camera.zoom = 1.4;
+        const ImageRGBA8 centred = CpuRayCaster(v).render(d).image;
+        d.camera.distance = distance;
+        d.camera.panRight = panRight;
+        d.camera.panUp = panUp;
+        const ImageRGBA8 local = CpuRayCaster(v).render(d).image;
+        const ImageRGBA8 remote = readPng(png.toStdString());
+        const double p = psnr(remote, local);
+        qInfo("%s: remote vs local %.1f dB, local vs centred %.1f dB", QTest::currentDataTag(), p,
+              psnr(local, centred));
+        QVERIFY2(p >= 40.0, qPrintable(QString("remote vs local: %1 dB").arg(p)));
+        QVERIFY(psnr(local, centred) < 30.0); // the camera's change shows
+    }
+
     void failuresSayWhich() {
         ServerProcess server("cpu");
         const QString uid = onlySeries(server.port());

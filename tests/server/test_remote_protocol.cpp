@@ -45,6 +45,16 @@ private slots:
         QCOMPARE(*camera.azimuth, 30.0);
         QVERIFY(!camera.elevation);
         QCOMPARE(*camera.zoom, 2.0);
+        QVERIFY(!camera.distance && !camera.panRight && !camera.panUp); // optional: old clients
+        const auto panned = std::get<CameraUpdate>(
+            parseClientMessage(R"({"type":"camera","distance":350,"pan_right":-12.5,"pan_up":4})"));
+        QCOMPARE(*panned.distance, 350.0);
+        QCOMPARE(*panned.panRight, -12.5);
+        QCOMPARE(*panned.panUp, 4.0);
+        QVERIFY(!panned.azimuth);
+        QCOMPARE(*std::get<CameraUpdate>(parseClientMessage(R"({"type":"camera","distance":0})"))
+                      .distance,
+                 0.0); // 0: fit the volume
         QCOMPARE(*std::get<TransferFunctionUpdate>(
                       parseClientMessage(R"({"type":"tf","preset":"ct-bone"})"))
                       .preset,
@@ -176,6 +186,10 @@ private slots:
             R"({"type":"camera","zoom":0})",
             R"({"type":"camera","zoom":1e9})",
             R"({"type":"camera","roll":3})",
+            R"({"type":"camera","distance":-1})",
+            R"({"type":"camera","distance":1e6})",
+            R"({"type":"camera","pan_right":"left"})",
+            R"({"type":"camera","pan_up":-2e5})",
             R"({"type":"tf"})",
             R"({"type":"tf","preset":"ct-bone","tf":{}})",
             R"({"type":"tf","tf":{"opacity":[[0,2]],"colour":[[0,1,1,1]]}})",
