@@ -303,6 +303,48 @@ private slots:
         const double db = psnr(local, client.frames.back().decoded());
         QVERIFY2(db >= 40.0, qPrintable(QString("PSNR %1 dB").arg(db)));
     }
+
+    // Pan and distance in the camera message: absent fields keep their value,
+    // `open` resets them, and each still equals the local render.
+    void panAndDistanceEqualTheLocalRender() {
+        ServerProcess server;
+        QVERIFY(server.port());
+        RemoteTestClient client(server.port());
+        const QString uid = openView(client);
+        QVERIFY(!uid.isEmpty());
+        const Volume volume = loadPath(server.volumeFile().toStdString());
+        CpuRayCaster cpu(volume);
+        const auto check = [&](const Camera& camera, const char* what) {
+            const ReceivedFrame* frame = client.waitForCurrentFrame();
+            QVERIFY2(frame, what);
+            QCOMPARE(frame->header.format, "png");
+            const ImageRGBA8 local = cpu.render(localDescription(volume, camera)).image;
+            const double db = psnr(local, frame->decoded());
+            qInfo("%s: PSNR %.1f dB", what, db);
+            saveOnFailure(frame->decoded(), QString("remote_pan_%1.png").arg(what), !(db >= 40.0));
+            QVERIFY2(db >= 40.0, qPrintable(QString("%1: PSNR %2 dB").arg(what).arg(db)));
+        };
+        client.change({{"type", "camera"},
+                       {"azimuth", 25},
+                       {"zoom", 1.5},
+                       {"distance", 90},
+                       {"pan_right", 8},
+                       {"pan_up", -5}});
+        check({25, 0, 1.5, 30, 90, 8, -5}, "panned");
+        client.change({{"type", "camera"}, {"elevation", 12}});
+        check({25, 12, 1.5, 30, 90, 8, -5}, "kept");
+        client.change({{"type", "camera"}, {"distance", 0}, {"pan_up", 3}});
+        check({25, 12, 1.5, 30, 0, 8, 3}, "fit");
+        const qsizetype from = client.texts.size();
+        client.change({{"type", "open"}, {"series", uid}});
+        QVERIFY(!client.waitForText("opened", 20000, from).isEmpty());
+        client.change({{"type", "tf"}, {"preset", "ct-bone"}});
+        check({0, 0, 1, 30, 0, 0, 0}, "reopened");
+        client.send({{"type", "camera"}, {"pan_right", 1e9}});
+        const QJsonObject error = client.waitForText("error", 20000, from);
+        QVERIFY2(error["message"].toString().contains("pan_right"), qPrintable(client.allText()));
+        QVERIFY(!error["fatal"].toBool());
+    }
 };
 
 QTEST_GUILESS_MAIN(TestRemoteServer)
