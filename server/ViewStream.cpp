@@ -1,5 +1,7 @@
 #include "server/ViewStream.h"
 
+#include "core/raycast/ViewFrame.h"
+
 #include <nlohmann/json.hpp>
 
 #include "server/ClientConnection.h"
@@ -75,6 +77,8 @@ std::string ViewStream::show(std::shared_ptr<const SeriesEntry> series) {
         {"type", "opened"},
         {"series", series_->id},
         {"dims", {d.x, d.y, d.z}},
+        // The volume's bounding sphere, which zoom 1 fits: clients turn pixels into pan mm.
+        {"radius_mm", volumeRadius(series_->geometry)},
         {"preset", preset_}}.dump();
     // The caller sends `opened` first; the frame follows from the event loop.
     QMetaObject::invokeMethod(this, &ViewStream::pump, Qt::QueuedConnection);

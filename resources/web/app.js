@@ -24,7 +24,8 @@
   const kBackoffMaxMs = 15000;
 
   // What the user asked for; restored after a reconnect.
-  const view = { series: null, azimuth: 0, elevation: 0, zoom: 1, preset: null, mode: "dvr",
+  const view = { series: null, azimuth: 0, elevation: 0, zoom: 1, panRight: 0, panUp: 0,
+                 radius: 0, preset: null, mode: "dvr",
                  iso: 300 };
   let token = "";
   let socket = null;
@@ -233,6 +234,7 @@
     }
     sentSize = "";
     view.series = message.series;
+    view.radius = message.radius_mm || 0;
     setStatus("showing a " + message.dims.join("x") + " volume", "good");
     if (!controlling()) { // a follower sees what the presenter chose
       ui.preset.value = message.preset;
@@ -247,15 +249,15 @@
       if (view.mode !== "dvr") {
         sendMode();
       }
-      if (view.azimuth !== 0 || view.elevation !== 0 || view.zoom !== 1) {
+      if (view.azimuth !== 0 || view.elevation !== 0 || view.zoom !== 1 ||
+          view.panRight !== 0 || view.panUp !== 0) {
         cameraDirty = true;
         flushCamera(true);
       }
       view.preset = view.preset || message.preset;
     } else {
-      Object.assign(view, { azimuth: 0, elevation: 0, zoom: 1, mode: "dvr",
-                            preset: message.preset });
-      canvasView.resetPan();
+      Object.assign(view, { azimuth: 0, elevation: 0, zoom: 1, panRight: 0, panUp: 0,
+                            mode: "dvr", preset: message.preset });
     }
     restoring = false;
     ui.preset.value = view.preset;
@@ -287,13 +289,32 @@
     }
     cameraDirty = false;
     lastCameraSent = performance.now();
-    send({ type: "camera", azimuth: view.azimuth, elevation: view.elevation, zoom: view.zoom });
+    send({ type: "camera", azimuth: view.azimuth, elevation: view.elevation, zoom: view.zoom,
+           pan_right: view.panRight, pan_up: view.panUp });
+  }
+
+  // Millimetres per canvas pixel in the plane of the point looked at: the
+  // server's camera fits the volume's bounding sphere (radius_mm of `opened`)
+  // into the narrower side of a 30 degree view, zoom narrows the view.
+  function mmPerPixel() {
+    const { width, height } = canvasView.size();
+    const halfFov = 15 * Math.PI / 180;
+    const fitHalf = Math.min(halfFov, Math.atan(Math.tan(halfFov) * width / Math.max(1, height)));
+    const distance = (view.radius || 100) / Math.sin(fitHalf);
+    return 2 * distance * Math.tan(halfFov) / view.zoom / Math.max(1, height);
   }
 
   function changeCamera(change) {
     view.azimuth = ((view.azimuth + (change.azimuth || 0)) % 360 + 360) % 360;
     view.elevation = Math.max(-89, Math.min(89, view.elevation + (change.elevation || 0)));
     view.zoom = Math.max(0.02, Math.min(50, view.zoom * (change.zoomFactor || 1)));
+    if (change.panX || change.panY) {
+      // The image follows the pointer: the point looked at moves the other way.
+      const mm = mmPerPixel();
+      const limit = 100000; // the protocol's bound
+      view.panRight = Math.max(-limit, Math.min(limit, view.panRight - (change.panX || 0) * mm));
+      view.panUp = Math.max(-limit, Math.min(limit, view.panUp + (change.panY || 0) * mm));
+    }
     cameraDirty = true;
     if (!cameraTimer) {
       flushCamera(false);
@@ -301,8 +322,7 @@
   }
 
   function resetView() {
-    Object.assign(view, { azimuth: 0, elevation: 0, zoom: 1 });
-    canvasView.resetPan();
+    Object.assign(view, { azimuth: 0, elevation: 0, zoom: 1, panRight: 0, panUp: 0 });
     cameraDirty = true;
     flushCamera(true);
   }

@@ -2,7 +2,8 @@
 // sizes the canvas to its box, and turns mouse and touch gestures (pointer
 // events) into camera changes: one pointer rotates, right button or shift
 // pans, the wheel and two-finger pinches zoom, two fingers also pan; arrow
-// keys rotate and + and - zoom.
+// keys rotate and + and - zoom. A pan is a camera change in canvas pixels
+// (panX right, panY down) that the page turns into the camera's pan in mm.
 "use strict";
 
 window.createLucentView = (canvas, handlers) => {
@@ -14,7 +15,6 @@ window.createLucentView = (canvas, handlers) => {
   let decoding = false;
   let waiting = null;      // the newest frame that arrived while one was decoding
   let enabled = false;
-  const pan = { x: 0, y: 0 }; // client-side pan of the shown image, canvas pixels
   const stats = { framesReceived: 0, framesDrawn: 0, lastHeader: null };
 
   function draw() {
@@ -28,8 +28,7 @@ window.createLucentView = (canvas, handlers) => {
     const w = frame.width * scale;
     const h = frame.height * scale;
     context.imageSmoothingEnabled = true;
-    context.drawImage(frame, (canvas.width - w) / 2 + pan.x, (canvas.height - h) / 2 + pan.y,
-                      w, h);
+    context.drawImage(frame, (canvas.width - w) / 2, (canvas.height - h) / 2, w, h);
   }
 
   function decode(item) {
@@ -92,9 +91,9 @@ window.createLucentView = (canvas, handlers) => {
   }
 
   function panBy(dx, dy) {
-    pan.x += dx;
-    pan.y += dy;
-    draw();
+    if (dx !== 0 || dy !== 0) {
+      handlers.onCamera({ panX: dx, panY: dy });
+    }
   }
 
   // --- gestures -------------------------------------------------------------
@@ -229,11 +228,6 @@ window.createLucentView = (canvas, handlers) => {
         canvas.classList.remove("dragging");
         interacting = false;
       }
-    },
-    resetPan() {
-      pan.x = 0;
-      pan.y = 0;
-      draw();
     },
   };
 };

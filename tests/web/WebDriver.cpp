@@ -176,13 +176,13 @@ bool WebDriver::performActions(const QJsonArray& sources) {
 }
 
 bool WebDriver::drag(const QString& element, const QString& pointerType, int x, int y, int dx,
-                     int dy, int steps) {
+                     int dy, int steps, int button) {
     QJsonArray actions{pointerMove(x, y, QJsonObject{{kElementKey, element}}, 0),
-                       QJsonObject{{"type", "pointerDown"}, {"button", 0}}};
+                       QJsonObject{{"type", "pointerDown"}, {"button", button}}};
     for (int n = 1; n <= steps; ++n) {
         actions.append(pointerMove(dx / steps, dy / steps, "pointer", 40));
     }
-    actions.append(QJsonObject{{"type", "pointerUp"}, {"button", 0}});
+    actions.append(QJsonObject{{"type", "pointerUp"}, {"button", button}});
     return performActions({QJsonObject{{"type", "pointer"},
                                        {"id", pointerType + "1"},
                                        {"parameters", QJsonObject{{"pointerType", pointerType}}},

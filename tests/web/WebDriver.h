@@ -43,9 +43,10 @@ public:
     // Polls `script` until it returns true, up to timeoutMs.
     bool waitUntil(const QString& script, int timeoutMs);
     // W3C actions: one pointer ("mouse" or "touch") pressing at (x, y) relative
-    // to the centre of `element` and moving by (dx, dy) in `steps` moves.
+    // to the centre of `element` and moving by (dx, dy) in `steps` moves, with
+    // `button` held (0 left, 2 right).
     bool drag(const QString& element, const QString& pointerType, int x, int y, int dx, int dy,
-              int steps);
+              int steps, int button = 0);
     // Two touch pointers moving apart (pinch open) about the element's centre.
     bool pinch(const QString& element, int fromHalfGap, int toHalfGap, int steps);
     bool setWindowSize(int width, int height);

@@ -137,6 +137,18 @@ void TestWebBrowser::dragRotatesTheRemoteView() {
     QVERIFY(driver.execute("return window.lucent.view.zoom;").toDouble() > zoom * 1.5);
     QVERIFY(afterPinch["hash"].toInt() != afterTouch["hash"].toInt());
 
+    // A right-button drag pans: the camera's pan goes to the server (the image
+    // follows the pointer: the point looked at moves left and up).
+    drawn = framesDrawn(driver);
+    QVERIFY2(driver.drag(canvas, "mouse", 0, 0, 80, 40, 4, 2), qPrintable(driver.error()));
+    QJsonObject afterPan;
+    QVERIFY2(waitForNewStill(driver, drawn, &afterPan), "no frame after the pan");
+    QVERIFY(afterPan["hash"].toInt() != afterPinch["hash"].toInt());
+    const double panRight = driver.execute("return window.lucent.view.panRight;").toDouble();
+    const double panUp = driver.execute("return window.lucent.view.panUp;").toDouble();
+    QVERIFY2(panRight < -1.0 && panUp > 0.5,
+             qPrintable(QString("pan %1, %2 mm").arg(panRight).arg(panUp)));
+
     // Keys on the focused canvas turn the view too.
     const double azimuth = driver.execute("return window.lucent.view.azimuth;").toDouble();
     drawn = framesDrawn(driver);
