@@ -197,26 +197,39 @@ void extractGradientBrick(const T* data, glm::ivec3 dims, glm::ivec3 first, int 
                           int slotSize, double unit, std::int16_t* out) {
     const glm::ivec3 start = first - overlap;
     const double inverse = 0.5 / unit;
-    const auto at = [&](int i, int j, int k) {
-        return double(data[std::size_t(std::clamp(i, 0, dims.x - 1)) +
-                           std::size_t(dims.x) *
-                               (std::size_t(std::clamp(j, 0, dims.y - 1)) +
-                                std::size_t(dims.y) * std::size_t(std::clamp(k, 0, dims.z - 1)))]);
-    };
     const auto quantised = [&](double d) {
         return std::int16_t(std::clamp(std::lround(d * inverse), -32767L, 32767L));
     };
+    // Every index clamped to the volume, the neighbours' too, worked out once
+    // per axis: the inner loop reads rows without a clamp.
+    const auto clamped = [&](int i, int n) { return std::clamp(i, 0, n - 1); };
+    const std::size_t n = std::size_t(slotSize);
+    std::vector<int> xs(n, 0), xm(n, 0), xp(n, 0);
+    for (int a = 0; a < slotSize; ++a) {
+        const int i = clamped(start.x + a, dims.x);
+        xs[std::size_t(a)] = i;
+        xm[std::size_t(a)] = clamped(i - 1, dims.x);
+        xp[std::size_t(a)] = clamped(i + 1, dims.x);
+    }
+    const auto row = [&](int j, int k) {
+        return data + std::size_t(dims.x) * (std::size_t(j) + std::size_t(dims.y) * std::size_t(k));
+    };
     for (int c = 0; c < slotSize; ++c) {
-        const int k = std::clamp(start.z + c, 0, dims.z - 1);
+        const int k = clamped(start.z + c, dims.z);
         for (int b = 0; b < slotSize; ++b) {
-            const int j = std::clamp(start.y + b, 0, dims.y - 1);
+            const int j = clamped(start.y + b, dims.y);
+            const T* here = row(j, k);
+            const T* jm = row(clamped(j - 1, dims.y), k);
+            const T* jp = row(clamped(j + 1, dims.y), k);
+            const T* km = row(j, clamped(k - 1, dims.z));
+            const T* kp = row(j, clamped(k + 1, dims.z));
             std::int16_t* dst =
                 out + 4 * std::size_t(slotSize) * (std::size_t(b) + std::size_t(slotSize) * c);
-            for (int a = 0; a < slotSize; ++a) {
-                const int i = std::clamp(start.x + a, 0, dims.x - 1);
-                dst[4 * a + 0] = quantised(at(i + 1, j, k) - at(i - 1, j, k));
-                dst[4 * a + 1] = quantised(at(i, j + 1, k) - at(i, j - 1, k));
-                dst[4 * a + 2] = quantised(at(i, j, k + 1) - at(i, j, k - 1));
+            for (std::size_t a = 0; a < std::size_t(slotSize); ++a) {
+                const int i = xs[a];
+                dst[4 * a + 0] = quantised(double(here[xp[a]]) - double(here[xm[a]]));
+                dst[4 * a + 1] = quantised(double(jp[i]) - double(jm[i]));
+                dst[4 * a + 2] = quantised(double(kp[i]) - double(km[i]));
                 dst[4 * a + 3] = 0;
             }
         }
