@@ -17,7 +17,12 @@ namespace {
 constexpr int kMinSide = 16;
 
 bool sameCamera(const Camera& a, const Camera& b) {
-    return a.azimuth == b.azimuth && a.elevation == b.elevation && a.zoom == b.zoom;
+    return a.azimuth == b.azimuth && a.elevation == b.elevation && a.zoom == b.zoom &&
+           a.distance == b.distance && a.panRight == b.panRight && a.panUp == b.panUp;
+}
+
+bool movedFromTheCentre(const Camera& c) {
+    return c.distance != 0.0 || c.panRight != 0.0 || c.panUp != 0.0;
 }
 
 bool sameClip(const ClipBox& a, const ClipBox& b) {
@@ -368,10 +373,18 @@ void RemoteRenderBackend::sync() {
         sent_.clip = d.clip;
     }
     if (!sent_.camera || !sameCamera(*sent_.camera, d.camera)) {
-        sendView({{"type", "camera"},
-                  {"azimuth", d.camera.azimuth},
-                  {"elevation", d.camera.elevation},
-                  {"zoom", d.camera.zoom}});
+        QJsonObject camera{{"type", "camera"},
+                           {"azimuth", d.camera.azimuth},
+                           {"elevation", d.camera.elevation},
+                           {"zoom", d.camera.zoom}};
+        // Sent once the view has left the orbit about the centre: a server older
+        // than these fields refuses them, and to it nothing else is lost.
+        if (movedFromTheCentre(d.camera) || (sent_.camera && movedFromTheCentre(*sent_.camera))) {
+            camera["distance"] = d.camera.distance;
+            camera["pan_right"] = d.camera.panRight;
+            camera["pan_up"] = d.camera.panUp;
+        }
+        sendView(camera);
         sent_.camera = d.camera;
         cameraClock_.start();
     }

@@ -222,6 +222,21 @@ void TestVolumeViewRemote::remoteFramesMatchLocalRender() {
     p = checkedPsnr(view_->lastFrame(), cpuReference(), "camera");
     QVERIFY2(p >= 40.0, qPrintable(QString("camera: psnr %1 dB").arg(p)));
 
+    // Panned and moved in: the server renders the same camera.
+    camera.panRight = 25.0;
+    camera.panUp = -12.0;
+    camera.distance = 180.0;
+    view_->setCamera(camera);
+    QVERIFY2(waitForCurrentFrame(false), qPrintable(view_->notice()));
+    p = checkedPsnr(view_->lastFrame(), cpuReference(), "pan_distance");
+    QVERIFY2(p >= 40.0, qPrintable(QString("pan and distance: psnr %1 dB").arg(p)));
+    // And back to the orbit about the centre (the fields go to 0, not away).
+    camera.panRight = camera.panUp = camera.distance = 0.0;
+    view_->setCamera(camera);
+    QVERIFY2(waitForCurrentFrame(false), qPrintable(view_->notice()));
+    p = checkedPsnr(view_->lastFrame(), cpuReference(), "orbit_again");
+    QVERIFY2(p >= 40.0, qPrintable(QString("orbit again: psnr %1 dB").arg(p)));
+
     view_->setTransferFunction(loadPreset("ct-soft-tissue"));
     QVERIFY2(waitForCurrentFrame(false), qPrintable(view_->notice()));
     p = checkedPsnr(view_->lastFrame(), cpuReference(), "tf");
