@@ -12,16 +12,36 @@ namespace lucent {
 
 namespace {
 
-// The slot grid for `capacity` slots: as cubic as the texture limit allows.
-glm::ivec3 slotGrid(std::size_t capacity, int slotSize) {
+// The slot grid for `capacity` slots: the fewest slots beyond it within
+// maxSlots (the texture takes them all, so this keeps it in the budget), as
+// cubic as the texture limit allows among those.
+glm::ivec3 slotGrid(std::size_t capacity, std::size_t maxSlots, int slotSize) {
     GLint maxSize = 0;
     glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSize);
     const int perAxisMax = std::max(1, maxSize / slotSize);
-    const auto c = double(std::max<std::size_t>(capacity, 1));
-    const int x = std::clamp(int(std::ceil(std::cbrt(c))), 1, perAxisMax);
-    const int y = std::clamp(int(std::ceil(std::sqrt(c / x))), 1, perAxisMax);
-    const int z = std::clamp(int(std::ceil(c / (double(x) * y))), 1, perAxisMax);
-    return {x, y, z};
+    const std::size_t c = std::max<std::size_t>(capacity, 1);
+    glm::ivec3 best(0);
+    std::size_t bestCount = 0;
+    for (int x = 1; x <= perAxisMax; ++x) {
+        for (int y = 1; y <= perAxisMax; ++y) {
+            const std::size_t xy = std::size_t(x) * std::size_t(y);
+            const std::size_t z = (c + xy - 1) / xy;
+            const std::size_t count = xy * z;
+            if (z > std::size_t(perAxisMax) || (count > maxSlots && count > c)) {
+                continue;
+            }
+            const int longest = std::max({x, y, int(z)});
+            if (bestCount == 0 || count < bestCount ||
+                (count == bestCount && longest < std::max({best.x, best.y, best.z}))) {
+                best = {x, y, int(z)};
+                bestCount = count;
+            }
+        }
+    }
+    if (bestCount == 0) { // more than one texture holds: as many as it does
+        return glm::ivec3(perAxisMax);
+    }
+    return best;
 }
 
 } // namespace
@@ -41,7 +61,7 @@ BrickPool::BrickPool(int slotSize, const TexelFormat& format, std::size_t capaci
                      bool withGradients, std::size_t maxSlots)
     : slotSize_(slotSize), format_(format), withGradients_(withGradients),
       shared_(sharesTexture(format, withGradients)), slots_(0) {
-    slotsPerAxis_ = slotGrid(capacity, slotSize);
+    slotsPerAxis_ = slotGrid(capacity, maxSlots, slotSize);
     const std::size_t fits =
         std::size_t(slotsPerAxis_.x) * std::size_t(slotsPerAxis_.y) * std::size_t(slotsPerAxis_.z);
     slots_ = BrickSlots(std::min(fits, std::max(capacity, maxSlots)));

@@ -219,23 +219,13 @@ GpuRenderResult GpuRayCaster::render(const RenderDescription& desc) {
             }
         }
     };
-    // Gradients cached when the full-resolution bricks this scene needs fit
-    // the budget with them; a pool that had to drop them keeps without.
-    std::optional<ResidencyPlan> plan;
-    bool gradients = false;
-    if (!cubic && s.options.gradientCache && !s.gradientsRefused &&
-        (!s.pool || s.pool->hasGradients()) && slotLimit(true) > 0) {
-        try {
-            plannedSlots = slotLimit(true);
-            plan = planResidency({&s.grid(brickSize, cubic, 0)}, visible, desc.clip, neighbours,
-                                 plannedSlots, inView);
-            gradients = true;
-        } catch (const BudgetError&) {
-        }
-    }
-    if (!plan) {
-        plan = planWithin(slotLimit(false));
-    }
+    // The finest level whose bricks fit the budget; gradients cached when that
+    // level's bricks fit it with them too (they never cost a finer level). A
+    // pool that had to drop them keeps without.
+    std::optional<ResidencyPlan> plan = planWithin(slotLimit(false));
+    const bool gradients = !cubic && s.options.gradientCache && !s.gradientsRefused &&
+                           (!s.pool || s.pool->hasGradients()) &&
+                           plan->bricks.size() <= slotLimit(true);
 
     // Sized to what the scene needs (with an eighth of headroom), grown when a
     // transfer function needs more, never shrunk: a grown pool takes over the

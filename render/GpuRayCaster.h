@@ -15,10 +15,11 @@ struct GpuOptions {
     std::size_t budgetBytes = 0;
     // The B-spline coefficients in 32-bit floats (exact) or 16-bit floats (half the memory).
     bool halfFloatCoefficients = false;
-    // Keep each resident brick's gradient next to its voxels (8 more bytes a
-    // voxel) when the full-resolution bricks the scene needs fit the budget
-    // that way: shading then reads one texel instead of six (nearest and
-    // trilinear). Either way the pool holds only what the scene needs.
+    // Keep each resident brick's gradient with its voxels (8 bytes a texel in
+    // all for int16 voxels, else 8 more) when the bricks the scene needs, at
+    // the finest level the budget allows, fit it that way: shading then reads
+    // one texel instead of six (nearest and trilinear). Either way the pool
+    // holds only what the scene needs.
     bool gradientCache = true;
 };
 

@@ -118,6 +118,42 @@ private slots:
         QVERIFY2(p > 25.0, qPrintable(QString("coarse level vs full: psnr %1 dB").arg(p)));
     }
 
+    // At a coarser level the gradient cache is kept when that level's bricks
+    // fit with it, and shades as the computed gradients do.
+    void coarseLevelKeepsGradientCache() {
+        const Volume v = realOrMade();
+        const RenderDescription d = describe(v, loadPreset("ct-bone"), 96);
+        for (const std::size_t mib : {80, 60, 100, 40, 120}) {
+            GpuOptions cachedOptions;
+            cachedOptions.budgetBytes = mib << 20;
+            GpuOptions computedOptions = cachedOptions;
+            computedOptions.gradientCache = false;
+            GpuRayCaster cachedGpu(v, cachedOptions);
+            GpuRenderResult cached;
+            try {
+                cached = cachedGpu.render(d);
+            } catch (const BudgetError&) {
+                continue;
+            }
+            if (cached.frame.stats.lod == 0 || !cached.gpu.gradientsCached) {
+                continue;
+            }
+            GpuRayCaster computedGpu(v, computedOptions);
+            const GpuRenderResult computed = computedGpu.render(d);
+            QCOMPARE(computed.frame.stats.lod, cached.frame.stats.lod); // gradients cost no level
+            QVERIFY(!computed.gpu.gradientsCached);
+            QVERIFY(cached.gpu.poolBytes <= cachedOptions.budgetBytes);
+            const double p =
+                comparedPsnr(cached.frame.image, computed.frame.image, "coarse-gradients", 50.0);
+            QVERIFY2(p >= 50.0, qPrintable(QString("level %1, %2 MiB: cached vs computed %3 dB")
+                                               .arg(cached.frame.stats.lod)
+                                               .arg(mib)
+                                               .arg(p)));
+            return;
+        }
+        QSKIP("no budget tried renders a coarser level with cached gradients for this volume");
+    }
+
     void budgetTooSmallForAnyLevelSaysSo() {
         const Volume v = realOrMade();
         GpuOptions tiny;
