@@ -17,8 +17,8 @@
 
 #include "ui/MprCursor.h"
 #include "ui/PacsBrowser.h"
-#include "ui/RenderServerSettings.h"
 #include "ui/PacsService.h"
+#include "ui/RenderServerSettings.h"
 #include "ui/ScreenshotExport.h"
 #include "ui/SliceView.h"
 #include "ui/StudyBrowser.h"

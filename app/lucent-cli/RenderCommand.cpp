@@ -355,23 +355,23 @@ int runRender(const QStringList& args) {
                 r = std::move(g.frame);
                 if (n == 0) {
                     const GpuFrameStats& gs = g.gpu;
-                    gpuExtra = " backend=gl uploads=" + std::to_string(gs.bricksUploaded) +
-                               " upload_mib=" +
-                               QString::number(double(gs.bytesUploaded) / 1048576.0, 'f', 1)
-                                   .toStdString() +
-                               " resident=" + std::to_string(gs.bricksResident) +
-                               " pool_slots=" + std::to_string(gs.poolSlots) +
-                               " budget_mib=" + std::to_string(gs.budgetBytes >> 20) +
-                               " gradients=" + (gs.gradientsCached ? "cached" : "computed") +
-                               " resident_mib=" +
-                               QString::number(double(gs.residentBytes) / 1048576.0, 'f', 1)
-                                   .toStdString() +
-                               " pool_mib=" +
-                               QString::number(double(gs.poolBytes) / 1048576.0, 'f', 1)
-                                   .toStdString() +
-                               " volume_mib=" +
-                               QString::number(double(volume.byteCount()) / 1048576.0, 'f', 1)
-                                   .toStdString();
+                    gpuExtra =
+                        " backend=gl uploads=" + std::to_string(gs.bricksUploaded) +
+                        " upload_mib=" +
+                        QString::number(double(gs.bytesUploaded) / 1048576.0, 'f', 1)
+                            .toStdString() +
+                        " resident=" + std::to_string(gs.bricksResident) +
+                        " pool_slots=" + std::to_string(gs.poolSlots) +
+                        " budget_mib=" + std::to_string(gs.budgetBytes >> 20) +
+                        " gradients=" + (gs.gradientsCached ? "cached" : "computed") +
+                        " resident_mib=" +
+                        QString::number(double(gs.residentBytes) / 1048576.0, 'f', 1)
+                            .toStdString() +
+                        " pool_mib=" +
+                        QString::number(double(gs.poolBytes) / 1048576.0, 'f', 1).toStdString() +
+                        " volume_mib=" +
+                        QString::number(double(volume.byteCount()) / 1048576.0, 'f', 1)
+                            .toStdString();
                     if (!gs.lodReason.empty()) {
                         err << "lucent-cli render: rendered from level " << r.stats.lod << ": "
                             << QString::fromStdString(gs.lodReason) << "\n";

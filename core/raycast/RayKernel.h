@@ -268,9 +268,9 @@ RayOutput RayKernel<Real, Field>::cast(const glm::dvec3& o, const glm::dvec3& d,
                 havePrev = true;
                 continue; // the first sample opens the first segment
             }
-            const glm::dvec4 seg =
-                s_.exactSegments ? (*s_.exactSegments)(double(prev), double(v))
-                                 : glm::dvec4(s_.preTable->lookup(double(prev), double(v)));
+            const glm::dvec4 seg = s_.exactSegments
+                                       ? (*s_.exactSegments)(double(prev), double(v))
+                                       : glm::dvec4(s_.preTable->lookup(double(prev), double(v)));
             prev = v;
             if (seg.a <= 0.0) {
                 continue;
