@@ -21,6 +21,7 @@
 
 #include "core/raycast/MeasuredFront.h"
 #include "tests/raycast/RaycastScenes.h"
+#include "tests/support/XvfbRelaunch.h"
 #include "ui/VolumeView.h"
 #include "ui/VolumeViewControls.h"
 
@@ -158,21 +159,8 @@ private slots:
 };
 
 int main(int argc, char** argv) {
-    // The GL view needs a display: without one, run again under Xvfb.
-    if (qEnvironmentVariableIsEmpty("DISPLAY") && qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM") &&
-        qEnvironmentVariableIsEmpty("LUCENT_UNDER_XVFB")) {
-        qputenv("LUCENT_UNDER_XVFB", "1");
-        std::vector<char*> args = {const_cast<char*>("xvfb-run"), const_cast<char*>("-a"),
-                                   const_cast<char*>("-s"),
-                                   const_cast<char*>("-screen 0 1280x1024x24")};
-        for (int n = 0; n < argc; ++n) {
-            args.push_back(argv[n]);
-        }
-        args.push_back(nullptr);
-        execvp("xvfb-run", args.data());
-        std::fprintf(stderr, "test_quality_picker: no DISPLAY and xvfb-run cannot be started "
-                             "(packaging/install-deps.sh installs xvfb and xauth)\n");
-        return 1;
+    if (const int status = lucent::test::relaunchUnderXvfbWhenHeadless(argc, argv); status >= 0) {
+        return status;
     }
     QSurfaceFormat::setDefaultFormat(VolumeView::surfaceFormat());
     QApplication app(argc, argv);

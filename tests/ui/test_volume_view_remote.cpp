@@ -25,6 +25,7 @@
 #include "core/image/ImageMetrics.h"
 #include "core/image/PngIO.h"
 #include "core/io/Catalog.h"
+#include "tests/support/XvfbRelaunch.h"
 #include "ui/RenderServerSettings.h"
 #include "ui/VolumeView.h"
 
@@ -458,21 +459,8 @@ void TestVolumeViewRemote::settingsDialogAndMenu() {
 }
 
 int main(int argc, char** argv) {
-    // QOpenGLWidget needs a display: without one, run again under Xvfb.
-    if (qEnvironmentVariableIsEmpty("DISPLAY") && qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM") &&
-        qEnvironmentVariableIsEmpty("LUCENT_UNDER_XVFB")) {
-        qputenv("LUCENT_UNDER_XVFB", "1");
-        std::vector<char*> args = {const_cast<char*>("xvfb-run"), const_cast<char*>("-a"),
-                                   const_cast<char*>("-s"),
-                                   const_cast<char*>("-screen 0 1280x1024x24")};
-        for (int n = 0; n < argc; ++n) {
-            args.push_back(argv[n]);
-        }
-        args.push_back(nullptr);
-        execvp("xvfb-run", args.data());
-        std::fprintf(stderr, "test_volume_view_remote: no DISPLAY and xvfb-run cannot be started "
-                             "(packaging/install-deps.sh installs xvfb and xauth)\n");
-        return 1;
+    if (const int status = lucent::test::relaunchUnderXvfbWhenHeadless(argc, argv); status >= 0) {
+        return status;
     }
     QSurfaceFormat::setDefaultFormat(VolumeView::surfaceFormat());
     QApplication app(argc, argv);
