@@ -119,7 +119,7 @@ struct FrameHeader {
     double renderMs = 0.0;
     double encodeMs = 0.0;
     // Interactive frames: the image scale against the view's size (1, 0.75,
-    // 0.5 or 0.35) and the JPEG quality (50..85); 1 and 0 for PNG stills.
+    // 0.5 or 0.35) and the JPEG quality (60..85); 1 and 0 for PNG stills.
     double scale = 1.0;
     int jpegQuality = 0;
 };

@@ -133,7 +133,7 @@ private slots:
         }
         QCOMPARE(adaptive.level(), kInteractiveLevels - 1);
         QCOMPARE(adaptive.current().scale, 0.35);
-        QCOMPARE(adaptive.current().jpegQuality, 50);
+        QCOMPARE(adaptive.current().jpegQuality, 60);
         // Fast frames climb back to full size, JPEG quality 85.
         for (int n = 0; n < 40; ++n) {
             adaptive.record(5.0);

@@ -167,7 +167,7 @@ private slots:
             const FrameHeader& h = client.frames.back().header;
             QCOMPARE(h.format, "jpeg");
             QVERIFY(h.quality == remote::Quality::Interactive);
-            QVERIFY2(h.jpegQuality >= 50 && h.jpegQuality <= 85,
+            QVERIFY2(h.jpegQuality >= 60 && h.jpegQuality <= 85,
                      qPrintable(QString::number(h.jpegQuality)));
             bool onLadder = false;
             for (const auto& setting : remote::kInteractiveLadder) {
