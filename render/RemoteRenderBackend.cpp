@@ -116,7 +116,7 @@ void RemoteRenderBackend::connectTo(const RemoteServerSettings& settings) {
     open();
 }
 
-void RemoteRenderBackend::disconnectFromServer() {
+void RemoteRenderBackend::closeConnection() {
     reconnectTimer_.stop();
     handshakeTimer_.stop();
     cameraTimer_.stop();
@@ -126,21 +126,17 @@ void RemoteRenderBackend::disconnectFromServer() {
         socket_->abort();
         socket_.reset();
     }
+}
+
+void RemoteRenderBackend::disconnectFromServer() {
+    closeConnection();
     if (status_ != BackendStatus::Failed) {
         setStatus(BackendStatus::Disconnected, tr("not connected"));
     }
 }
 
 void RemoteRenderBackend::fail(const QString& message) {
-    reconnectTimer_.stop();
-    handshakeTimer_.stop();
-    cameraTimer_.stop();
-    phase_ = Phase::Idle;
-    openSeries_.clear();
-    if (socket_) {
-        socket_->abort();
-        socket_.reset();
-    }
+    closeConnection();
     setStatus(BackendStatus::Failed, message);
 }
 

@@ -101,6 +101,8 @@ private:
     void sync();
     void sendJson(const QJsonObject& message);
     void sendView(const QJsonObject& message);
+    // Stops the timers and drops the socket (no status change).
+    void closeConnection();
     void fail(const QString& message);
     void setStatus(BackendStatus status, const QString& message);
     QString where() const;
