@@ -409,7 +409,9 @@ void RemoteRenderBackend::onBinary(const QByteArray& message) {
         BackendFrame out;
         out.image = toImage(decoded);
         out.interactive = frame.header.quality == remote::Quality::Interactive;
-        out.current = frame.header.seq == seqSent_;
+        // While a paced camera waits for its timer, the frame of the last one
+        // sent is not the view the user wants.
+        out.current = frame.header.seq == seqSent_ && !cameraTimer_.isActive();
         out.renderMs = frame.header.renderMs;
         out.jpegQuality = frame.header.format == "jpeg" ? frame.header.jpegQuality : 0;
         out.scale = frame.header.scale;

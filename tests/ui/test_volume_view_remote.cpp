@@ -315,6 +315,19 @@ void TestVolumeViewRemote::cameraBurstIsPaced() {
     QStringList failures;
     QObject::connect(&view_->remoteBackend(), &RenderBackend::frameFailed, view_.get(),
                      [&failures](const QString& why) { failures << why; });
+    // Every frame the view calls current must show the view's camera of that
+    // moment, also while a paced camera still waits to go out.
+    struct CurrentFrame {
+        ImageRGBA8 image;
+        RenderDescription description;
+    };
+    std::vector<CurrentFrame> current;
+    QObject::connect(view_.get(), &VolumeView::renderedFrame, view_.get(),
+                     [this, &current](const RenderStats&, bool) {
+                         if (view_->lastFrameCurrent()) {
+                             current.push_back({view_->lastFrame(), view_->description()});
+                         }
+                     });
     const std::uint64_t seqBefore = view_->remoteBackend().sentSeq();
     Camera camera = view_->camera();
     QElapsedTimer clock;
@@ -337,6 +350,15 @@ void TestVolumeViewRemote::cameraBurstIsPaced() {
              qPrintable(QString("%1 camera messages in %2 ms").arg(sent).arg(burstMs)));
     const double p = checkedPsnr(view_->lastFrame(), cpuReference(), "burst");
     QVERIFY2(p >= 40.0, qPrintable(QString("after the burst: psnr %1 dB").arg(p)));
+    QVERIFY(!current.empty());
+    for (std::size_t n = 0; n < current.size(); ++n) {
+        const double q = checkedPsnr(current[n].image, cpu_->render(current[n].description).image,
+                                     "burst_current");
+        QVERIFY2(q >= 40.0, qPrintable(QString("frame %1 of %2 called current: psnr %3 dB")
+                                           .arg(n + 1)
+                                           .arg(current.size())
+                                           .arg(q)));
+    }
 }
 
 void TestVolumeViewRemote::reconnectsAfterServerRestart() {
