@@ -11,7 +11,6 @@
 #include <QLabel>
 #include <QLineEdit>
 #include <QMenu>
-#include <QProcess>
 #include <QSettings>
 #include <QSignalSpy>
 #include <QTemporaryDir>
@@ -25,17 +24,19 @@
 #include "core/image/ImageMetrics.h"
 #include "core/image/PngIO.h"
 #include "core/io/Catalog.h"
+#include "tests/support/ServerProcess.h"
 #include "tests/support/XvfbRelaunch.h"
 #include "ui/RenderServerSettings.h"
 #include "ui/VolumeView.h"
 
 using namespace lucent;
+using lucent::test::kToken;
+using lucent::test::ServerProcess;
 
 namespace {
 
 const std::filesystem::path kSeriesDir =
     std::filesystem::path(LUCENT_TEST_DATA_DIR) / "dcm_qa_ct/Philips_S21570/S2010";
-constexpr char kToken[] = "token-for-the-view-tests";
 constexpr int kFrameTimeoutMs = 60000;
 // Large enough that the server's first interactive frames (half size, JPEG
 // quality 60) are more than a handful of 8x8 blocks.
@@ -44,58 +45,15 @@ constexpr int kViewHeight = 320;
 
 // A lucent-server serving kSeriesDir on loopback (CPU backend), with its own
 // store and token file; start() again after kill() listens on the same port.
-class ServerRun {
-public:
-    ServerRun() {
-        QFile tokens(dir_.filePath("tokens"));
-        if (tokens.open(QIODevice::WriteOnly)) {
-            tokens.write(QByteArray(kToken) + "\n");
-        }
-    }
-    ~ServerRun() { kill(); }
+// The server serves the Philips series; started by each test.
+std::unique_ptr<ServerProcess> seriesServer() {
+    return std::make_unique<ServerProcess>("cpu", QString::fromStdString(kSeriesDir.string()),
+                                           QStringList{}, ServerProcess::Start::Later);
+}
 
-    // Empty on success, else why not.
-    QString start() {
-        process_ = std::make_unique<QProcess>();
-        process_->setProcessChannelMode(QProcess::SeparateChannels);
-        process_->start(QString(LUCENT_BIN_DIR) + "/lucent-server",
-                        {"--listen", QString("127.0.0.1:%1").arg(port_), "--store",
-                         dir_.filePath("store"), "--data", QString::fromStdString(kSeriesDir),
-                         "--token-file", dir_.filePath("tokens"), "--backend", "cpu"});
-        QString out;
-        (void)QTest::qWaitFor(
-            [&] {
-                out += QString::fromUtf8(process_->readAllStandardOutput());
-                return out.contains("listening on") || process_->state() == QProcess::NotRunning;
-            },
-            60000);
-        const qsizetype at = out.indexOf("listening on 127.0.0.1:");
-        if (at < 0) {
-            return "lucent-server did not start: " + out +
-                   QString::fromUtf8(process_->readAllStandardError());
-        }
-        port_ = quint16(out.mid(at + 23).trimmed().toUInt());
-        return {};
-    }
-    // SIGKILL: no goodbye to the clients.
-    void kill() {
-        if (process_ && process_->state() != QProcess::NotRunning) {
-            process_->kill();
-            process_->waitForFinished(10000);
-        }
-        process_.reset();
-    }
-    quint16 port() const { return port_; }
-    QUrl url() const { return QUrl(QString("ws://127.0.0.1:%1/").arg(port_)); }
-    RemoteServerSettings settings(const QString& token = kToken) const {
-        return {url(), token, {}};
-    }
-
-private:
-    QTemporaryDir dir_;
-    std::unique_ptr<QProcess> process_;
-    quint16 port_ = 0;
-};
+RemoteServerSettings settingsOf(const ServerProcess& server, const QString& token = kToken) {
+    return {server.url(), token, {}};
+}
 
 double checkedPsnr(const ImageRGBA8& actual, const ImageRGBA8& reference, const char* name) {
     const double p = psnr(actual, reference);
@@ -188,8 +146,8 @@ ImageRGBA8 TestVolumeViewRemote::cpuReference(bool interactive) {
 }
 
 void TestVolumeViewRemote::remoteFramesMatchLocalRender() {
-    ServerRun server;
-    const QString started = server.start();
+    const auto server = seriesServer();
+    const QString started = server->start();
     QVERIFY2(started.isEmpty(), qPrintable(started));
     Camera camera;
     camera.azimuth = 30.0;
@@ -200,7 +158,7 @@ void TestVolumeViewRemote::remoteFramesMatchLocalRender() {
 
     QElapsedTimer clock;
     clock.start();
-    view_->renderOnServer(server.settings());
+    view_->renderOnServer(settingsOf(*server));
     QCOMPARE(view_->backend(), VolumeView::Backend::Remote);
     // The GL surface went, and the GPU caster's textures with its context.
     QVERIFY(!view_->localBackend().holdsGlResources());
@@ -307,10 +265,10 @@ void TestVolumeViewRemote::remoteFramesMatchLocalRender() {
 void TestVolumeViewRemote::cameraBurstIsPaced() {
     // 200 camera changes 2 ms apart: the server takes 60 at once and 60 a
     // second, so the view paces them and the last one wins.
-    ServerRun server;
-    const QString started = server.start();
+    const auto server = seriesServer();
+    const QString started = server->start();
     QVERIFY2(started.isEmpty(), qPrintable(started));
-    view_->renderOnServer(server.settings());
+    view_->renderOnServer(settingsOf(*server));
     QVERIFY2(waitForCurrentFrame(false), qPrintable(view_->notice()));
     QStringList failures;
     QObject::connect(&view_->remoteBackend(), &RenderBackend::frameFailed, view_.get(),
@@ -362,13 +320,13 @@ void TestVolumeViewRemote::cameraBurstIsPaced() {
 }
 
 void TestVolumeViewRemote::reconnectsAfterServerRestart() {
-    ServerRun server;
-    QString started = server.start();
+    const auto server = seriesServer();
+    QString started = server->start();
     QVERIFY2(started.isEmpty(), qPrintable(started));
-    view_->renderOnServer(server.settings());
+    view_->renderOnServer(settingsOf(*server));
     QVERIFY2(waitForCurrentFrame(false), qPrintable(view_->notice()));
 
-    server.kill();
+    server->kill();
     QVERIFY2(waitForStatus(BackendStatus::Reconnecting), qPrintable(view_->notice()));
     QVERIFY2(view_->notice().contains("reconnecting") || view_->notice().contains("trying again"),
              qPrintable(view_->notice()));
@@ -380,7 +338,7 @@ void TestVolumeViewRemote::reconnectsAfterServerRestart() {
     QTest::qWait(1500); // a few refused attempts
     QCOMPARE(view_->remoteBackend().status(), BackendStatus::Reconnecting);
 
-    started = server.start(); // the same port
+    started = server->start(); // the same port
     QVERIFY2(started.isEmpty(), qPrintable(started));
     QElapsedTimer clock;
     clock.start();
@@ -392,10 +350,10 @@ void TestVolumeViewRemote::reconnectsAfterServerRestart() {
 }
 
 void TestVolumeViewRemote::wrongTokenIsNamed() {
-    ServerRun server;
-    const QString started = server.start();
+    const auto server = seriesServer();
+    const QString started = server->start();
     QVERIFY2(started.isEmpty(), qPrintable(started));
-    view_->renderOnServer(server.settings("not-the-token"));
+    view_->renderOnServer(settingsOf(*server, "not-the-token"));
     QVERIFY2(waitForStatus(BackendStatus::Failed), qPrintable(view_->notice()));
     QVERIFY2(view_->notice().contains("token"), qPrintable(view_->notice()));
     QVERIFY2(view_->notice().contains("auth-failed"), qPrintable(view_->notice()));
@@ -404,7 +362,7 @@ void TestVolumeViewRemote::wrongTokenIsNamed() {
     QCOMPARE(view_->remoteBackend().status(), BackendStatus::Failed); // no retry loop
 
     // The right token, from the same view.
-    view_->renderOnServer(server.settings());
+    view_->renderOnServer(settingsOf(*server));
     QVERIFY2(waitForCurrentFrame(false), qPrintable(view_->notice()));
     QCOMPARE(view_->remoteBackend().status(), BackendStatus::Connected);
 }
@@ -416,10 +374,10 @@ void TestVolumeViewRemote::badSettingsAndMissingSeries() {
     view_->renderOnServer({QUrl("ws://127.0.0.1:1/"), "", {}});
     QVERIFY2(view_->notice().contains("token"), qPrintable(view_->notice()));
 
-    ServerRun server;
-    const QString started = server.start();
+    const auto server = seriesServer();
+    const QString started = server->start();
     QVERIFY2(started.isEmpty(), qPrintable(started));
-    RemoteServerSettings settings = server.settings();
+    RemoteServerSettings settings = settingsOf(*server);
     settings.series = "1.2.3.4.5";
     view_->renderOnServer(settings);
     QVERIFY2(waitForStatus(BackendStatus::Failed), qPrintable(view_->notice()));

@@ -1,7 +1,6 @@
 #pragma once
-// For the web tests: a real lucent-server process on a free loopback port with
-// its own temporary store and token file, started with any extra options
-// (TLS), and small helpers for raw HTTP over a socket.
+// For the web tests: lucent-server runs to its end, raw HTTP over a socket, a
+// self-signed certificate (the server process: tests/support/ServerProcess.h).
 
 #include <QDir>
 #include <QFile>
@@ -15,87 +14,12 @@
 
 namespace lucent::test {
 
-// A second token that cannot ride in a WebSocket subprotocol ('/', '=' are
-// separators): the browser client sends it in the first message instead.
-inline constexpr char kTokenNotASubprotocol[] = "b64/token+for=tests==";
-
-class WebServerProcess {
-public:
-    // Starts lucent-server serving `data` (the synthetic CT when empty) with `extraArgs`.
-    // started() is false (and startError() says why) when it did not come up.
-    explicit WebServerProcess(const QStringList& extraArgs = {}, QString data = {},
-                              quint16 port = 0) {
-        if (!dir_.isValid()) {
-            error_ = "no temporary directory";
-            return;
-        }
-        if (data.isEmpty()) {
-            data = dir_.filePath("ct.mhd");
-            writeMetaImage(syntheticCt(), data.toStdString());
-        }
-        QFile tokens(dir_.filePath("tokens"));
-        if (!tokens.open(QIODevice::WriteOnly)) {
-            error_ = "cannot write the token file";
-            return;
-        }
-        tokens.write(QByteArray("# test tokens\n") + kToken + "\n" + kTokenNotASubprotocol + "\n");
-        tokens.close();
-        process_.setProcessChannelMode(QProcess::SeparateChannels);
-        process_.start(QString(LUCENT_BIN_DIR) + "/lucent-server",
-                       QStringList{"--listen", QString("127.0.0.1:%1").arg(port), "--store",
-                                   dir_.filePath("store"), "--data", data, "--token-file",
-                                   dir_.filePath("tokens"), "--backend", "cpu"} +
-                           extraArgs);
-        QString out;
-        (void)QTest::qWaitFor(
-            [&] {
-                out += QString::fromUtf8(process_.readAllStandardOutput());
-                return out.contains("listening on") || process_.state() == QProcess::NotRunning;
-            },
-            60000);
-        const qsizetype at = out.indexOf("listening on 127.0.0.1:");
-        if (at < 0) {
-            error_ = "server did not start: " + out + log();
-            return;
-        }
-        port_ = quint16(out.mid(at + 23).trimmed().toUInt());
-        output_ = out;
-    }
-    ~WebServerProcess() { stop(); }
-    WebServerProcess(const WebServerProcess&) = delete;
-    WebServerProcess& operator=(const WebServerProcess&) = delete;
-
-    void stop() {
-        if (process_.state() != QProcess::NotRunning) {
-            process_.terminate();
-            if (!process_.waitForFinished(10000)) {
-                process_.kill();
-                process_.waitForFinished();
-            }
-        }
-    }
-    bool started() const { return port_ > 0; }
-    QString startError() const { return error_; }
-    quint16 port() const { return port_; }
-    QString dir() const { return dir_.path(); }
-    QString output() const { return output_; }
-    QString log() { return log_ += QString::fromUtf8(process_.readAllStandardError()); }
-
-private:
-    QTemporaryDir dir_;
-    QProcess process_;
-    quint16 port_ = 0;
-    QString error_;
-    QString output_;
-    QString log_;
-};
-
 // Runs lucent-server to its end (for bad configurations): exit code and stderr.
-struct ServerRun {
+struct ServerExit {
     int exitCode = -1;
     QString errors;
 };
-inline ServerRun runServerToEnd(const QStringList& args) {
+inline ServerExit runServerToEnd(const QStringList& args) {
     QProcess process;
     process.start(QString(LUCENT_BIN_DIR) + "/lucent-server", args);
     if (!process.waitForFinished(60000)) {

@@ -76,7 +76,7 @@ void TestWebBrowser::dragRotatesTheRemoteView() {
     if (!QFileInfo(kSeriesDir).isDir()) {
         QSKIP(qPrintable("real data absent: " + kSeriesDir));
     }
-    auto server = std::make_unique<WebServerProcess>(QStringList{}, kSeriesDir);
+    auto server = std::make_unique<ServerProcess>("cpu", kSeriesDir);
     QVERIFY2(server->started(), qPrintable(server->startError()));
     const quint16 port = server->port();
 
@@ -175,12 +175,13 @@ void TestWebBrowser::dragRotatesTheRemoteView() {
 
     // The server goes away and comes back on the same port: the page reconnects,
     // opens the same series again and shows the same view.
-    server.reset();
+    server->stop();
     QVERIFY(driver.waitUntil(
         "return document.getElementById('status').textContent.includes('reconnecting');", 20000));
     drawn = framesDrawn(driver);
-    server = std::make_unique<WebServerProcess>(QStringList{}, kSeriesDir, port);
-    QVERIFY2(server->started(), qPrintable(server->startError()));
+    const QString restarted = server->start();
+    QVERIFY2(restarted.isEmpty(), qPrintable(restarted));
+    QCOMPARE(server->port(), port);
     QJsonObject reconnected;
     QVERIFY2(
         waitForNewStill(driver, drawn, &reconnected),
@@ -198,7 +199,7 @@ void TestWebBrowser::followsATeachingSession() {
     if (!QFileInfo(kSeriesDir).isDir()) {
         QSKIP(qPrintable("real data absent: " + kSeriesDir));
     }
-    WebServerProcess server({}, kSeriesDir);
+    ServerProcess server("cpu", kSeriesDir);
     QVERIFY2(server.started(), qPrintable(server.startError()));
 
     // A presenter (a protocol client) opens the series and starts a session.
@@ -261,7 +262,8 @@ void TestWebBrowser::worksOverTls() {
     if (files.certificate.isEmpty()) {
         QSKIP("the openssl command is missing or failed; cannot make a test certificate");
     }
-    WebServerProcess server({"--tls-cert", files.certificate, "--tls-key", files.key}, kSeriesDir);
+    ServerProcess server("cpu", kSeriesDir,
+                         {"--tls-cert", files.certificate, "--tls-key", files.key});
     QVERIFY2(server.started(), qPrintable(server.startError()));
     WebDriver driver(tools);
     QVERIFY2(driver.start(640, 480, true), qPrintable(driver.error()));

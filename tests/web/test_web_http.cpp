@@ -78,7 +78,7 @@ void TestWebHttp::parsesRequestHeads() {
 }
 
 void TestWebHttp::servesTheClientFiles() {
-    WebServerProcess server;
+    ServerProcess server;
     QVERIFY2(server.started(), qPrintable(server.startError()));
     QNetworkAccessManager manager;
 
@@ -108,7 +108,7 @@ void TestWebHttp::servesTheClientFiles() {
 }
 
 void TestWebHttp::refusesWhatItDoesNotServe() {
-    WebServerProcess server;
+    ServerProcess server;
     QVERIFY2(server.started(), qPrintable(server.startError()));
     QNetworkAccessManager manager;
     QCOMPARE(fetch(manager, requestFor(server.port(), "/missing.js")).status, 404);
@@ -130,7 +130,7 @@ void TestWebHttp::refusesWhatItDoesNotServe() {
 }
 
 void TestWebHttp::refusesOversizedAndMalformedHeads() {
-    WebServerProcess server;
+    ServerProcess server;
     QVERIFY2(server.started(), qPrintable(server.startError()));
     const QByteArray huge =
         "GET / HTTP/1.1\r\nX-Filler: " + QByteArray(remote::kMaxRequestHeadBytes + 100, 'a') +
@@ -144,7 +144,7 @@ void TestWebHttp::refusesOversizedAndMalformedHeads() {
 }
 
 void TestWebHttp::webSocketsShareThePort() {
-    WebServerProcess server;
+    ServerProcess server;
     QVERIFY2(server.started(), qPrintable(server.startError()));
     RemoteTestClient client(server.port());
     QVERIFY(client.waitConnected());
@@ -163,7 +163,7 @@ void TestWebHttp::webSocketsShareThePort() {
 }
 
 void TestWebHttp::aSlowClientDoesNotBlockOthers() {
-    WebServerProcess server;
+    ServerProcess server;
     QVERIFY2(server.started(), qPrintable(server.startError()));
     QTcpSocket slow;
     slow.connectToHost(QHostAddress::LocalHost, server.port());
@@ -188,7 +188,7 @@ void TestWebHttp::aSlowClientDoesNotBlockOthers() {
 }
 
 void TestWebHttp::idleConnectionsAreBounded() {
-    WebServerProcess server;
+    ServerProcess server;
     QVERIFY2(server.started(), qPrintable(server.startError()));
     std::vector<std::unique_ptr<QTcpSocket>> idle;
     for (int n = 0; n < remote::kMaxConnectionsWaitingForHead; ++n) {

@@ -103,9 +103,9 @@ void TestWebTls::initTestCase() {
 }
 
 void TestWebTls::wssAndHttpsOnOnePort() {
-    WebServerProcess server({"--tls-cert", files_.certificate, "--tls-key", files_.key});
+    ServerProcess server("cpu", {}, {"--tls-cert", files_.certificate, "--tls-key", files_.key});
     QVERIFY2(server.started(), qPrintable(server.startError()));
-    QVERIFY(server.output().contains("browser client at https://127.0.0.1:"));
+    QVERIFY(server.startupOutput().contains("browser client at https://127.0.0.1:"));
 
     SecureClient client(server.port(), trusting(files_.certificate), "wss");
     QVERIFY(client.waitConnected());
@@ -137,7 +137,7 @@ void TestWebTls::wssAndHttpsOnOnePort() {
 }
 
 void TestWebTls::plainClientsFailCleanly() {
-    WebServerProcess server({"--tls-cert", files_.certificate, "--tls-key", files_.key});
+    ServerProcess server("cpu", {}, {"--tls-cert", files_.certificate, "--tls-key", files_.key});
     QVERIFY2(server.started(), qPrintable(server.startError()));
     SecureClient plain(server.port(), QSslConfiguration::defaultConfiguration(), "ws");
     QVERIFY(!plain.waitConnected());
@@ -157,7 +157,7 @@ void TestWebTls::badFilesGetClearErrors() {
     const QStringList common{"--listen",      "127.0.0.1:0",  "--store",
                              base + "/store", "--token-file", base + "/none"};
     // Half a pair is a usage error.
-    ServerRun run = runServerToEnd(common + QStringList{"--tls-cert", files_.certificate});
+    ServerExit run = runServerToEnd(common + QStringList{"--tls-cert", files_.certificate});
     QCOMPARE(run.exitCode, 2);
     QVERIFY2(run.errors.contains("--tls-cert FILE and --tls-key FILE"), qPrintable(run.errors));
     // A file that is not there.
