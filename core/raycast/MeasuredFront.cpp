@@ -30,6 +30,10 @@ constexpr const char* kMagic = "# lucent quality front";
 // Per setting: the median of at least 3 frames, up to 12 until they took 60 ms.
 constexpr int kFrames = 3;
 constexpr double kMinTotalMs = 60.0;
+// An opacity curve's shape: values to 1/200 of the volume's range, opacities to 0.05.
+constexpr double kShapeValueSteps = 200.0;
+constexpr double kShapeOpacitySteps = 20.0;
+constexpr std::size_t kRangeSamples = 65536;
 
 } // namespace
 
@@ -55,13 +59,50 @@ std::string volumeFingerprint(const Volume& volume) {
     return volume.seriesUid + " " + dims + " " + hex(h);
 }
 
+// The value range on a lattice of about kRangeSamples voxels: a full pass
+// would cost a gigavoxel volume a second on every transfer-function edit.
+std::pair<double, double> sampledRange(const Volume& volume) {
+    const VolumeGeometry& g = volume.geometry();
+    const std::size_t count = g.voxelCount();
+    const std::size_t stride = std::max<std::size_t>(1, count / kRangeSamples);
+    const auto row = std::size_t(g.dims.x);
+    const auto plane = row * std::size_t(g.dims.y);
+    double lo = 0.0;
+    double hi = 0.0;
+    for (std::size_t at = 0; at < count; at += stride) {
+        const double v = volume.value(int(at % row), int((at % plane) / row), int(at / plane));
+        lo = at == 0 ? v : std::min(lo, v);
+        hi = at == 0 ? v : std::max(hi, v);
+    }
+    return {lo, hi};
+}
+
+std::string opacityShape(const TransferFunction& tf, const Volume& volume) {
+    const auto [lo, hi] = sampledRange(volume);
+    const double unit = std::max(hi - lo, 1.0) / kShapeValueSteps;
+    std::uint64_t h = fnv1a("opacity", 7);
+    for (const OpacityPoint& p : tf.opacity) {
+        const std::int64_t at[2] = {std::llround(p.value / unit),
+                                    std::llround(p.opacity * kShapeOpacitySteps)};
+        h = fnv1a(at, sizeof at, h);
+    }
+    return hex(h);
+}
+
 std::string frontKey(const RenderDescription& d, const std::string& backend) {
-    return "renderer=" + std::to_string(kRendererVersion) + " backend=" + backend +
-           " mode=" + renderModeName(d.mode) +
-           " shading=" + (d.transferFunction.shading.enabled ? "1" : "0") +
-           " precision=" + (d.sampling.precision == Precision::Double ? "double" : "float") +
-           " leaping=" + (d.sampling.emptySpaceLeaping ? "1" : "0") +
-           " volume=" + volumeFingerprint(*d.volume);
+    std::string key =
+        "renderer=" + std::to_string(kRendererVersion) + " backend=" + backend +
+        " mode=" + renderModeName(d.mode) +
+        " shading=" + (d.transferFunction.shading.enabled ? "1" : "0") +
+        " precision=" + (d.sampling.precision == Precision::Double ? "double" : "float") +
+        " leaping=" + (d.sampling.emptySpaceLeaping ? "1" : "0");
+    // Where the opacity rises and how steeply decides what leaping and early
+    // termination save and how fine a step must be: another preset is another
+    // front; the colours are not.
+    if (d.mode == RenderMode::Dvr) {
+        key += " opacity=" + opacityShape(d.transferFunction, *d.volume);
+    }
+    return key + " volume=" + volumeFingerprint(*d.volume);
 }
 
 std::filesystem::path frontCachePath(const std::filesystem::path& cacheDir,

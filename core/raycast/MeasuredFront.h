@@ -45,8 +45,13 @@ struct MeasuredFront {
 // of) the voxels: equal for the same data, different for another volume.
 std::string volumeFingerprint(const Volume& volume);
 
+// A hash of the opacity curve of `tf` with its values rounded to 1/200 of the
+// volume's value range (on a lattice of voxels) and its opacities to 0.05 (colours left out).
+std::string opacityShape(const TransferFunction& tf, const Volume& volume);
+
 // What a front depends on: volume, backend ("cpu", "gl"), renderer version,
-// and the mode, shading, precision and empty-space leaping of `description`.
+// and the mode, shading, precision and empty-space leaping of `description`;
+// for DVR also the opacity shape of its transfer function.
 std::string frontKey(const RenderDescription& description, const std::string& backend);
 
 // The cache file of `key` in `cacheDir` (a name from a hash of the key).

@@ -1,12 +1,14 @@
 // Quality chosen from a front: levels and target times parsed, the most
 // accurate front point within the (scaled) time, the fastest with a message
 // when none fits, the default with a message without a front, the drag step
-// from the same filter, and the cached front read back as written.
+// from the same filter, the cached front read back as written, and its key
+// following the opacity curve (real CT), not the colours.
 #include <QTemporaryDir>
 #include <QTest>
 
 #include <fstream>
 
+#include "core/io/Catalog.h"
 #include "core/raycast/CpuRayCaster.h"
 #include "core/raycast/MeasuredFront.h"
 #include "core/raycast/QualityChoice.h"
@@ -226,6 +228,48 @@ private slots:
         // A damaged file is measured again, not trusted.
         std::ofstream(frontCachePath(cache, f.key), std::ios::app) << "1,linear,post,1,64,x\n";
         QVERIFY(!loadFront(cache, f.key));
+    }
+
+    void frontKeyFollowsTheOpacityCurve() {
+        const std::filesystem::path series =
+            std::filesystem::path(LUCENT_TEST_DATA_DIR) / "dcm_qa_ct/Philips_S21570/S2010";
+        if (!std::filesystem::exists(series)) {
+            QSKIP("real test data not found (see ../shared/data/README.md)");
+        }
+        const Volume ct = loadPath(series);
+        RenderDescription d;
+        d.volume = &ct;
+        d.transferFunction = loadPreset("ct-bone");
+        const std::string bone = frontKey(d, "cpu");
+        // Each preset its own front.
+        for (const char* other : {"ct-soft-tissue", "ct-angio", "ct-lung"}) {
+            d.transferFunction = loadPreset(other);
+            QVERIFY2(frontKey(d, "cpu") != bone, other);
+        }
+        // The colours decide neither time nor step: the same front.
+        d.transferFunction = loadPreset("ct-bone");
+        for (ColourPoint& c : d.transferFunction.colour) {
+            c.rgb.r = 1.0 - c.rgb.r;
+        }
+        QCOMPARE(frontKey(d, "cpu"), bone);
+        // The ramp 300 HU later, or twice as opaque: another front.
+        TransferFunction later = loadPreset("ct-bone");
+        for (OpacityPoint& p : later.opacity) {
+            p.value += 300.0;
+        }
+        d.transferFunction = later;
+        QVERIFY(frontKey(d, "cpu") != bone);
+        TransferFunction denser = loadPreset("ct-bone");
+        for (OpacityPoint& p : denser.opacity) {
+            p.opacity = std::min(1.0, 2.0 * p.opacity);
+        }
+        d.transferFunction = denser;
+        QVERIFY(frontKey(d, "cpu") != bone);
+        // MIP does not look at the opacities.
+        d.mode = RenderMode::Mip;
+        const std::string mip = frontKey(d, "cpu");
+        d.transferFunction = loadPreset("ct-bone");
+        QCOMPARE(frontKey(d, "cpu"), mip);
     }
 };
 
