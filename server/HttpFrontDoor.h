@@ -15,6 +15,7 @@
 #include <QString>
 
 #include <functional>
+#include <memory>
 #include <optional>
 
 class QTcpServer;
@@ -60,13 +61,31 @@ inline constexpr char kHeadTimerName[] = "lucent-request-head-timer";
 // At most this many connections may wait for their request head; more are closed at once.
 inline constexpr int kMaxConnectionsWaitingForHead = 128;
 
+// An upload's body, written to a file as it arrives so that an upload costs
+// disk, not memory; the file is removed with its last owner.
+class SpooledBody {
+public:
+    explicit SpooledBody(QString path) : path_(std::move(path)) {}
+    ~SpooledBody();
+    SpooledBody(const SpooledBody&) = delete;
+    SpooledBody& operator=(const SpooledBody&) = delete;
+    const QString& path() const { return path_; }
+
+private:
+    QString path_;
+};
+
 // POST /studies: instances uploaded into the server's store (server/HttpUpload.cpp).
 struct UploadRoute {
     qint64 limitBytes = 0;                                     // larger bodies: 413
     std::function<bool(const QByteArray& token)> acceptsToken; // of "Authorization: Bearer"
-    // Gets the Content-Type and the whole body; answers through `reply` (200
-    // with JSON, else a status and a line of text) on the front door's thread.
-    std::function<void(QByteArray contentType, QByteArray body,
+    // Where bodies are spooled (the store's tmp/: a name with this process's
+    // id there survives the store's clean-up while the process runs).
+    QString spoolDir;
+    // Gets the Content-Type and the whole body, spooled; answers through
+    // `reply` (200 with JSON, else a status and a line of text) on the front
+    // door's thread.
+    std::function<void(QByteArray contentType, std::shared_ptr<const SpooledBody> body,
                        std::function<void(int status, QByteArray body)> reply)>
         store;
 };
@@ -99,9 +118,10 @@ private:
     void onReadable(QTcpSocket* socket);
     void answer(QTcpSocket* socket, const HttpRequestHead& request);
     void receiveUpload(QTcpSocket* socket, const HttpRequestHead& request);
-    // Reads `length` bytes of body (dropping them, or keeping them for `done`).
-    void readBody(QTcpSocket* socket, qint64 length, bool keep,
-                  std::function<void(QByteArray)> done);
+    // Reads `length` bytes of body, each chunk to `consume` (which answers and
+    // returns false to stop reading), then calls `done`.
+    void readBody(QTcpSocket* socket, qint64 length,
+                  std::function<bool(const QByteArray& chunk)> consume, std::function<void()> done);
     void respond(QTcpSocket* socket, int status, const QByteArray& contentType,
                  const QByteArray& body, bool withBody,
                  const QByteArray& extraFields = QByteArray());

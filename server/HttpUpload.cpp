@@ -1,9 +1,15 @@
 // HttpFrontDoor: POST /studies, instances uploaded into the server's store,
-// authorized by "Authorization: Bearer <token>", at most UploadRoute::limitBytes.
+// authorized by "Authorization: Bearer <token>", at most UploadRoute::limitBytes,
+// spooled to a file as they arrive.
+#include <QCoreApplication>
+#include <QDir>
+#include <QFile>
 #include <QPointer>
 #include <QTcpSocket>
+#include <QTemporaryFile>
 #include <QTimer>
 
+#include <algorithm>
 #include <memory>
 
 #include "server/HttpFrontDoor.h"
@@ -12,8 +18,14 @@ namespace lucent::remote {
 namespace {
 
 constexpr char kText[] = "text/plain; charset=utf-8";
+// Read and written at most this much at a time.
+constexpr qint64 kChunk = qint64(1) << 20;
 
 } // namespace
+
+SpooledBody::~SpooledBody() {
+    QFile::remove(path_);
+}
 
 bool isUploadTarget(const QByteArray& target) {
     const qsizetype query = target.indexOf('?');
@@ -58,59 +70,107 @@ void HttpFrontDoor::receiveUpload(QTcpSocket* socket, const HttpRequestHead& req
         if (expectsContinue || length > kMaxDrainedUploadBytes) {
             respond(socket, refusal, kText, message, true, extra); // the body is not read
         } else {
-            readBody(socket, length, false, [this, socket, refusal, message, extra](QByteArray) {
-                respond(socket, refusal, kText, message, true, extra);
-            });
+            readBody(
+                socket, length, [](const QByteArray&) { return true; },
+                [this, socket, refusal, message, extra] {
+                    respond(socket, refusal, kText, message, true, extra);
+                });
         }
+        return;
+    }
+    // The body goes to a file as it arrives: an upload of the full limit costs
+    // that much disk for a moment, never that much memory.
+    QDir().mkpath(upload_.spoolDir);
+    QTemporaryFile created(
+        QDir(upload_.spoolDir)
+            .filePath(
+                QString("incoming-%1-upload-XXXXXX.part").arg(QCoreApplication::applicationPid())));
+    created.setAutoRemove(false);
+    if (!created.open()) {
+        respond(socket, 507, kText,
+                "the server cannot spool the upload in " + upload_.spoolDir.toUtf8() + ": " +
+                    created.errorString().toUtf8() + "\n",
+                true);
+        return;
+    }
+    auto body = std::make_shared<SpooledBody>(created.fileName());
+    auto file = std::make_shared<QFile>(created.fileName());
+    created.close();
+    if (!file->open(QIODevice::WriteOnly)) {
+        respond(socket, 507, kText, "the server cannot write " + body->path().toUtf8() + "\n",
+                true);
         return;
     }
     if (expectsContinue) {
         socket->write("HTTP/1.1 100 Continue\r\n\r\n");
     }
-    readBody(socket, length, true,
-             [this, socket, contentType = request.field("content-type")](QByteArray body) {
-                 upload_.store(
-                     contentType, std::move(body),
-                     [this, guarded = QPointer<QTcpSocket>(socket)](int status, QByteArray answer) {
-                         if (guarded) {
-                             respond(guarded, status, status == 200 ? "application/json" : kText,
-                                     answer, true);
-                         }
-                     });
-             });
+    readBody(
+        socket, length,
+        [this, socket, file](const QByteArray& chunk) {
+            if (file->write(chunk) == chunk.size()) {
+                return true;
+            }
+            respond(socket, 507, kText,
+                    "the server cannot write the upload to " + file->fileName().toUtf8() + " (" +
+                        file->errorString().toUtf8() + ")\n",
+                    true);
+            return false;
+        },
+        [this, socket, file, body, contentType = request.field("content-type")] {
+            if (!file->flush()) {
+                respond(socket, 507, kText,
+                        "the server cannot write the upload to " + body->path().toUtf8() + "\n",
+                        true);
+                return;
+            }
+            file->close();
+            upload_.store(
+                contentType, body,
+                [this, guarded = QPointer<QTcpSocket>(socket)](int status, QByteArray answer) {
+                    if (guarded) {
+                        respond(guarded, status, status == 200 ? "application/json" : kText, answer,
+                                true);
+                    }
+                });
+        });
 }
 
-void HttpFrontDoor::readBody(QTcpSocket* socket, qint64 length, bool keep,
-                             std::function<void(QByteArray)> done) {
+void HttpFrontDoor::readBody(QTcpSocket* socket, qint64 length,
+                             std::function<bool(const QByteArray&)> consume,
+                             std::function<void()> done) {
     struct Progress {
-        QByteArray body;
         qint64 read = 0;
         bool finished = false;
-        std::function<void(QByteArray)> done;
+        std::function<bool(const QByteArray&)> consume;
+        std::function<void()> done;
     };
     auto progress = std::make_shared<Progress>();
+    progress->consume = std::move(consume);
     progress->done = std::move(done);
-    if (keep) {
-        progress->body.reserve(length);
-    }
-    const auto onData = [socket, length, keep, progress] {
+    const auto onData = [socket, length, progress] {
+        bool moved = false;
+        while (!progress->finished && progress->read < length && socket->bytesAvailable() > 0) {
+            const QByteArray chunk =
+                socket->read(std::min<qint64>(length - progress->read, kChunk));
+            progress->read += chunk.size();
+            moved = moved || !chunk.isEmpty();
+            if (!chunk.isEmpty() && !progress->consume(chunk)) {
+                progress->finished = true;
+                QObject::disconnect(socket, &QTcpSocket::readyRead, nullptr, nullptr);
+                return;
+            }
+        }
         if (progress->finished) {
             return;
         }
-        const QByteArray chunk = socket->read(length - progress->read);
-        progress->read += chunk.size();
-        if (keep) {
-            progress->body.append(chunk);
-        }
-        if (auto* deadline = socket->findChild<QTimer*>(kHeadTimerName);
-            deadline && !chunk.isEmpty()) {
+        if (auto* deadline = socket->findChild<QTimer*>(kHeadTimerName); deadline && moved) {
             deadline->start(kAnswerTimeoutMs); // a slow upload may go on while it moves
         }
         if (progress->read == length) {
             progress->finished = true;
             const auto finish = std::move(progress->done);
             QObject::disconnect(socket, &QTcpSocket::readyRead, nullptr, nullptr);
-            finish(std::move(progress->body));
+            finish();
         }
     };
     connect(socket, &QTcpSocket::readyRead, this, onData);

@@ -102,7 +102,8 @@ bool RenderServer::listen(QString* error) {
     frontDoor_->setUploadRoute(
         {options_.uploadLimitBytes,
          [this](const QByteArray& token) { return acceptsToken(token.toStdString()); },
-         [this](QByteArray contentType, QByteArray body,
+         QString::fromStdString((options_.storeDir / "tmp").string()),
+         [this](QByteArray contentType, std::shared_ptr<const SpooledBody> body,
                 std::function<void(int, QByteArray)> reply) {
              ingestUpload(std::move(contentType), std::move(body), std::move(reply));
          }});

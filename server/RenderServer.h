@@ -81,7 +81,7 @@ public:
     void rescanStore(std::function<void()> done = {});
     // Stores the instances of an upload (POST /studies; see UploadIngest.h),
     // then rescans; `reply` gets the HTTP status and body on this thread.
-    void ingestUpload(QByteArray contentType, QByteArray body,
+    void ingestUpload(QByteArray contentType, std::shared_ptr<const SpooledBody> body,
                       std::function<void(int, QByteArray)> reply);
 
     // Views and the frames rendered for them.

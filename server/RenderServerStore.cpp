@@ -1,5 +1,6 @@
 // RenderServer: the store's series, scanned again when instances arrive (a
 // C-STORE push, seen by DicomIntake, or an upload on the front door).
+#include <QFile>
 #include <QLoggingCategory>
 #include <QMetaObject>
 
@@ -8,6 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/store/StudyStore.h"
+#include "server/HttpFrontDoor.h"
 #include "server/RenderServer.h"
 #include "server/UploadIngest.h"
 
@@ -97,16 +100,28 @@ void RenderServer::setStoreSeries(const SeriesList& storeSeries) {
     }
 }
 
-void RenderServer::ingestUpload(QByteArray contentType, QByteArray body,
+void RenderServer::ingestUpload(QByteArray contentType, std::shared_ptr<const SpooledBody> body,
                                 std::function<void(int, QByteArray)> reply) {
     scanPool_.start([this, root = options_.storeDir, contentType = std::move(contentType),
                      body = std::move(body), reply = std::move(reply)]() mutable {
         int status = 200;
         QByteArray answer;
         try {
-            const UploadSummary summary =
-                storeUpload(root, contentType.toStdString(),
-                            std::string_view(body.constData(), std::size_t(body.size())));
+            // Mapped, not read: the parts are views into the spooled file.
+            QFile file(body->path());
+            if (!file.open(QIODevice::ReadOnly)) {
+                throw StoreError(body->path().toStdString() + ": cannot read the spooled upload (" +
+                                 file.errorString().toStdString() + ")");
+            }
+            const qint64 size = file.size();
+            const uchar* mapped = size > 0 ? file.map(0, size) : nullptr;
+            if (size > 0 && mapped == nullptr) {
+                throw StoreError(body->path().toStdString() + ": cannot map the spooled upload (" +
+                                 file.errorString().toStdString() + ")");
+            }
+            const UploadSummary summary = storeUpload(
+                root, contentType.toStdString(),
+                std::string_view(reinterpret_cast<const char*>(mapped), std::size_t(size)));
             answer = QByteArray::fromStdString(nlohmann::json{
                          {"stored", summary.stored},
                          {"already_stored", summary.alreadyStored},
@@ -120,7 +135,7 @@ void RenderServer::ingestUpload(QByteArray contentType, QByteArray body,
             status = 500;
             answer = "the upload could not be stored on the server\n";
         }
-        body.clear();
+        body.reset(); // the spooled file goes before the answer
         QMetaObject::invokeMethod(
             this,
             [this, status, answer, reply = std::move(reply)] {

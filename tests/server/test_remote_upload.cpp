@@ -1,11 +1,13 @@
 // The server's store fed by upload: POST /studies on the front door
 // (application/dicom or multipart/related) with a bearer token, real CT; the
-// refusals (401, 413, 415, 400) leave nothing in the store.
+// refusals (401, 413, 415, 400) leave nothing in the store; bodies are
+// spooled to the store's tmp/ as they arrive and removed after.
 #include <QDirIterator>
 #include <QEventLoop>
 #include <QJsonArray>
 #include <QNetworkAccessManager>
 #include <QNetworkReply>
+#include <QTcpSocket>
 #include <QTest>
 #include <QTimer>
 
@@ -183,6 +185,59 @@ private slots:
         QCOMPARE(a.status, 200);
         QCOMPARE(QJsonDocument::fromJson(a.body).object()["already_stored"].toInt(), 1);
         QCOMPARE(filesIn(server.storeDir() + "/files"), int(parts.size()));
+    }
+
+    void uploadIsSpooledToDiskAsItArrives() {
+        if (!QFileInfo::exists(seriesDir())) {
+            QSKIP("no test data (dcm_qa_ct)");
+        }
+        const QByteArray dicom = readFile(seriesDir() + "/I10");
+        const QByteArray body = multipart({dicom, readFile(seriesDir() + "/I20")});
+        const QByteArray head =
+            "POST /studies HTTP/1.1\r\nHost: 127.0.0.1\r\nAuthorization: Bearer " +
+            QByteArray(kToken) + "\r\nContent-Type: " + multipartType() +
+            "\r\nContent-Length: " + QByteArray::number(body.size()) + "\r\n\r\n";
+        ServerProcess server("cpu");
+        QVERIFY(server.port());
+        const QString spool = server.storeDir() + "/tmp";
+        const auto spooledBytes = [&spool] {
+            const QStringList names =
+                QDir(spool).entryList({"incoming-*-upload-*.part"}, QDir::Files);
+            return names.size() == 1 ? QFileInfo(spool + "/" + names.front()).size() : qint64(-1);
+        };
+
+        // Half of the body: it lies in the store's tmp/, not in the server's memory.
+        QTcpSocket socket;
+        socket.connectToHost(QHostAddress::LocalHost, server.port());
+        QVERIFY(socket.waitForConnected(10000));
+        const qsizetype half = body.size() / 2;
+        socket.write(head + body.left(half));
+        QVERIFY2(QTest::qWaitFor([&] { return spooledBytes() == half; }, 20000),
+                 qPrintable(QString("spooled %1 of %2 bytes").arg(spooledBytes()).arg(half)));
+        // The rest: stored, and the spooled file is gone before the answer.
+        socket.write(body.mid(half));
+        QByteArray answer;
+        QVERIFY(QTest::qWaitFor(
+            [&] {
+                answer += socket.readAll();
+                return answer.contains("}\n") || socket.state() != QAbstractSocket::ConnectedState;
+            },
+            60000));
+        QVERIFY2(answer.startsWith("HTTP/1.1 200"), answer.constData());
+        QVERIFY2(answer.contains("\"stored\":2"), answer.constData());
+        QCOMPARE(spooledBytes(), qint64(-1));
+        QCOMPARE(filesIn(server.storeDir() + "/files"), 2);
+
+        // A client that goes away half-way leaves nothing behind.
+        QTcpSocket quitter;
+        quitter.connectToHost(QHostAddress::LocalHost, server.port());
+        QVERIFY(quitter.waitForConnected(10000));
+        quitter.write(head + body.left(half));
+        QVERIFY(QTest::qWaitFor([&] { return spooledBytes() == half; }, 20000));
+        quitter.abort();
+        QVERIFY2(QTest::qWaitFor([&] { return filesIn(spool) == 0; }, 20000),
+                 qPrintable(QDir(spool).entryList(QDir::Files).join(", ")));
+        QCOMPARE(filesIn(server.storeDir() + "/files"), 2);
     }
 };
 
