@@ -107,7 +107,8 @@ void HttpFrontDoor::receiveUpload(QTcpSocket* socket, const HttpRequestHead& req
     readBody(
         socket, length,
         [this, socket, file](const QByteArray& chunk) {
-            if (file->write(chunk) == chunk.size()) {
+            // Flushed per chunk: what has arrived is on disk, not in a buffer.
+            if (file->write(chunk) == chunk.size() && file->flush()) {
                 return true;
             }
             respond(socket, 507, kText,
@@ -117,12 +118,6 @@ void HttpFrontDoor::receiveUpload(QTcpSocket* socket, const HttpRequestHead& req
             return false;
         },
         [this, socket, file, body, contentType = request.field("content-type")] {
-            if (!file->flush()) {
-                respond(socket, 507, kText,
-                        "the server cannot write the upload to " + body->path().toUtf8() + "\n",
-                        true);
-                return;
-            }
             file->close();
             upload_.store(
                 contentType, body,
