@@ -146,6 +146,8 @@ void RemoteRenderBackend::open() {
     refusal_.clear();
     retryAfterRefusal_ = true;
     wasOpen_ = false;
+    seqSent_ = 0; // a new connection: the server counts from 0 again
+    firstViewSeq_ = 0;
     phase_ = Phase::Connecting;
     QWebSocket* s = socket_.get();
     connect(s, &QWebSocket::connected, this, &RemoteRenderBackend::onConnected);
@@ -297,7 +299,9 @@ void RemoteRenderBackend::chooseSeries(const QJsonArray& offered) {
     }
     phase_ = Phase::Opening;
     sent_ = ViewParts{};
-    seqSent_ = 0;
+    // The server counts view messages per connection, across re-opens: the
+    // count goes on, and frames of the series before are older than the new
+    // view's first (firstViewSeq_, set by the first sync).
     firstViewSeq_ = 0;
     sendView({{"type", "open"}, {"series", chosen}});
 }

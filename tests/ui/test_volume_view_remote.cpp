@@ -77,6 +77,7 @@ private slots:
     void cleanup();
     void remoteFramesMatchLocalRender();
     void cameraBurstIsPaced();
+    void volumeSwitchOnAnOpenConnection();
     void reconnectsAfterServerRestart();
     void wrongTokenIsNamed();
     void badSettingsAndMissingSeries();
@@ -316,6 +317,31 @@ void TestVolumeViewRemote::cameraBurstIsPaced() {
                                            .arg(n + 1)
                                            .arg(current.size())
                                            .arg(q)));
+    }
+}
+
+void TestVolumeViewRemote::volumeSwitchOnAnOpenConnection() {
+    // Another volume while connected: the series is listed and opened again on
+    // the same connection, whose server-side count of view messages goes on.
+    const auto server = seriesServer();
+    const QString started = server->start();
+    QVERIFY2(started.isEmpty(), qPrintable(started));
+    view_->renderOnServer(settingsOf(*server));
+    QVERIFY2(waitForCurrentFrame(false), qPrintable(view_->notice()));
+    Camera camera = view_->camera();
+    camera.azimuth = 40.0;
+    view_->setCamera(camera);
+    QVERIFY2(waitForCurrentFrame(false), qPrintable(view_->notice()));
+    for (int round = 1; round <= 2; ++round) {
+        const auto again = std::make_shared<const Volume>(loadPath(kSeriesDir));
+        view_->setVolume(again);
+        QCOMPARE(view_->backend(), VolumeView::Backend::Remote);
+        QVERIFY2(waitForCurrentFrame(false), qPrintable(view_->notice()));
+        QCOMPARE(view_->remoteBackend().status(), BackendStatus::Connected);
+        RenderDescription same = view_->description();
+        same.volume = volume_.get(); // the same data, the caster's copy
+        const double p = checkedPsnr(view_->lastFrame(), cpu_->render(same).image, "volume_switch");
+        QVERIFY2(p >= 40.0, qPrintable(QString("round %1: psnr %2 dB").arg(round).arg(p)));
     }
 }
 
