@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -59,31 +60,52 @@ std::string volumeFingerprint(const Volume& volume) {
     return volume.seriesUid + " " + dims + " " + hex(h);
 }
 
-// The value range on a lattice of about kRangeSamples voxels: a full pass
-// would cost a gigavoxel volume a second on every transfer-function edit.
+namespace {
+
+// The finite value range on a lattice of about kRangeSamples voxels, spread
+// along each axis (a step through the linear index can hit one column only):
+// a full pass would cost a gigavoxel volume a second on every edit.
 std::pair<double, double> sampledRange(const Volume& volume) {
-    const VolumeGeometry& g = volume.geometry();
-    const std::size_t count = g.voxelCount();
-    const std::size_t stride = std::max<std::size_t>(1, count / kRangeSamples);
-    const auto row = std::size_t(g.dims.x);
-    const auto plane = row * std::size_t(g.dims.y);
-    double lo = 0.0;
-    double hi = 0.0;
-    for (std::size_t at = 0; at < count; at += stride) {
-        const double v = volume.value(int(at % row), int((at % plane) / row), int(at / plane));
-        lo = at == 0 ? v : std::min(lo, v);
-        hi = at == 0 ? v : std::max(hi, v);
+    const glm::ivec3 dims = volume.dims();
+    const auto along = [](int n, int a, int count) {
+        return int((2 * a + 1) * std::int64_t(n) / (2 * count));
+    };
+    const int per = int(std::cbrt(double(kRangeSamples)));
+    const glm::ivec3 count = glm::min(dims, glm::ivec3(per));
+    double lo = std::numeric_limits<double>::infinity();
+    double hi = -lo;
+    for (int c = 0; c < count.z; ++c) {
+        for (int b = 0; b < count.y; ++b) {
+            for (int a = 0; a < count.x; ++a) {
+                const double v = volume.value(along(dims.x, a, count.x), along(dims.y, b, count.y),
+                                              along(dims.z, c, count.z));
+                if (std::isfinite(v)) {
+                    lo = std::min(lo, v);
+                    hi = std::max(hi, v);
+                }
+            }
+        }
     }
-    return {lo, hi};
+    return lo <= hi ? std::pair{lo, hi} : std::pair{0.0, 0.0};
 }
+
+std::int64_t roundedSteps(double value, double unit) {
+    const double steps = value / unit;
+    // Beyond +-2^62 every value is one step: no transfer function lives there.
+    return std::isfinite(steps) ? std::llround(std::clamp(steps, -4.6e18, 4.6e18)) : 0;
+}
+
+} // namespace
 
 std::string opacityShape(const TransferFunction& tf, const Volume& volume) {
     const auto [lo, hi] = sampledRange(volume);
-    const double unit = std::max(hi - lo, 1.0) / kShapeValueSteps;
+    const double span = hi - lo; // infinite for float volumes from -1e308 to 1e308
+    const double unit = std::isfinite(span) ? std::max(span, 1.0) / kShapeValueSteps
+                                            : std::numeric_limits<double>::max();
     std::uint64_t h = fnv1a("opacity", 7);
     for (const OpacityPoint& p : tf.opacity) {
-        const std::int64_t at[2] = {std::llround(p.value / unit),
-                                    std::llround(p.opacity * kShapeOpacitySteps)};
+        const std::int64_t at[2] = {roundedSteps(p.value, unit),
+                                    roundedSteps(p.opacity, 1.0 / kShapeOpacitySteps)};
         h = fnv1a(at, sizeof at, h);
     }
     return hex(h);

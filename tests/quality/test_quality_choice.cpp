@@ -7,6 +7,7 @@
 #include <QTest>
 
 #include <fstream>
+#include <limits>
 
 #include "core/io/Catalog.h"
 #include "core/raycast/CpuRayCaster.h"
@@ -228,6 +229,39 @@ private slots:
         // A damaged file is measured again, not trusted.
         std::ofstream(frontCachePath(cache, f.key), std::ios::app) << "1,linear,post,1,64,x\n";
         QVERIFY(!loadFront(cache, f.key));
+    }
+
+    void opacityShapeSeesTheWholeValueRange() {
+        // 256 x 256 x 64: a step of count/65536 through the linear index would
+        // see only the column x = 0 (all 0 here), and a 0.5 shift would matter.
+        const Volume wide = test::makeVolume(
+            {256, 256, 64}, [](int i, int, int) { return i == 0 ? 0.0 : 1000.0 * (i % 2); },
+            VoxelType::Int16);
+        TransferFunction a;
+        a.opacity = {{100.0, 0.0}, {200.0, 0.5}};
+        a.colour = {{0.0, glm::dvec3(1.0)}};
+        TransferFunction shifted = a;
+        for (OpacityPoint& p : shifted.opacity) {
+            p.value += 0.5;
+        }
+        QCOMPARE(opacityShape(shifted, wide), opacityShape(a, wide));
+        TransferFunction later = a;
+        for (OpacityPoint& p : later.opacity) {
+            p.value += 500.0;
+        }
+        QVERIFY(opacityShape(later, wide) != opacityShape(a, wide));
+
+        // Non-finite voxels are left out of the range, so the curves still differ.
+        Volume odd = test::makeVolume(
+            {8, 8, 8}, [](int i, int j, int k) { return 16.0 * (i + 8 * j + 64 * k) / 8.0; },
+            VoxelType::Float32);
+        odd.voxels<float>()[0] = std::numeric_limits<float>::quiet_NaN();
+        odd.voxels<float>()[1] = std::numeric_limits<float>::infinity();
+        QVERIFY(opacityShape(later, odd) != opacityShape(a, odd));
+        Volume huge = test::makeVolume(
+            {4, 4, 4}, [](int i, int, int) { return i % 2 == 0 ? -1e38 : 1e38; },
+            VoxelType::Float32);
+        QVERIFY(!opacityShape(a, huge).empty());
     }
 
     void frontKeyFollowsTheOpacityCurve() {
