@@ -100,6 +100,8 @@ QByteArray reasonPhrase(int status) {
         return "Method Not Allowed";
     case 431:
         return "Request Header Fields Too Large";
+    case 507:
+        return "Insufficient Storage";
     default:
         return "Error";
     }

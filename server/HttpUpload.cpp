@@ -4,6 +4,7 @@
 #include <QCoreApplication>
 #include <QDir>
 #include <QFile>
+#include <QLoggingCategory>
 #include <QPointer>
 #include <QTcpSocket>
 #include <QTemporaryFile>
@@ -17,7 +18,12 @@
 namespace lucent::remote {
 namespace {
 
+Q_LOGGING_CATEGORY(lcUpload, "lucent.server.upload")
+
 constexpr char kText[] = "text/plain; charset=utf-8";
+// The folder and the system's reason go to the log, not to the client.
+constexpr char kCannotSpool[] = "the server cannot write the upload to its store's disk (full or "
+                                "not writable); its log says more\n";
 // Read and written at most this much at a time.
 constexpr qint64 kChunk = qint64(1) << 20;
 
@@ -87,18 +93,17 @@ void HttpFrontDoor::receiveUpload(QTcpSocket* socket, const HttpRequestHead& req
                 QString("incoming-%1-upload-XXXXXX.part").arg(QCoreApplication::applicationPid())));
     created.setAutoRemove(false);
     if (!created.open()) {
-        respond(socket, 507, kText,
-                "the server cannot spool the upload in " + upload_.spoolDir.toUtf8() + ": " +
-                    created.errorString().toUtf8() + "\n",
-                true);
+        qCWarning(lcUpload) << "cannot spool an upload in" << upload_.spoolDir << ":"
+                            << created.errorString();
+        respond(socket, 507, kText, kCannotSpool, true);
         return;
     }
     auto body = std::make_shared<SpooledBody>(created.fileName());
     auto file = std::make_shared<QFile>(created.fileName());
     created.close();
     if (!file->open(QIODevice::WriteOnly)) {
-        respond(socket, 507, kText, "the server cannot write " + body->path().toUtf8() + "\n",
-                true);
+        qCWarning(lcUpload) << "cannot write" << body->path() << ":" << file->errorString();
+        respond(socket, 507, kText, kCannotSpool, true);
         return;
     }
     if (expectsContinue) {
@@ -111,10 +116,8 @@ void HttpFrontDoor::receiveUpload(QTcpSocket* socket, const HttpRequestHead& req
             if (file->write(chunk) == chunk.size() && file->flush()) {
                 return true;
             }
-            respond(socket, 507, kText,
-                    "the server cannot write the upload to " + file->fileName().toUtf8() + " (" +
-                        file->errorString().toUtf8() + ")\n",
-                    true);
+            qCWarning(lcUpload) << "cannot write" << file->fileName() << ":" << file->errorString();
+            respond(socket, 507, kText, kCannotSpool, true);
             return false;
         },
         [this, socket, file, body, contentType = request.field("content-type")] {

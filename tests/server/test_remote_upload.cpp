@@ -239,6 +239,24 @@ private slots:
                  qPrintable(QDir(spool).entryList(QDir::Files).join(", ")));
         QCOMPARE(filesIn(server.storeDir() + "/files"), 2);
     }
+
+    void unwritableSpoolIs507() {
+        ServerProcess server("cpu");
+        QVERIFY(server.port());
+        // The store's tmp/ replaced by a file: no spool file can be made there
+        // (as root, permissions would not stop the server).
+        const QString spool = server.storeDir() + "/tmp";
+        QVERIFY(QDir(spool).removeRecursively());
+        QFile blocker(spool);
+        QVERIFY(blocker.open(QIODevice::WriteOnly));
+        blocker.close();
+        const Answer a = post(server.port(), kToken, "application/dicom", QByteArray(4000, 'x'));
+        QCOMPARE(a.status, 507);
+        QVERIFY2(a.body.contains("cannot write the upload") && !a.body.contains(spool.toUtf8()),
+                 a.body.constData());
+        QVERIFY2(server.log().contains("cannot spool an upload"), qPrintable(server.log()));
+        QCOMPARE(filesIn(server.storeDir() + "/files"), 0);
+    }
 };
 
 QTEST_GUILESS_MAIN(TestRemoteUpload)
