@@ -14,6 +14,11 @@ VolumeGlSurface::VolumeGlSurface(VolumeView* view) : QOpenGLWidget(view), view_(
 }
 
 VolumeGlSurface::~VolumeGlSurface() {
+    // QOpenGLWidget's destructor destroys the context after this one has run:
+    // its aboutToBeDestroyed must not reach a VolumeGlSurface that is gone.
+    if (QOpenGLContext* c = context()) {
+        disconnect(c, &QOpenGLContext::aboutToBeDestroyed, this, nullptr);
+    }
     releaseGl();
 }
 
