@@ -122,6 +122,11 @@ void HttpFrontDoor::receiveUpload(QTcpSocket* socket, const HttpRequestHead& req
         },
         [this, socket, file, body, contentType = request.field("content-type")] {
             file->close();
+            // The client has sent all; checking and storing a large upload may
+            // take longer than the client is given to send.
+            if (auto* deadline = socket->findChild<QTimer*>(kHeadTimerName)) {
+                deadline->stop();
+            }
             upload_.store(
                 contentType, body,
                 [this, guarded = QPointer<QTcpSocket>(socket)](int status, QByteArray answer) {
