@@ -44,10 +44,20 @@ QSqlQuery prepared(const std::string& connection, const char* sql) {
     return query;
 }
 
+// Runs a prepared statement. Another connection (the storage SCP, a
+// retrieval, the study browser) may hold the index for a moment longer than
+// SQLite's own wait: "locked" or "busy" is tried again for up to 5 s more.
 void run(QSqlQuery& query, const fs::path& root) {
-    if (!query.exec()) {
-        throw StoreError(root.string() +
-                         "/index.sqlite: " + query.lastError().text().toStdString());
+    for (int attempt = 0;; ++attempt) {
+        if (query.exec()) {
+            return;
+        }
+        const QString error = query.lastError().text();
+        if (attempt < 250 && (error.contains("locked") || error.contains("busy"))) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+            continue;
+        }
+        throw StoreError(root.string() + "/index.sqlite: " + error.toStdString());
     }
 }
 
