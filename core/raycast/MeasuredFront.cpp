@@ -113,7 +113,8 @@ std::string opacityShape(const TransferFunction& tf, const Volume& volume) {
 
 std::string frontKey(const RenderDescription& d, const std::string& backend) {
     std::string key =
-        "renderer=" + std::to_string(kRendererVersion) + " backend=" + backend +
+        "renderer=" + std::to_string(kRendererVersion) +
+        " sweep=" + std::to_string(kQuickSweepVersion) + " backend=" + backend +
         " mode=" + renderModeName(d.mode) +
         " shading=" + (d.transferFunction.shading.enabled ? "1" : "0") +
         " precision=" + (d.sampling.precision == Precision::Double ? "double" : "float") +

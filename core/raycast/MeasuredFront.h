@@ -20,6 +20,8 @@ namespace lucent {
 // Bump when a renderer change alters speed or images: older cache files are
 // then measured again.
 inline constexpr int kRendererVersion = 1;
+// Bump when quickSweep() changes: fronts without the new settings are measured again.
+inline constexpr int kQuickSweepVersion = 2;
 
 // The image size a quick front is measured at.
 inline constexpr int kQuickFrontSize = 128;

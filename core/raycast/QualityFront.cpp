@@ -112,6 +112,16 @@ std::vector<QualitySetting> quickSweep(bool shading) {
             out.push_back(s);
         }
     }
+    // Pre-integrated trilinear: a sharp transfer function (ct-soft-tissue on
+    // the Philips CT) reaches 39 dB at step 1 where post-classification needs
+    // a step below 0.125.
+    for (const double step : {2.0, 1.0, 0.5}) {
+        QualitySetting s;
+        s.step = step;
+        s.preintegrate = true;
+        s.shading = shading;
+        out.push_back(s);
+    }
     return out;
 }
 

@@ -63,8 +63,8 @@ std::optional<QualityPoint> bestWithin(const std::vector<QualityPoint>& points, 
 
 // The reduced sweep of a quick front, around the settings the full fronts put
 // on the front (docs/quality): steps 2, 1, 0.5 and 0.25 voxels with trilinear
-// and tricubic, nearest at step 2; post-classification; bricks of 64; the
-// given shading only.
+// and tricubic, nearest at step 2, post-classified; pre-integrated trilinear
+// at steps 2, 1 and 0.5; bricks of 64; the given shading only.
 std::vector<QualitySetting> quickSweep(bool shading);
 
 // Renders one frame with the renderer being measured.

@@ -101,6 +101,34 @@ private slots:
         QVERIFY2(same.out.contains("psnr_db=inf"), qPrintable(same.out + same.err));
     }
 
+    void sharpPresetGetsItsOwnFrontAndPreintegration() {
+        // ct-soft-tissue's steep ramps: post-classified trilinear at step 0.25
+        // stays near 32 dB here; pre-integration reaches 41 dB at step 0.5.
+        const QStringList common = {"render",  kSeries,    "--size",
+                                    "256x256", "--preset", "ct-soft-tissue"};
+        const test::CliRun balanced =
+            test::runCli(common + QStringList{"-o", dir_.filePath("soft.png"), "--quality",
+                                              "balanced", "--stats"},
+                         280000);
+        QVERIFY2(balanced.exitCode == 0, qPrintable(balanced.err));
+        const auto b = stats(balanced.out);
+        QCOMPARE(b["quality_front"], QString("measured")); // not the default preset's front
+        QCOMPARE(b["quality_classification"], QString("preintegrated"));
+        QVERIFY2(b["quality_psnr_db"].toDouble() >= 38.0, qPrintable(balanced.out));
+        const test::CliRun reference = test::runCli(
+            common + QStringList{"-o", dir_.filePath("soft_ref.png"), "--interp", "cubic", "--step",
+                                 "0.0625", "--precision", "double"});
+        QVERIFY2(reference.exitCode == 0, qPrintable(reference.err));
+        const test::CliRun compared =
+            test::runCli({"compare", dir_.filePath("soft.png"), dir_.filePath("soft_ref.png")});
+        const double psnr = stats(compared.out)["psnr_db"].toDouble();
+        qInfo("balanced ct-soft-tissue: %s, %.1f dB against the reference at 256x256",
+              qPrintable(b["quality_step"] + " " + b["quality_interp"] + " " +
+                         b["quality_classification"]),
+              psnr);
+        QVERIFY2(psnr >= 38.0, qPrintable(compared.out));
+    }
+
     void unreachableTargetGivesTheFastestWithAMessage() {
         const test::CliRun r =
             test::runCli({"render", kSeries, "-o", dir_.filePath("t.png"), "--size", "256x256",
