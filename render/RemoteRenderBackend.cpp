@@ -148,6 +148,7 @@ void RemoteRenderBackend::open() {
     wasOpen_ = false;
     seqSent_ = 0; // a new connection: the server counts from 0 again
     firstViewSeq_ = 0;
+    refused_.clear();
     phase_ = Phase::Connecting;
     QWebSocket* s = socket_.get();
     connect(s, &QWebSocket::connected, this, &RemoteRenderBackend::onConnected);
@@ -203,6 +204,9 @@ void RemoteRenderBackend::sendJson(const QJsonObject& message) {
 void RemoteRenderBackend::sendView(const QJsonObject& message) {
     sendJson(message);
     ++seqSent_;
+    // A new value of a refused kind may be accepted (an unnamed refusal: any).
+    refused_.remove(message["type"].toString());
+    refused_.remove(QString());
 }
 
 void RemoteRenderBackend::onText(const QString& text) {
@@ -252,7 +256,12 @@ void RemoteRenderBackend::onServerError(const QString& code, const QString& mess
         sent_.camera.reset();
         cameraTimer_.start(kCameraIntervalMs);
     } else if (code == "bad-request") {
+        // Not counted by the server, and not shown: until a new value of its
+        // kind ("camera: ...") goes out, no frame shows the view wanted.
         --seqSent_;
+        const qsizetype colon = message.indexOf(':');
+        refused_.insert(colon > 0 && !message.left(colon).contains(' ') ? message.left(colon)
+                                                                        : QString());
         emit frameFailed(tr("the server refused a request: %1").arg(message));
     } else {
         emit frameFailed(tr("the server could not render (%1): %2").arg(code, message));
@@ -299,6 +308,7 @@ void RemoteRenderBackend::chooseSeries(const QJsonArray& offered) {
     }
     phase_ = Phase::Opening;
     sent_ = ViewParts{};
+    refused_.clear(); // everything goes out again
     // The server counts view messages per connection, across re-opens: the
     // count goes on, and frames of the series before are older than the new
     // view's first (firstViewSeq_, set by the first sync).
@@ -415,7 +425,8 @@ void RemoteRenderBackend::onBinary(const QByteArray& message) {
         out.interactive = frame.header.quality == remote::Quality::Interactive;
         // While a paced camera waits for its timer, the frame of the last one
         // sent is not the view the user wants.
-        out.current = frame.header.seq == seqSent_ && !cameraTimer_.isActive();
+        out.current =
+            frame.header.seq == seqSent_ && !cameraTimer_.isActive() && refused_.isEmpty();
         out.renderMs = frame.header.renderMs;
         out.jpegQuality = frame.header.format == "jpeg" ? frame.header.jpegQuality : 0;
         out.scale = frame.header.scale;

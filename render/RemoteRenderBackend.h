@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <QElapsedTimer>
+#include <QSet>
 #include <QSize>
 #include <QTimer>
 
@@ -130,6 +131,9 @@ private:
     ViewParts sent_;
     std::uint64_t seqSent_ = 0;
     std::uint64_t firstViewSeq_ = 0; // frames before this show the server's defaults
+    // Kinds of view message the server refused ("camera", ...; "" when it did
+    // not say), each until a new value of that kind is sent.
+    QSet<QString> refused_;
 
     QTimer reconnectTimer_;
     QTimer handshakeTimer_;

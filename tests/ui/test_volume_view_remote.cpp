@@ -78,6 +78,7 @@ private slots:
     void remoteFramesMatchLocalRender();
     void cameraBurstIsPaced();
     void volumeSwitchOnAnOpenConnection();
+    void refusedCameraIsNeverCurrent();
     void reconnectsAfterServerRestart();
     void wrongTokenIsNamed();
     void badSettingsAndMissingSeries();
@@ -343,6 +344,37 @@ void TestVolumeViewRemote::volumeSwitchOnAnOpenConnection() {
         const double p = checkedPsnr(view_->lastFrame(), cpu_->render(same).image, "volume_switch");
         QVERIFY2(p >= 40.0, qPrintable(QString("round %1: psnr %2 dB").arg(round).arg(p)));
     }
+}
+
+void TestVolumeViewRemote::refusedCameraIsNeverCurrent() {
+    // The server refuses a camera 200 km away; the frames that follow (of a
+    // new transfer function) still show the old camera, so none is current
+    // until a camera it accepts.
+    const auto server = seriesServer();
+    const QString started = server->start();
+    QVERIFY2(started.isEmpty(), qPrintable(started));
+    view_->renderOnServer(settingsOf(*server));
+    QVERIFY2(waitForCurrentFrame(false), qPrintable(view_->notice()));
+    Camera far = view_->camera();
+    far.distance = 2e5;
+    view_->setCamera(far);
+    QVERIFY2(QTest::qWaitFor([&] { return view_->notice().contains("refused"); }, 20000),
+             qPrintable(view_->notice()));
+    QVERIFY2(view_->notice().contains("distance"), qPrintable(view_->notice()));
+    TransferFunction tf = view_->transferFunction();
+    tf.shading.enabled = !tf.shading.enabled;
+    const std::size_t before = frames_.size();
+    view_->setTransferFunction(tf);
+    QVERIFY(QTest::qWaitFor([&] { return frames_.size() > before; }, kFrameTimeoutMs));
+    QVERIFY(!view_->lastFrameCurrent());
+
+    Camera near = far;
+    near.distance = 0.0;
+    near.azimuth = 25.0;
+    view_->setCamera(near);
+    QVERIFY2(waitForCurrentFrame(false), qPrintable(view_->notice()));
+    const double p = checkedPsnr(view_->lastFrame(), cpuReference(), "after_refusal");
+    QVERIFY2(p >= 40.0, qPrintable(QString("after the refusal: psnr %1 dB").arg(p)));
 }
 
 void TestVolumeViewRemote::reconnectsAfterServerRestart() {
