@@ -26,6 +26,8 @@ constexpr char kCannotSpool[] = "the server cannot write the upload to its store
                                 "not writable); its log says more\n";
 // Read and written at most this much at a time.
 constexpr qint64 kChunk = qint64(1) << 20;
+// An upload whose body is in is answered within this time, or its connection closed.
+constexpr int kStoreTimeoutMs = 10 * 60 * 1000;
 
 } // namespace
 
@@ -122,10 +124,12 @@ void HttpFrontDoor::receiveUpload(QTcpSocket* socket, const HttpRequestHead& req
         },
         [this, socket, file, body, contentType = request.field("content-type")] {
             file->close();
-            // The client has sent all; checking and storing a large upload may
-            // take longer than the client is given to send.
+            // The client has sent all: checking and storing a large upload may
+            // take longer than it is given to send, though not for ever, and
+            // what it sends meanwhile is not taken in.
+            socket->setReadBufferSize(kChunk);
             if (auto* deadline = socket->findChild<QTimer*>(kHeadTimerName)) {
-                deadline->stop();
+                deadline->start(kStoreTimeoutMs);
             }
             upload_.store(
                 contentType, body,

@@ -239,6 +239,9 @@ void StudyStore::remove(const std::string& sop) {
         std::error_code ec;
         fs::remove(root_ / path.value(0).toString().toStdString(), ec);
     }
+    // Its read snapshot ends here: a DELETE on a stale snapshot would be
+    // refused as "locked" however long it waited.
+    path.finish();
     QSqlQuery del = prepared(connection_, "DELETE FROM instances WHERE sop_uid = ?");
     del.addBindValue(q(sop));
     run(del, root_);
