@@ -79,6 +79,12 @@ void SceneTextures::updateTables(const TransferFunction& tf, double lo, double h
         tableKey_ = key;
     }
     if (preintegrate && preKey_ != key) {
+        // A drag renders at a coarser step than the still frames around it:
+        // the table of the other step is kept, not built again (3-22 ms).
+        std::swap(preTable_, spareTable_);
+        std::swap(preKey_, spareKey_);
+    }
+    if (preintegrate && preKey_ != key) {
         const PreintegrationTable pre =
             buildPreintegrationTable(tf, lo, hi, preintegrationSize, stepRatio);
         preTable_ = makeTexture(GL_TEXTURE_2D);

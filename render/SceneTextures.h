@@ -49,12 +49,14 @@ public:
     glm::ivec3 cellsPerAxis() const { return cellsPerAxis_; }
 
 private:
-    GlTexture pageTable_, cellCode_, cellRange_, table_, preTable_;
+    GlTexture pageTable_, cellCode_, cellRange_, table_, preTable_, spareTable_;
     glm::ivec3 cellsPerAxis_{0};
     std::optional<std::tuple<std::vector<double>, std::vector<std::uint32_t>,
                              std::vector<std::uint8_t>, std::vector<glm::ivec3>>>
         bricksKey_;
-    std::optional<std::tuple<TransferFunction, double, double, double>> tableKey_, preKey_;
+    // The pre-integration table in use and the one before it (another step).
+    std::optional<std::tuple<TransferFunction, double, double, double>> tableKey_, preKey_,
+        spareKey_;
 };
 
 } // namespace lucent

@@ -199,6 +199,36 @@ private slots:
         QVERIFY2(p >= 40.0, qPrintable(QString("psnr %1").arg(p)));
     }
 
+    // A drag and the still frames around it use two steps: each step's
+    // pre-integration table is kept or made again, never mixed up.
+    void preintegrationTablesOfTwoSteps() {
+        const Volume v = loadOrMade();
+        GpuRayCaster gpu(v);
+        CpuRayCaster cpu(v);
+        RenderDescription still = describe(v, loadPreset("ct-soft-tissue"), 96);
+        still.sampling.preintegrate = true;
+        still.sampling.step = 0.5;
+        RenderDescription drag = still;
+        drag.sampling.step = 1.0;
+        RenderDescription other = still;
+        other.sampling.step = 2.0;
+        const ImageRGBA8 first = gpu.render(still).frame.image;
+        const ImageRGBA8 dragged = gpu.render(drag).frame.image;
+        for (int round = 0; round < 2; ++round) {
+            QVERIFY(gpu.render(still).frame.image == first);
+            QVERIFY(gpu.render(drag).frame.image == dragged);
+        }
+        (void)gpu.render(other); // a third step: the oldest table goes
+        QVERIFY(gpu.render(drag).frame.image == dragged);
+        QVERIFY(gpu.render(still).frame.image == first);
+        for (const auto& [d, name] :
+             {std::pair{still, "preint-step-0.5"}, {drag, "preint-step-1"}}) {
+            const double p =
+                comparedPsnr(gpu.render(d).frame.image, cpu.render(reference(d)).image, name, 40.0);
+            QVERIFY2(p >= 40.0, qPrintable(QString("%1: psnr %2").arg(name).arg(p)));
+        }
+    }
+
 private:
     static Volume loadOrMade() {
         if (std::filesystem::exists(philipsCt())) {
