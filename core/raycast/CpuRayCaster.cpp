@@ -44,6 +44,7 @@ struct CpuRayCaster::Cache {
     };
     std::optional<ClassificationKey> key;
     std::vector<glm::vec4> rawTable, table;
+    PreintegrationTable preTable; // float pre-integration (3-22 ms to build)
     LevelData coarse, fine;
     std::vector<std::uint8_t> cellLeap, reach;
     std::vector<std::int32_t> leapReach; // cellLeap | reach << 8
@@ -209,14 +210,15 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
     }
     // Pre-integration: double precision integrates each segment exactly (the
     // reference), float looks segments up in a table.
-    PreintegrationTable preTable;
     std::optional<SegmentPreintegrator> exactSegments;
     if (sf.preintegrate && exact) {
         sd.exactSegments = &exactSegments.emplace(desc.transferFunction, sampling.step);
     } else if (sf.preintegrate) {
-        preTable = buildPreintegrationTable(desc.transferFunction, tLo, tHi, kPreintegrationSize,
-                                            sampling.step);
-        sf.preTable = sd.preTable = &preTable;
+        if (!reuse) {
+            cache.preTable = buildPreintegrationTable(desc.transferFunction, tLo, tHi,
+                                                      kPreintegrationSize, sampling.step);
+        }
+        sf.preTable = sd.preTable = &cache.preTable;
     }
 
     // Empty-space leaping: which bricks can be passed over, decided so that no

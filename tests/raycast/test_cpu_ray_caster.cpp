@@ -249,6 +249,33 @@ private slots:
         }
     }
 
+    // One caster keeps what a render derived from the transfer function and
+    // the step (tables, pre-integration, leaping): frames that change them in
+    // turn equal those of a fresh caster.
+    void derivedTablesFollowEachChange() {
+        const std::filesystem::path dir =
+            std::filesystem::path(LUCENT_TEST_DATA_DIR) / "dcm_qa_ct/Philips_S21570/S2010";
+        if (!std::filesystem::exists(dir)) {
+            QSKIP("real test data not found: ../shared/data/dcm_qa_ct/Philips_S21570/S2010");
+        }
+        const Volume v = loadPath(dir);
+        CpuRayCaster kept(v);
+        std::vector<RenderDescription> views;
+        for (const char* preset : {"ct-soft-tissue", "ct-bone"}) {
+            for (const double step : {0.5, 1.0}) {
+                RenderDescription d = describe(v, loadPreset(preset), 64);
+                d.sampling.preintegrate = true;
+                d.sampling.step = step;
+                views.push_back(d);
+            }
+        }
+        views.push_back(views.front());
+        for (const RenderDescription& d : views) {
+            CpuRayCaster fresh(v);
+            QVERIFY(kept.render(d).image == fresh.render(d).image);
+        }
+    }
+
     void clipBoxRemovesWhatLiesOutside() {
         // Two blobs side by side along x; a clip box keeping x <= 19 removes the right one.
         const Volume v = makeVolume({40, 24, 24}, [](int i, int j, int k) {
