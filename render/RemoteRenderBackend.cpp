@@ -423,8 +423,8 @@ void RemoteRenderBackend::onBinary(const QByteArray& message) {
         BackendFrame out;
         out.image = toImage(decoded);
         out.interactive = frame.header.quality == remote::Quality::Interactive;
-        // While a paced camera waits for its timer, the frame of the last one
-        // sent is not the view the user wants.
+        // Not the view the user wants while a paced camera waits for its timer
+        // or a refused change has not been replaced.
         out.current =
             frame.header.seq == seqSent_ && !cameraTimer_.isActive() && refused_.isEmpty();
         out.renderMs = frame.header.renderMs;
