@@ -212,7 +212,8 @@ private slots:
 
         // The last member is killed: the session ends and another may start.
         b.abort();
-        QTest::qWait(300);
+        QVERIFY2(QTest::qWaitFor([&] { return server.log().contains("a session ended"); }, 20000),
+                 qPrintable(server.log()));
         from = c.texts.size();
         c.send({{"type", "session-join"}, {"session", session}});
         QCOMPARE(nextText(c, "error", from)["code"].toString(), "not-found");
