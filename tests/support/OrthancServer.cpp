@@ -10,9 +10,27 @@
 #include <QTcpSocket>
 #include <QThread>
 
+#include <random>
+#include <set>
+
 namespace lucent::test {
 
 int OrthancServer::freePort() {
+    // Below Linux's ephemeral range (32768-60999), never the same twice in a
+    // process: a port from bind(0) can go to the next caller (Orthanc's own
+    // port on the move destination's) or to an outgoing connection before the
+    // test listens on it.
+    static std::mt19937 pick(std::random_device{}());
+    static std::set<int> handedOut;
+    std::uniform_int_distribution<int> below(20000, 32000);
+    for (int tries = 0; tries < 500; ++tries) {
+        const int port = below(pick);
+        QTcpServer probe;
+        if (handedOut.count(port) == 0 && probe.listen(QHostAddress::LocalHost, quint16(port))) {
+            handedOut.insert(port);
+            return port;
+        }
+    }
     QTcpServer probe;
     probe.listen(QHostAddress::LocalHost, 0);
     return probe.serverPort();

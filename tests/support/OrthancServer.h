@@ -38,7 +38,8 @@ public:
     // Starts it again on the same ports and storage; false with error() set on failure.
     bool restart();
 
-    // A loopback port nobody listens on right now.
+    // A loopback port nobody listens on right now, below the ephemeral range and
+    // never handed out before in this process.
     static int freePort();
 
 private:
