@@ -44,12 +44,13 @@ QSqlQuery prepared(const std::string& connection, const char* sql) {
     return query;
 }
 
-// Runs a prepared statement. Another connection (the storage SCP, a
-// retrieval, the study browser) may hold the index for a moment longer than
-// SQLite's own wait: "locked" or "busy" is tried again for up to 5 s more.
-void run(QSqlQuery& query, const fs::path& root) {
+// Runs a prepared statement, or `sql` when given. Another connection (the
+// storage SCP, a retrieval, the study browser) may hold the index for a moment
+// longer than SQLite's own wait, and some statements, such as switching to WAL,
+// do not wait at all: "locked" or "busy" is tried again for up to 5 s more.
+void run(QSqlQuery& query, const fs::path& root, const QString& sql = {}) {
     for (int attempt = 0;; ++attempt) {
-        if (query.exec()) {
+        if (sql.isEmpty() ? query.exec() : query.exec(sql)) {
             return;
         }
         const QString error = query.lastError().text();
@@ -138,22 +139,8 @@ StudyStore::~StudyStore() {
 }
 
 void StudyStore::exec(const std::string& sql) const {
-    const QSqlDatabase db = QSqlDatabase::database(q(connection_));
-    for (int attempt = 0;; ++attempt) {
-        QSqlQuery query(db);
-        if (query.exec(q(sql))) {
-            return;
-        }
-        // Another connection creating or writing the same store (the storage
-        // SCP, a retrieval, the browser): some statements, such as switching to
-        // WAL, do not wait for it by themselves. Wait up to 5 s.
-        const QString error = query.lastError().text();
-        if (attempt < 250 && (error.contains("locked") || error.contains("busy"))) {
-            std::this_thread::sleep_for(std::chrono::milliseconds(20));
-            continue;
-        }
-        throw StoreError(root_.string() + "/index.sqlite: " + error.toStdString());
-    }
+    QSqlQuery query(QSqlDatabase::database(q(connection_)));
+    run(query, root_, q(sql));
 }
 
 fs::path StudyStore::temporaryFile() {
