@@ -10,7 +10,7 @@
 
 #include "core/raycast/BSplinePrefilter.h"
 #include "core/raycast/BrickVisibility.h"
-#include "core/raycast/ViewFrame.h"
+#include "core/scene/ViewFrame.h"
 #include "core/volume/BrickResidency.h"
 #include "core/volume/LodPyramid.h"
 #include "render/BrickPool.h"

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "core/raycast/CpuRayCaster.h"
-#include "core/raycast/RenderDescription.h"
+#include "core/scene/RenderDescription.h"
 
 namespace lucent {
 

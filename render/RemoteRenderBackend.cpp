@@ -8,7 +8,7 @@
 #include <QJsonObject>
 #include <QWebSocket>
 
-#include "server/protocol/ProtocolMessages.h"
+#include "protocol/ProtocolMessages.h"
 
 namespace lucent {
 

@@ -13,8 +13,8 @@
 
 #include "core/image/Image.h"
 #include "core/raycast/CpuRayCaster.h"
-#include "core/raycast/InteractiveQuality.h"
-#include "core/raycast/RenderDescription.h"
+#include "core/quality/InteractiveQuality.h"
+#include "core/scene/RenderDescription.h"
 
 namespace lucent {
 

@@ -14,7 +14,7 @@
 
 #include <string>
 
-#include "server/protocol/ProtocolMessages.h"
+#include "protocol/ProtocolMessages.h"
 
 namespace lucent::remote {
 

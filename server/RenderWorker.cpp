@@ -10,7 +10,7 @@
 #include "render/GlError.h"
 #include "render/GpuRayCaster.h"
 #include "render/OffscreenContext.h"
-#include "server/protocol/PngEncoder.h"
+#include "protocol/PngEncoder.h"
 
 namespace lucent::remote {
 namespace {

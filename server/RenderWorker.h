@@ -12,8 +12,8 @@
 #include <memory>
 
 #include "core/io/SeriesEntry.h"
-#include "core/raycast/RenderDescription.h"
-#include "server/protocol/ProtocolMessages.h"
+#include "core/scene/RenderDescription.h"
+#include "protocol/ProtocolMessages.h"
 
 namespace lucent {
 class OffscreenContext;

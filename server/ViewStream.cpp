@@ -1,6 +1,6 @@
 #include "server/ViewStream.h"
 
-#include "core/raycast/ViewFrame.h"
+#include "core/scene/ViewFrame.h"
 
 #include <nlohmann/json.hpp>
 

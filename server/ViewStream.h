@@ -19,10 +19,10 @@
 #include <string>
 
 #include "core/io/SeriesEntry.h"
-#include "core/raycast/RenderDescription.h"
+#include "core/scene/RenderDescription.h"
 #include "server/RenderWorker.h"
-#include "server/protocol/AdaptiveQuality.h"
-#include "server/protocol/ProtocolMessages.h"
+#include "protocol/AdaptiveQuality.h"
+#include "protocol/ProtocolMessages.h"
 
 namespace lucent::remote {
 

@@ -15,7 +15,7 @@
 #include "TerminalProgress.h"
 #include "core/io/Catalog.h"
 #include "core/raycast/CpuRayCaster.h"
-#include "core/raycast/QualityFront.h"
+#include "core/quality/QualityFront.h"
 #include "render/GlError.h"
 #include "render/GpuRayCaster.h"
 #include "render/OffscreenContext.h"

@@ -3,7 +3,7 @@
 #include <QDir>
 #include <QStandardPaths>
 
-#include "core/raycast/MeasuredFront.h"
+#include "core/quality/MeasuredFront.h"
 
 namespace lucent::cli {
 

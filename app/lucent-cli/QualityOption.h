@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "core/raycast/QualityChoice.h"
+#include "core/quality/QualityChoice.h"
 
 namespace lucent::cli {
 

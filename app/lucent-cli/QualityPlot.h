@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "core/raycast/QualityFront.h"
+#include "core/quality/QualityFront.h"
 
 namespace lucent::cli {
 

@@ -5,7 +5,7 @@
 #include <QTimer>
 #include <QWebSocket>
 
-#include "server/protocol/ProtocolMessages.h"
+#include "protocol/ProtocolMessages.h"
 
 namespace lucent::cli {
 

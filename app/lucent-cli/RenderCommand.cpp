@@ -15,7 +15,7 @@
 #include "core/image/PngIO.h"
 #include "core/io/Catalog.h"
 #include "core/raycast/CpuRayCaster.h"
-#include "core/raycast/SceneCost.h"
+#include "core/quality/SceneCost.h"
 #include "core/volume/BrickResidency.h"
 #include "render/GlError.h"
 #include "render/GpuRayCaster.h"

@@ -6,8 +6,8 @@
 #include <QSurfaceFormat>
 #include <QTimer>
 
-#include "ui/MainWindow.h"
-#include "ui/VolumeView.h"
+#include "ui/app/MainWindow.h"
+#include "ui/volume/VolumeView.h"
 
 namespace {
 const QString kDemo = QStringLiteral("/usr/share/doc/invesalius-examples/examples/Cranium.inv3");

@@ -5,8 +5,8 @@
 #include <functional>
 #include <utility>
 
-#include "core/raycast/RenderDescription.h"
-#include "core/raycast/ViewFrame.h"
+#include "core/scene/RenderDescription.h"
+#include "core/scene/ViewFrame.h"
 
 namespace lucent {
 

@@ -10,7 +10,7 @@
 
 #include "core/image/Image.h"
 #include "core/raycast/RaySetup.h"
-#include "core/raycast/ViewFrame.h"
+#include "core/scene/ViewFrame.h"
 
 namespace lucent {
 

@@ -17,7 +17,7 @@
 #include "core/raycast/LeapReach.h"
 #include "core/raycast/PacketDvrKernel.h"
 #include "core/raycast/RayKernel.h"
-#include "core/raycast/ViewFrame.h"
+#include "core/scene/ViewFrame.h"
 
 namespace lucent {
 

@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "core/image/Image.h"
-#include "core/raycast/RenderDescription.h"
+#include "core/scene/RenderDescription.h"
 
 namespace lucent {
 

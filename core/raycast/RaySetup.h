@@ -9,7 +9,7 @@
 #include <limits>
 #include <vector>
 
-#include "core/raycast/RenderDescription.h"
+#include "core/scene/RenderDescription.h"
 #include "core/tf/SegmentPreintegrator.h"
 
 namespace lucent {

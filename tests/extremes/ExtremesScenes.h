@@ -12,7 +12,7 @@
 
 #include "core/image/ImageMetrics.h"
 #include "core/raycast/CpuRayCaster.h"
-#include "tests/raycast/RaycastScenes.h"
+#include "tests/core/raycast/RaycastScenes.h"
 
 namespace lucent::test {
 

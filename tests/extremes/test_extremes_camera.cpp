@@ -5,7 +5,7 @@
 // would leave.
 #include <QTest>
 
-#include "core/raycast/ViewFrame.h"
+#include "core/scene/ViewFrame.h"
 #include "render/GpuRayCaster.h"
 #include "render/OffscreenContext.h"
 #include "tests/extremes/ExtremesScenes.h"

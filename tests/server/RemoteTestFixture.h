@@ -15,7 +15,7 @@
 #include <memory>
 
 #include "core/image/Image.h"
-#include "server/protocol/ProtocolMessages.h"
+#include "protocol/ProtocolMessages.h"
 #include "tests/support/ServerProcess.h"
 
 namespace lucent::test {

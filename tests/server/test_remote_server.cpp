@@ -8,8 +8,8 @@
 #include "core/image/ImageMetrics.h"
 #include "core/io/Catalog.h"
 #include "core/raycast/CpuRayCaster.h"
-#include "core/raycast/InteractiveQuality.h"
-#include "server/protocol/AdaptiveQuality.h"
+#include "core/quality/InteractiveQuality.h"
+#include "protocol/AdaptiveQuality.h"
 
 using namespace lucent;
 using namespace lucent::test;

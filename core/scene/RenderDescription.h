@@ -1,0 +1,60 @@
+#pragma once
+// One description of a render, shared by the CPU reference ray caster and the
+// GPU ray caster, so that their images can be compared pixel by pixel.
+//
+// Sampling convention (both renderers): a ray starts where it enters the
+// volume's box (voxel centres 0 .. dims-1, intersected with the clip box);
+// samples lie at t_entry + n * dt, dt = step * (smallest spacing), whatever
+// bricks they fall in; colour is premultiplied and composited front to back;
+// opacity is corrected a' = 1 - (1 - a)^(dt / dt_ref), dt_ref = one voxel of
+// the smallest spacing.
+
+#include <glm/glm.hpp>
+
+#include "core/scene/Camera.h"
+#include "core/tf/TransferFunction.h"
+#include "core/volume/BrickGrid.h"
+#include "core/volume/Volume.h"
+
+namespace lucent {
+
+enum class RenderMode { Dvr, Mip, MinIp, Average, Isosurface };
+enum class Interpolation { Nearest, Linear, Cubic };
+enum class Classification { Post, Pre };
+enum class Precision { Double, Float };
+
+const char* renderModeName(RenderMode mode);
+const char* interpolationName(Interpolation interp);
+
+struct SamplingSettings {
+    double step = 0.5; // in voxels of the smallest spacing
+    Interpolation interpolation = Interpolation::Linear;
+    Classification classification = Classification::Post;
+    bool preintegrate = false;
+    double earlyTermination = 0.99; // stop when accumulated opacity reaches this
+    int brickSize = 64;
+    bool emptySpaceLeaping = true;
+    Precision precision = Precision::Float;
+    // The CPU ray caster marches eight rays at once with SIMD (AVX2) where the
+    // CPU has it; false forces its scalar kernels (tests compare the two). The
+    // image is the same either way.
+    bool simd = true;
+};
+
+struct RenderDescription {
+    const Volume* volume = nullptr;
+    TransferFunction transferFunction; // its shading.enabled switches shading
+    Camera camera;
+    RenderMode mode = RenderMode::Dvr;
+    double isoValue = 300.0; // for RenderMode::Isosurface, in data units (HU for CT)
+    ClipBox clip;            // in voxel index coordinates
+    SamplingSettings sampling;
+    int width = 512;
+    int height = 512;
+    glm::dvec3 background{0.0};
+
+    // Throws std::invalid_argument naming the setting that is out of range.
+    void validate() const;
+};
+
+} // namespace lucent

@@ -1,0 +1,242 @@
+// What the GPU keeps: only the bricks a transfer function needs, never
+// uploaded twice; coarser levels when the budget is small; clear errors.
+#include <QTest>
+
+#include "core/quality/InteractiveQuality.h"
+#include "core/volume/BrickResidency.h"
+#include "render/GlError.h"
+#include "render/GlObjects.h"
+#include "tests/render/GlTestSupport.h"
+#include "tests/core/raycast/RaycastScenes.h"
+
+using namespace lucent;
+using namespace lucent::test;
+
+namespace {
+
+Volume realOrMade() {
+    if (std::filesystem::exists(philipsCt())) {
+        return loadPath(philipsCt());
+    }
+    return makeVolume(
+        {200, 180, 90},
+        [](int i, int j, int k) {
+            return 8.0 * blobs(i / 5, j / 5, k / 3) - 500.0 + (i > 150 ? 1200.0 : 0.0);
+        },
+        VoxelType::Int16);
+}
+
+} // namespace
+
+class TestGpuResidency : public QObject {
+    Q_OBJECT
+    std::unique_ptr<OffscreenContext> context_;
+
+private slots:
+    void initTestCase() { context_ = OffscreenContext::create(); }
+
+    // Bone needs fewer bricks than soft tissue; switching back and forth
+    // uploads only bricks not yet resident, and returning uploads nothing.
+    void transferFunctionChangeUploadsNoVoxelTwice() {
+        const Volume v = realOrMade();
+        GpuRayCaster gpu(v);
+        RenderDescription d = describe(v, loadPreset("ct-bone"), 64);
+        const GpuRenderResult bone = gpu.render(d);
+        QVERIFY(bone.gpu.bricksUploaded > 0);
+        QCOMPARE(bone.gpu.bricksUploaded, bone.frame.stats.bricksUsed);
+        QVERIFY(bone.frame.stats.bricksUsed < bone.frame.stats.bricksTotal);
+        // The pool is sized to the scene (with some headroom), not to the volume,
+        // and keeps gradients when they fit the budget.
+        QVERIFY(bone.gpu.gradientsCached);
+        QVERIFY2(bone.gpu.poolSlots >= bone.gpu.bricksResident &&
+                     bone.gpu.poolSlots <= bone.gpu.bricksResident * 3 / 2 + 16,
+                 qPrintable(QString("%1 slots for %2 bricks")
+                                .arg(bone.gpu.poolSlots)
+                                .arg(bone.gpu.bricksResident)));
+        QVERIFY(bone.gpu.poolBytes >= bone.gpu.residentBytes);
+
+        d.transferFunction = loadPreset("ct-soft-tissue");
+        const GpuRenderResult soft = gpu.render(d);
+        QVERIFY(soft.frame.stats.bricksUsed >= bone.frame.stats.bricksUsed);
+        // Only what bone did not already bring.
+        QCOMPARE(soft.gpu.bricksUploaded, soft.gpu.bricksResident - bone.gpu.bricksResident);
+        if (soft.gpu.bricksResident > bone.gpu.poolSlots) {
+            // The pool grew and took the resident bricks over without uploads.
+            QVERIFY(soft.gpu.poolSlots > bone.gpu.poolSlots);
+        }
+
+        d.transferFunction = loadPreset("ct-bone");
+        const GpuRenderResult again = gpu.render(d);
+        QCOMPARE(again.gpu.bricksUploaded, std::size_t(0));
+        // The same image from the bricks the grown pool copied over.
+        QCOMPARE(maxDifference(again.frame.premultiplied, bone.frame.premultiplied), 0.0f);
+
+        d.camera.azimuth = 90.0; // a new view of the same scene needs no upload either
+        QCOMPARE(gpu.render(d).gpu.bricksUploaded, std::size_t(0));
+    }
+
+    // Zoomed in, only the bricks in view are resident, and the image is still
+    // the reference's.
+    void onlyBricksInViewAreResident() {
+        const Volume v = realOrMade();
+        GpuRayCaster gpu(v);
+        RenderDescription d = describe(v, loadPreset("ct-bone"), 96);
+        const std::size_t whole = gpu.render(d).frame.stats.bricksUsed;
+        GpuRayCaster zoomed(v);
+        d.camera.zoom = 4.0;
+        d.camera.azimuth = 20.0;
+        const GpuRenderResult r = zoomed.render(d);
+        QVERIFY2(r.frame.stats.bricksUsed * 2 < whole,
+                 qPrintable(
+                     QString("%1 bricks in view of %2").arg(r.frame.stats.bricksUsed).arg(whole)));
+        QCOMPARE(r.gpu.bricksUploaded, r.frame.stats.bricksUsed);
+        RenderDescription ref = d;
+        ref.sampling.precision = Precision::Double;
+        const double p =
+            comparedPsnr(r.frame.image, CpuRayCaster(v).render(ref).image, "zoomed", 40.0);
+        QVERIFY2(p >= 40.0, qPrintable(QString("zoomed: %1 dB").arg(p)));
+    }
+
+    // A budget far below the volume still renders, from a coarser level, says
+    // so, and looks like the full-resolution image.
+    void smallBudgetRendersCoarserLevel() {
+        const Volume v = realOrMade();
+        RenderDescription d = describe(v, loadPreset("ct-bone"), 96);
+        GpuRayCaster full(v);
+        const GpuRenderResult fine = full.render(d);
+        QCOMPARE(fine.frame.stats.lod, 0);
+
+        GpuOptions small;
+        small.budgetBytes = v.byteCount() / 3;
+        GpuRayCaster gpu(v, small);
+        const GpuRenderResult coarse = gpu.render(d);
+        QVERIFY2(coarse.frame.stats.lod > 0,
+                 "a budget of a third of the volume should need a coarser level");
+        QVERIFY(!coarse.gpu.lodReason.empty());
+        QVERIFY(coarse.gpu.bricksResident <= coarse.gpu.poolSlots);
+        const double p = psnr(coarse.frame.image, fine.frame.image);
+        QVERIFY2(p > 25.0, qPrintable(QString("coarse level vs full: psnr %1 dB").arg(p)));
+    }
+
+    // At a coarser level the gradient cache is kept when that level's bricks
+    // fit with it, and shades as the computed gradients do.
+    void coarseLevelKeepsGradientCache() {
+        const Volume v = realOrMade();
+        const RenderDescription d = describe(v, loadPreset("ct-bone"), 96);
+        for (const std::size_t mib : {80, 60, 100, 40, 120}) {
+            GpuOptions cachedOptions;
+            cachedOptions.budgetBytes = mib << 20;
+            GpuOptions computedOptions = cachedOptions;
+            computedOptions.gradientCache = false;
+            GpuRayCaster cachedGpu(v, cachedOptions);
+            GpuRenderResult cached;
+            try {
+                cached = cachedGpu.render(d);
+            } catch (const BudgetError&) {
+                continue;
+            }
+            if (cached.frame.stats.lod == 0 || !cached.gpu.gradientsCached) {
+                continue;
+            }
+            GpuRayCaster computedGpu(v, computedOptions);
+            const GpuRenderResult computed = computedGpu.render(d);
+            QCOMPARE(computed.frame.stats.lod, cached.frame.stats.lod); // gradients cost no level
+            QVERIFY(!computed.gpu.gradientsCached);
+            QVERIFY(cached.gpu.poolBytes <= cachedOptions.budgetBytes);
+            const double p =
+                comparedPsnr(cached.frame.image, computed.frame.image, "coarse-gradients", 50.0);
+            QVERIFY2(p >= 50.0, qPrintable(QString("level %1, %2 MiB: cached vs computed %3 dB")
+                                               .arg(cached.frame.stats.lod)
+                                               .arg(mib)
+                                               .arg(p)));
+            return;
+        }
+        QSKIP("no budget tried renders a coarser level with cached gradients for this volume");
+    }
+
+    void budgetTooSmallForAnyLevelSaysSo() {
+        const Volume v = realOrMade();
+        GpuOptions tiny;
+        tiny.budgetBytes = 1024; // not one brick
+        GpuRayCaster gpu(v, tiny);
+        try {
+            gpu.render(describe(v, loadPreset("ct-bone"), 32));
+            QFAIL("a 1 KiB budget rendered");
+        } catch (const BudgetError& e) {
+            QVERIFY2(std::string(e.what()).find("budget") != std::string::npos, e.what());
+        }
+    }
+
+    // While dragging: fewer samples on a smaller image, scaled up to the view,
+    // close to the still frame.
+    void interactiveFrameIsCheaperAndClose() {
+        const Volume v = realOrMade();
+        GpuRayCaster gpu(v);
+        const RenderDescription still = describe(v, loadPreset("ct-bone"), 128);
+        const GpuRenderResult full = gpu.render(still);
+        const RenderDescription moving = interactiveDescription(still);
+        QCOMPARE(moving.width, 64);
+        QCOMPARE(moving.sampling.step, 2.0 * still.sampling.step);
+        const GpuRenderResult quick = gpu.render(moving);
+        QVERIFY2(quick.frame.stats.samples * 4 < full.frame.stats.samples,
+                 qPrintable(QString("%1 vs %2 samples")
+                                .arg(quick.frame.stats.samples)
+                                .arg(full.frame.stats.samples)));
+        const ImageRGBA8 shown = scaledTo(quick.frame.image, 128, 128);
+        QCOMPARE(shown.width, 128);
+        const double p = psnr(shown, full.frame.image);
+        QVERIFY2(p > 20.0, qPrintable(QString("interactive vs still: %1 dB").arg(p)));
+        QVERIFY_THROWS_EXCEPTION(std::invalid_argument,
+                                 interactiveDescription(still, InteractiveQuality{0.5, 2}));
+    }
+
+    // Longer than one 3D texture may be (GL_MAX_3D_TEXTURE_SIZE, 2048 on llvmpipe):
+    // bricks make that no limit.
+    void volumeBeyondOneTextureRenders() {
+        GLint maxSize = 0;
+        glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSize);
+        const int length = std::max(2100, int(maxSize) + 50);
+        const Volume v = makeVolume(
+            {24, 20, length},
+            [length](int i, int j, int k) {
+                return (i - 12) * (i - 12) + (j - 10) * (j - 10) < 40 && k % 300 < 250
+                           ? 900.0 - k * 0.1
+                           : -1000.0 + k % 7;
+            },
+            VoxelType::Int16);
+        RenderDescription d = describe(v, loadPreset("ct-bone"), 64);
+        d.camera.azimuth = 90.0;
+        GpuRayCaster gpu(v);
+        const GpuRenderResult r = gpu.render(d);
+        QCOMPARE(r.frame.stats.lod, 0);
+        RenderDescription ref = d;
+        ref.sampling.precision = Precision::Double;
+        const double p =
+            comparedPsnr(r.frame.image, CpuRayCaster(v).render(ref).image, "long", 40.0);
+        QVERIFY2(p >= 40.0, qPrintable(QString("%1 slices: %2 dB").arg(length).arg(p)));
+    }
+
+    // A shader that does not compile is an error that names it and carries the log.
+    void shaderErrorsNameTheShader() {
+        try {
+            ShaderProgram broken("raycast.vert", "raycast.frag", "#error deliberately broken\n");
+            QFAIL("a broken shader compiled");
+        } catch (const GlError& e) {
+            const std::string what = e.what();
+            QVERIFY2(what.find("raycast") != std::string::npos &&
+                         what.find("deliberately") != std::string::npos,
+                     e.what());
+        }
+    }
+
+    void badSettingsAreRefusedByName() {
+        const Volume v = realOrMade();
+        GpuRayCaster gpu(v);
+        RenderDescription d = describe(v, loadPreset("ct-bone"), 32);
+        d.sampling.step = -1.0;
+        QVERIFY_THROWS_EXCEPTION(std::invalid_argument, gpu.render(d));
+    }
+};
+
+QTEST_GUILESS_MAIN(TestGpuResidency)
+#include "test_gpu_residency.moc"

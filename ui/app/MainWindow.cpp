@@ -1,0 +1,301 @@
+#include "ui/app/MainWindow.h"
+
+#include <QActionGroup>
+#include <QApplication>
+#include <QCloseEvent>
+#include <QDir>
+#include <QDockWidget>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QLabel>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QSettings>
+#include <QStandardPaths>
+#include <QStatusBar>
+#include <QVBoxLayout>
+
+#include "ui/mpr/MprCursor.h"
+#include "ui/pacs/PacsBrowser.h"
+#include "core/pacs/PacsService.h"
+#include "ui/volume/RenderServerSettings.h"
+#include "ui/app/ScreenshotExport.h"
+#include "ui/mpr/SliceView.h"
+#include "ui/study/StudyBrowser.h"
+#include "ui/transfer/TransferFunctionEditor.h"
+#include "ui/app/ViewLayout.h"
+#include "ui/study/VolumeLoader.h"
+#include "ui/volume/VolumeView.h"
+#include "ui/volume/VolumeViewControls.h"
+
+namespace lucent {
+
+namespace {
+
+QString describe(const Volume& v) {
+    const glm::ivec3& d = v.dims();
+    const glm::dvec3& s = v.geometry().spacing;
+    QStringList parts;
+    if (!v.patientName.empty() || !v.patientId.empty()) {
+        parts << QString::fromStdString(v.patientName +
+                                        (v.patientId.empty() ? "" : " (" + v.patientId + ")"))
+                     .trimmed();
+    }
+    const QString series = QStringLiteral("%1 %2").arg(QString::fromStdString(v.modality),
+                                                       QString::fromStdString(v.description));
+    if (!series.trimmed().isEmpty()) {
+        parts << series.trimmed();
+    }
+    if (!v.studyDate.empty()) {
+        parts << QString::fromStdString(v.studyDate);
+    }
+    parts << QStringLiteral("%1 x %2 x %3").arg(d.x).arg(d.y).arg(d.z);
+    parts << QStringLiteral("%1 x %2 x %3 mm")
+                 .arg(s.x, 0, 'g', 4)
+                 .arg(s.y, 0, 'g', 4)
+                 .arg(s.z, 0, 'g', 4);
+    if (!v.warnings.empty()) {
+        parts << QCoreApplication::translate("lucent::MainWindow", "%n warning(s)", nullptr,
+                                             static_cast<int>(v.warnings.size()));
+    }
+    return parts.join(QStringLiteral("   |   "));
+}
+
+QString folderOf(const QString& path) {
+    const QFileInfo info(path);
+    return info.isDir() ? info.absoluteFilePath() : info.absolutePath();
+}
+
+} // namespace
+
+MainWindow::MainWindow(QWidget* parent)
+    : QMainWindow(parent), cursor_(new MprCursor(this)), info_(new QLabel(this)) {
+    setWindowTitle(QStringLiteral("Lucent"));
+    const std::array<Orientation, 3> orientations{Orientation::Axial, Orientation::Coronal,
+                                                  Orientation::Sagittal};
+    for (std::size_t n = 0; n < views_.size(); ++n) {
+        views_[n] = new SliceView(orientations[n], cursor_, this);
+    }
+    volumeView_ = new VolumeView(this);
+    layout_ = new ViewLayout({views_[0], views_[1], views_[2], volumeView_}, this);
+    setCentralWidget(layout_);
+
+    // The 3D view's controls and the transfer-function editor in a dock.
+    tfEditor_ = new TransferFunctionEditor;
+    auto* panel = new QWidget;
+    auto* column = new QVBoxLayout(panel);
+    column->addWidget(new VolumeViewControls(volumeView_, panel));
+    column->addWidget(tfEditor_, 1);
+    auto* dock = new QDockWidget(tr("3D / Transfer function"), this);
+    dock->setObjectName(QStringLiteral("volumeDock"));
+    dock->setWidget(panel);
+    addDockWidget(Qt::RightDockWidgetArea, dock);
+    connect(tfEditor_, &TransferFunctionEditor::transferFunctionChanged, volumeView_,
+            &VolumeView::setTransferFunction);
+    connect(volumeView_, &VolumeView::transferFunctionChanged, tfEditor_,
+            &TransferFunctionEditor::setTransferFunction);
+    statusBar()->addWidget(info_, 1);
+    loader_ = new VolumeLoader(this);
+    // Patients, studies and series of the local store and of the folders opened,
+    // with thumbnails; a click opens one.
+    auto* studyDock = new QDockWidget(tr("Studies"), this);
+    auto* studies = new StudyBrowser(studyDock);
+    studyDock->setObjectName(QStringLiteral("studyDock"));
+    studyDock->setWidget(studies);
+    addDockWidget(Qt::LeftDockWidgetArea, studyDock);
+    connect(studies, &StudyBrowser::openRequested, this,
+            [this](const QString& path, const QString& series) { openPath(path, series); });
+    connect(loader_, &VolumeLoader::loaded, this, [this, studies](std::shared_ptr<Volume> volume) {
+        studies->addSeries(loader_->path(), *volume);
+        setVolume(std::move(volume));
+    });
+    connect(loader_, &VolumeLoader::finished, this, &MainWindow::loadFinished);
+    connect(loader_, &VolumeLoader::status, this, [this](const QString& message, int timeoutMs) {
+        statusBar()->showMessage(message, timeoutMs);
+    });
+    info_->setText(tr("No volume. Open a DICOM folder, a file or an InVesalius project."));
+    info_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+
+    QMenu* file = menuBar()->addMenu(tr("&File"));
+    file->addAction(tr("Open &Folder..."), QKeySequence(tr("Ctrl+Shift+O")), this,
+                    &MainWindow::openFolderDialog);
+    file->addAction(tr("&Open File..."), QKeySequence::Open, this, &MainWindow::openFileDialog);
+    file->addSeparator();
+    file->addAction(tr("Save Screenshot of Active &View..."), QKeySequence(tr("Ctrl+Shift+E")),
+                    this, [this] { screenshotDialog(ScreenshotScope::ActiveView); });
+    file->addAction(tr("Save Screenshot of &Layout..."), QKeySequence(tr("Ctrl+Alt+E")), this,
+                    [this] { screenshotDialog(ScreenshotScope::Layout); });
+    file->addSeparator();
+    file->addAction(tr("&Quit"), QKeySequence::Quit, qApp, &QApplication::closeAllWindows);
+    // PACS query/retrieve and the local store in a dock; arrived series open here.
+    PacsBrowser* pacs = PacsBrowser::addDock(this, menuBar()->addMenu(tr("&PACS")));
+    studies->setStoreFolder(pacs->config().storeFolder);
+    connect(pacs->service(), &PacsService::retrievalFinished, studies, &StudyBrowser::refreshStore);
+    connect(pacs, &PacsBrowser::openSeries, this,
+            [this](const QString& folder, const QString& series) { openPath(folder, series); });
+    addViewMenu();
+    resize(1500, 1000);
+    restoreSettings();
+}
+
+void MainWindow::addViewMenu() {
+    QMenu* menu = menuBar()->addMenu(tr("&View"));
+    layoutActions_ = new QActionGroup(this);
+    const std::array<std::pair<ViewLayout::Arrangement, QString>, 3> layouts{{
+        {ViewLayout::Arrangement::Grid2x2, tr("&2 x 2: Axial, Coronal, Sagittal, 3D")},
+        {ViewLayout::Arrangement::Row1x3, tr("1 x &3: Axial, Coronal, Sagittal")},
+        {ViewLayout::Arrangement::Single, tr("1 x &1: Active View")},
+    }};
+    int key = Qt::Key_1;
+    for (const auto& [arrangement, text] : layouts) {
+        QAction* action = menu->addAction(text);
+        action->setShortcut(QKeySequence(Qt::CTRL | static_cast<Qt::Key>(key++)));
+        action->setCheckable(true);
+        action->setChecked(arrangement == layout_->arrangement());
+        action->setData(ViewLayout::name(arrangement));
+        layoutActions_->addAction(action);
+        connect(action, &QAction::triggered, layout_,
+                [this, arrangement] { layout_->setArrangement(arrangement); });
+    }
+    connect(layout_, &ViewLayout::arrangementChanged, this,
+            [this](ViewLayout::Arrangement arrangement) {
+                for (QAction* action : layoutActions_->actions()) {
+                    action->setChecked(action->data().toString() == ViewLayout::name(arrangement));
+                }
+            });
+    menu->addAction(tr("&Maximize or Restore Active View"), QKeySequence(tr("Ctrl+0")), layout_,
+                    [this] {
+                        if (layout_->maximized()) {
+                            layout_->restore();
+                        } else {
+                            layout_->maximize(layout_->activeView());
+                        }
+                    });
+    addRenderBackendMenu(menu, volumeView_); // this computer or a render server
+    menu->addSeparator();
+    for (QDockWidget* dock : findChildren<QDockWidget*>()) {
+        menu->addAction(dock->toggleViewAction());
+    }
+}
+
+void MainWindow::saveSettings() const {
+    QSettings settings;
+    settings.setValue(QStringLiteral("window/geometry"), saveGeometry());
+    settings.setValue(QStringLiteral("window/state"), saveState());
+    // A maximized view is saved as 1x1 of that view.
+    settings.setValue(QStringLiteral("view/layout"), ViewLayout::name(layout_->arrangement()));
+    settings.setValue(QStringLiteral("view/active"), layout_->activeIndex());
+    settings.setValue(QStringLiteral("files/lastFolder"), lastFolder_);
+}
+
+void MainWindow::restoreSettings() {
+    const QSettings settings;
+    restoreGeometry(settings.value(QStringLiteral("window/geometry")).toByteArray());
+    restoreState(settings.value(QStringLiteral("window/state")).toByteArray());
+    const int active = settings.value(QStringLiteral("view/active"), 0).toInt();
+    if (active >= 0 && active < ViewLayout::kViewCount) {
+        layout_->setActiveView(layout_->views()[static_cast<std::size_t>(active)]);
+    }
+    const auto arrangement =
+        ViewLayout::fromName(settings.value(QStringLiteral("view/layout")).toString());
+    layout_->setArrangement(arrangement.value_or(ViewLayout::Arrangement::Grid2x2));
+    lastFolder_ = settings.value(QStringLiteral("files/lastFolder")).toString();
+}
+
+void MainWindow::closeEvent(QCloseEvent* event) {
+    saveSettings();
+    QMainWindow::closeEvent(event);
+}
+
+bool MainWindow::saveScreenshot(const QString& file, ScreenshotScope scope, QString* error) {
+    const QImage image =
+        scope == ScreenshotScope::ActiveView ? grabView(layout_->activeView()) : grabArea(layout_);
+    return writePng(image, file, error);
+}
+
+void MainWindow::screenshotDialog(ScreenshotScope scope) {
+    const QString folder =
+        QStandardPaths::writableLocation(QStandardPaths::PicturesLocation).isEmpty()
+            ? lastFolder_
+            : QStandardPaths::writableLocation(QStandardPaths::PicturesLocation);
+    const QString name = scope == ScreenshotScope::ActiveView ? QStringLiteral("lucent-view.png")
+                                                              : QStringLiteral("lucent-layout.png");
+    QString file = QFileDialog::getSaveFileName(this, tr("Save screenshot"),
+                                                QDir(folder).filePath(name), tr("PNG (*.png)"));
+    if (file.isEmpty()) {
+        return;
+    }
+    if (!file.endsWith(QStringLiteral(".png"), Qt::CaseInsensitive)) {
+        file += QStringLiteral(".png");
+    }
+    QString error;
+    if (saveScreenshot(file, scope, &error)) {
+        statusBar()->showMessage(tr("Saved %1").arg(file), 5000);
+    } else {
+        QMessageBox::warning(this, tr("Screenshot"), tr("Could not save %1: %2").arg(file, error));
+    }
+}
+
+MainWindow::~MainWindow() = default;
+
+SliceView* MainWindow::view(Orientation orientation) const {
+    return views_[static_cast<std::size_t>(orientation)];
+}
+
+void MainWindow::openFolderDialog() {
+    const QString dir =
+        QFileDialog::getExistingDirectory(this, tr("Open DICOM folder"), lastFolder_);
+    if (!dir.isEmpty()) {
+        openPath(dir);
+    }
+}
+
+void MainWindow::openFileDialog() {
+    const QString file = QFileDialog::getOpenFileName(
+        this, tr("Open volume"), lastFolder_,
+        tr("Volumes (*.dcm *.DCM *.mhd *.nii *.nii.gz *.inv3 DICOMDIR);;All files (*)"));
+    if (!file.isEmpty()) {
+        openPath(file);
+    }
+}
+
+void MainWindow::openPath(const QString& path, const QString& series) {
+    if (QFileInfo::exists(path)) {
+        lastFolder_ = folderOf(path);
+        QSettings().setValue(QStringLiteral("files/lastFolder"), lastFolder_);
+    }
+    loader_->load(path, series);
+}
+
+void MainWindow::setVolume(std::shared_ptr<const Volume> volume) {
+    volume_ = std::move(volume);
+    if (volume_ && !volume_->empty()) {
+        // Start at the middle voxel, so that thin slices fall on voxel centres.
+        cursor_->setPoint(volume_->geometry().toPatient(glm::dvec3(volume_->dims() / 2)));
+        const WindowLevel window = defaultWindow(*volume_);
+        cursor_->setWindowStep(window.step);
+        cursor_->setWindow(window.center, window.width);
+        info_->setText(describe(*volume_));
+        info_->setToolTip(QString::fromStdString([&] {
+            std::string all;
+            for (const std::string& w : volume_->warnings) {
+                all += (all.empty() ? "" : "\n") + w;
+            }
+            return all;
+        }()));
+        const QString title = QString::fromStdString(volume_->description);
+        setWindowTitle(title.isEmpty() ? QStringLiteral("Lucent")
+                                       : QStringLiteral("%1 - Lucent").arg(title));
+    } else {
+        info_->setText(tr("No volume."));
+        info_->setToolTip({});
+        setWindowTitle(QStringLiteral("Lucent"));
+    }
+    for (SliceView* view : views_) {
+        view->setVolume(volume_);
+    }
+    volumeView_->setVolume(volume_); // picks ct-bone or mr-default and tells the editor
+    tfEditor_->setVolume(volume_);   // the histogram
+}
+
+} // namespace lucent

@@ -1,0 +1,371 @@
+#include "ui/mpr/SliceView.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <QMouseEvent>
+#include <QPainter>
+#include <QTimer>
+#include <QWheelEvent>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "ui/mpr/MprCursor.h"
+#include "ui/mpr/SliceOverlay.h"
+
+namespace lucent {
+
+namespace {
+
+int dominantAxis(const glm::dvec3& d) {
+    const glm::dvec3 a = glm::abs(d);
+    return a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
+}
+
+bool samePlane(const SlicePlane& a, const SlicePlane& b) {
+    return a.centre == b.centre && a.u == b.u && a.v == b.v && a.pixelSize == b.pixelSize &&
+           a.width == b.width && a.height == b.height && a.slabThickness == b.slabThickness &&
+           a.slabMode == b.slabMode;
+}
+
+constexpr int kClickSlop = 3; // pixels a press may move and still count as a click
+
+} // namespace
+
+SliceView::SliceView(Orientation orientation, MprCursor* cursor, QWidget* parent)
+    : QWidget(parent), orientation_(orientation), cursor_(cursor), cine_(new QTimer(this)) {
+    setAttribute(Qt::WA_OpaquePaintEvent);
+    setFocusPolicy(Qt::WheelFocus);
+    setMouseTracking(true);
+    // The menu opens on a right-click without a drag (right-drag is window/level).
+    setContextMenuPolicy(Qt::PreventContextMenu);
+    connect(cursor_, &MprCursor::pointChanged, this, qOverload<>(&QWidget::update));
+    connect(cursor_, &MprCursor::windowChanged, this, qOverload<>(&QWidget::update));
+    connect(cursor_, &MprCursor::rotationChanged, this, qOverload<>(&QWidget::update));
+    cine_->setInterval(66); // about 15 slices a second
+    connect(cine_, &QTimer::timeout, this, &SliceView::nextCineFrame);
+}
+
+void SliceView::setVolume(std::shared_ptr<const Volume> volume) {
+    volume_ = std::move(volume);
+    samplesValid_ = false;
+    imageValid_ = false;
+    samples_.clear();
+    measurements_.clear();
+    update();
+}
+
+SlicePlane SliceView::plane() const {
+    const bool none = !volume_ || volume_->empty();
+    const VolumeGeometry g = none ? VolumeGeometry{} : volume_->geometry();
+    const glm::dvec3 mid = none ? cursor_->point() : volumeCentre(g);
+    // The pixel size fits the unrotated plane: turning a plane does not zoom it.
+    SlicePlane p = standardPlane(g, orientation_, mid, width(), height());
+    const glm::dmat3& rotation = cursor_->rotation(orientation_);
+    p.u = rotation * p.u;
+    p.v = rotation * p.v;
+    p.pixelSize /= zoom_;
+    p.slabThickness = slabThickness_;
+    p.slabMode = slabMode_;
+    // Through the crosshair point along the normal, centred on the volume (plus the pan).
+    const glm::dvec3 n = p.normal();
+    p.centre = mid + n * glm::dot(cursor_->point() - mid, n) + p.u * pan_.x + p.v * pan_.y;
+    return p;
+}
+
+double SliceView::sliceStep() const {
+    if (!volume_ || volume_->empty()) {
+        return 1.0;
+    }
+    return lucent::sliceStep(volume_->geometry(), plane().normal());
+}
+
+glm::dvec3 SliceView::positiveNormal() const {
+    const glm::dvec3 n = plane().normal();
+    return n[dominantAxis(n)] < 0.0 ? -n : n;
+}
+
+double SliceView::slicePosition() const {
+    return glm::dot(cursor_->point(), positiveNormal());
+}
+
+bool SliceView::moveSlices(double slices) {
+    if (!volume_ || volume_->empty()) {
+        return false;
+    }
+    const VolumeGeometry& g = volume_->geometry();
+    const glm::dvec3 n = plane().normal();
+    const glm::dvec3 mid = volumeCentre(g);
+    // Keep the plane within the volume's voxel-centre box along the normal.
+    double reach = 0.0;
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::dvec3 ijk((corner & 1) ? g.dims.x - 1 : 0, (corner & 2) ? g.dims.y - 1 : 0,
+                             (corner & 4) ? g.dims.z - 1 : 0);
+        reach = std::max(reach, std::abs(glm::dot(g.toPatient(ijk) - mid, n)));
+    }
+    const glm::dvec3 point = cursor_->point();
+    const double now = glm::dot(point - mid, n);
+    const double wanted = std::clamp(now + slices * sliceStep(), -reach, reach);
+    cursor_->setPoint(point + n * (wanted - now));
+    return std::abs(wanted - now) > 1e-9;
+}
+
+void SliceView::setCrosshair(const QPointF& pos) {
+    if (!volume_ || volume_->empty()) {
+        return;
+    }
+    cursor_->setPoint(plane().pointAt(pos.x(), pos.y()));
+}
+
+void SliceView::setZoom(double zoom, const QPointF& anchor) {
+    zoom = std::clamp(zoom, 0.05, 64.0);
+    const SlicePlane before = plane();
+    // The plane point under the anchor stays: the centre moves by the anchor's offset
+    // times the change of pixel size.
+    const double oldSize = before.pixelSize;
+    const double newSize = oldSize * zoom_ / zoom;
+    pan_.x += (anchor.x() - 0.5 * (before.width - 1)) * (oldSize - newSize);
+    pan_.y += (anchor.y() - 0.5 * (before.height - 1)) * (oldSize - newSize);
+    zoom_ = zoom;
+    update();
+}
+
+void SliceView::resetZoomAndPan() {
+    zoom_ = 1.0;
+    pan_ = glm::dvec2(0.0);
+    update();
+}
+
+void SliceView::setSlab(double thicknessMm, SlabMode mode) {
+    slabThickness_ = std::max(0.0, thicknessMm);
+    slabMode_ = mode;
+    if (slabThickness_ > 0.0) {
+        lastSlabThickness_ = slabThickness_;
+    }
+    update();
+}
+
+void SliceView::setTool(Tool tool) {
+    tool_ = tool;
+    measurements_.cancel();
+    setCursor(tool == Tool::Crosshair ? Qt::ArrowCursor : Qt::CrossCursor);
+    update();
+}
+
+void SliceView::clearMeasurements() {
+    measurements_.clear();
+    update();
+}
+
+QImage SliceView::image() {
+    const SlicePlane p = plane();
+    if (!volume_ || volume_->empty() || p.width <= 0 || p.height <= 0) {
+        return {};
+    }
+    if (!samplesValid_ || !samePlane(p, sampledPlane_)) {
+        samples_ = sampleImage(*volume_, p);
+        sampledPlane_ = p;
+        samplesValid_ = true;
+        imageValid_ = false;
+    }
+    const double center = cursor_->windowCenter();
+    const double width = cursor_->windowWidth();
+    if (!imageValid_ || center != imageCenter_ || width != imageWidth_ ||
+        image_.size() != QSize(p.width, p.height)) {
+        image_ = QImage(p.width, p.height, QImage::Format_Grayscale8);
+        for (int y = 0; y < p.height; ++y) {
+            uchar* line = image_.scanLine(y);
+            const float* row = samples_.data() + static_cast<std::size_t>(y) * p.width;
+            for (int x = 0; x < p.width; ++x) {
+                line[x] = windowToGrey(row[x], center, width);
+            }
+        }
+        imageCenter_ = center;
+        imageWidth_ = width;
+        imageValid_ = true;
+    }
+    return image_;
+}
+
+double SliceView::valueAt(const QPointF& pos) {
+    if (image().isNull()) {
+        return std::nan("");
+    }
+    const int x = static_cast<int>(std::floor(pos.x()));
+    const int y = static_cast<int>(std::floor(pos.y()));
+    if (x < 0 || y < 0 || x >= sampledPlane_.width || y >= sampledPlane_.height) {
+        return std::nan("");
+    }
+    return samples_[static_cast<std::size_t>(y) * sampledPlane_.width + x];
+}
+
+QString SliceView::sliceText() const {
+    const glm::dvec3 n = positiveNormal();
+    const char axis = "xyz"[dominantAxis(n)];
+    QString where = QStringLiteral("%1 = %2 mm").arg(QChar(axis)).arg(slicePosition(), 0, 'f', 1);
+    const VolumeGeometry& g = volume_->geometry();
+    for (int a = 0; a < 3; ++a) {
+        if (std::abs(glm::dot(glm::dvec3(g.direction[a]), n)) > 0.999) {
+            const long index = std::lround(g.toIndex(cursor_->point())[a]);
+            where = QStringLiteral("Slice %1/%2  ").arg(index + 1).arg(g.dims[a]) + where;
+        }
+    }
+    return where;
+}
+
+void SliceView::paintEvent(QPaintEvent*) {
+    QPainter painter(this);
+    painter.fillRect(rect(), Qt::black);
+    if (!volume_ || volume_->empty()) {
+        painter.setPen(QColor(160, 160, 160));
+        painter.drawText(rect(), Qt::AlignCenter,
+                         QStringLiteral("%1\nNo volume (File > Open)")
+                             .arg(QString::fromLatin1(orientationName(orientation_))));
+        return;
+    }
+    const SlicePlane p = plane();
+    painter.drawImage(0, 0, image());
+
+    SliceOverlay overlay;
+    overlay.orientation = orientation_;
+    overlay.plane = p;
+    overlay.crosshair = cursor_->point();
+    for (const Orientation o : {Orientation::Axial, Orientation::Coronal, Orientation::Sagittal}) {
+        overlay.normals[static_cast<std::size_t>(o)] = cursor_->planeNormal(o);
+    }
+    overlay.topLeft << QString::fromLatin1(orientationName(orientation_));
+    if (cursor_->rotation(orientation_) != glm::dmat3(1.0)) {
+        overlay.topLeft.back() += QStringLiteral(" (oblique)");
+    }
+    if (slabThickness_ > 0.0) {
+        const char* modes[] = {"MIP", "MinIP", "Average"};
+        overlay.topLeft << QStringLiteral("%1 %2 mm")
+                               .arg(QString::fromLatin1(modes[static_cast<int>(slabMode_)]))
+                               .arg(slabThickness_, 0, 'g', 4);
+    }
+    if (zoom_ != 1.0) {
+        overlay.topLeft << QStringLiteral("Zoom %1x").arg(zoom_, 0, 'f', 2);
+    }
+    if (cine_->isActive()) {
+        overlay.topLeft << QStringLiteral("Cine");
+    }
+    overlay.topRight = seriesOverlayLines(*volume_);
+    overlay.bottomLeft = sliceText();
+    overlay.bottomRight = QStringLiteral("W %1  L %2")
+                              .arg(cursor_->windowWidth(), 0, 'g', 5)
+                              .arg(cursor_->windowCenter(), 0, 'g', 5);
+    paintSliceOverlay(painter, rect(), overlay);
+    const QString unit = volume_->modality == "CT" ? QStringLiteral("HU") : QString();
+    measurements_.paint(painter, p, 0.5 * sliceStep() + 0.5 * slabThickness_, unit);
+}
+
+void SliceView::wheelEvent(QWheelEvent* event) {
+    // One notch is 120; finer wheels add up until they make a whole notch.
+    wheelRemainder_ += event->angleDelta().y();
+    const int notches = wheelRemainder_ / 120;
+    wheelRemainder_ -= notches * 120;
+    if (notches != 0) {
+        if (event->modifiers() & Qt::ControlModifier) {
+            setZoom(zoom_ * std::pow(zoomStepFactor(), notches), event->position());
+        } else {
+            moveSlices(notches);
+        }
+    }
+    event->accept();
+}
+
+void SliceView::rotateOthers(const QPointF& pos) {
+    const glm::dvec2 c = plane().pixelOf(cursor_->point());
+    const double angle = std::atan2(pos.y() - c.y, pos.x() - c.x);
+    // Screen angles grow from u towards v: a right-handed turn about n = u x v.
+    const glm::dmat3 turn(
+        glm::rotate(glm::dmat4(1.0), angle - dragAngle_, cursor_->planeNormal(orientation_)));
+    for (const Orientation o : {Orientation::Axial, Orientation::Coronal, Orientation::Sagittal}) {
+        if (o != orientation_) {
+            cursor_->setRotation(o, turn * dragRotations_[static_cast<std::size_t>(o)]);
+        }
+    }
+}
+
+void SliceView::mousePressEvent(QMouseEvent* event) {
+    dragStart_ = event->position().toPoint();
+    const bool canMeasure = volume_ && !volume_->empty();
+    if (event->button() == Qt::LeftButton && (event->modifiers() & Qt::ShiftModifier)) {
+        drag_ = Drag::Rotate;
+        const glm::dvec2 c = plane().pixelOf(cursor_->point());
+        dragAngle_ = std::atan2(event->position().y() - c.y, event->position().x() - c.x);
+        for (const Orientation o :
+             {Orientation::Axial, Orientation::Coronal, Orientation::Sagittal}) {
+            dragRotations_[static_cast<std::size_t>(o)] = cursor_->rotation(o);
+        }
+    } else if (event->button() == Qt::LeftButton && tool_ != Tool::Crosshair && canMeasure) {
+        drag_ = Drag::Measure;
+        const glm::dvec3 p = plane().pointAt(event->position().x(), event->position().y());
+        measureBegan_ = !measurements_.drawing();
+        if (measureBegan_) {
+            measurements_.begin(
+                tool_ == Tool::Distance ? MeasurementKind::Distance : MeasurementKind::Ellipse, p);
+        }
+        update();
+    } else if (event->button() == Qt::LeftButton) {
+        drag_ = Drag::Crosshair;
+        setCrosshair(event->position());
+    } else if (event->button() == Qt::RightButton) {
+        drag_ = Drag::Window;
+        dragCenter_ = cursor_->windowCenter();
+        dragWidth_ = cursor_->windowWidth();
+    } else if (event->button() == Qt::MiddleButton) {
+        drag_ = Drag::Pan;
+        dragPan_ = pan_;
+    }
+    event->accept();
+}
+
+void SliceView::mouseMoveEvent(QMouseEvent* event) {
+    const QPoint d = event->position().toPoint() - dragStart_;
+    if (drag_ == Drag::Crosshair) {
+        setCrosshair(event->position());
+    } else if (drag_ == Drag::Window) {
+        const double step = cursor_->windowStep();
+        cursor_->setWindow(dragCenter_ + d.y() * step, dragWidth_ + d.x() * step);
+    } else if (drag_ == Drag::Pan) {
+        // The image follows the mouse: the centre moves the other way.
+        pan_ = dragPan_ - glm::dvec2(d.x(), d.y()) * plane().pixelSize;
+        update();
+    } else if (drag_ == Drag::Rotate) {
+        rotateOthers(event->position());
+    } else if (measurements_.drawing()) {
+        measurements_.moveTo(plane().pointAt(event->position().x(), event->position().y()));
+        update();
+    }
+    event->accept();
+}
+
+void SliceView::mouseReleaseEvent(QMouseEvent* event) {
+    const bool click = (event->position().toPoint() - dragStart_).manhattanLength() <= kClickSlop;
+    const bool ends = (event->button() == Qt::RightButton && drag_ == Drag::Window) ||
+                      (event->button() == Qt::MiddleButton && drag_ == Drag::Pan) ||
+                      (event->button() == Qt::LeftButton && drag_ != Drag::Window &&
+                       drag_ != Drag::Pan && drag_ != Drag::None);
+    if (!ends) {
+        event->accept();
+        return;
+    }
+    if (drag_ == Drag::Measure) {
+        // A drag ends the measurement here; a click leaves it open for the second click.
+        const glm::dvec3 p = plane().pointAt(event->position().x(), event->position().y());
+        if (!click || !measureBegan_) {
+            measurements_.finish(p, *volume_, plane());
+        }
+        update();
+    } else if (drag_ == Drag::Window && click) {
+        cursor_->setWindow(dragCenter_, dragWidth_);
+        showContextMenu(event->globalPosition().toPoint());
+    } else {
+        mouseMoveEvent(event);
+    }
+    drag_ = Drag::None;
+    event->accept();
+}
+
+} // namespace lucent

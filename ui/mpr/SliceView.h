@@ -1,0 +1,145 @@
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include <QImage>
+#include <QPoint>
+#include <QWidget>
+
+#include "core/mpr/PlaneSampler.h"
+#include "core/volume/Volume.h"
+#include "ui/mpr/SliceMeasurements.h"
+
+class QMenu;
+class QPainter;
+class QTimer;
+
+namespace lucent {
+
+class MprCursor;
+
+// One MPR view: the plane of its orientation (turned by the cursor's rotation for
+// oblique planes) through the shared crosshair point, the volume fitted to the widget
+// at zoom 1.
+// Mouse: wheel = one slice along the plane normal (forward goes deeper); ctrl+wheel =
+// zoom by zoomStepFactor() per notch about the mouse; right-drag = window (right =
+// wider) and level (down = higher), cursor->windowStep() units per pixel; a right-click
+// without a drag opens the context menu; middle-drag = pan; left-click/drag = crosshair
+// (or the measurement tool); shift+left-drag = rotates the other two planes about this
+// plane's normal.
+// Keys: 1-8 window presets (brain, subdural, stroke, lung, mediastinum, abdomen, liver,
+// bone) for all linked views; S = slab mode (thin, MIP, MinIP, average); [ and ] = slab
+// thickness; D = distance tool; E = ellipse ROI tool; Esc = crosshair tool; Delete =
+// clear measurements; C = cine on/off; R = reset zoom and pan; O = reset obliquity;
+// Menu = the context menu.
+class SliceView : public QWidget {
+    Q_OBJECT
+
+public:
+    enum class Tool { Crosshair, Distance, Ellipse };
+
+    SliceView(Orientation orientation, MprCursor* cursor, QWidget* parent = nullptr);
+
+    void setVolume(std::shared_ptr<const Volume> volume);
+    const std::shared_ptr<const Volume>& volume() const { return volume_; }
+    Orientation orientation() const { return orientation_; }
+
+    // The plane shown now: through the crosshair point, centred on the volume (plus the
+    // pan), the volume fitted at zoom 1, pixel (x, y) at widget position (x, y).
+    SlicePlane plane() const;
+    // How far one wheel notch moves the plane, mm.
+    double sliceStep() const;
+    // The plane's position along the patient axis closest to its normal, mm (x, y or z).
+    double slicePosition() const;
+    // The grey image of the current plane and window, as painted under the overlays.
+    QImage image();
+    // The resliced value (HU for CT) at a widget position; NaN outside the volume.
+    double valueAt(const QPointF& pos);
+
+    // Zoom: 1 fits the volume; each ctrl+wheel notch multiplies it by zoomStepFactor().
+    double zoom() const { return zoom_; }
+    static double zoomStepFactor() { return 1.25; }
+    // Sets the zoom keeping the plane point under `anchor` (widget pixels) in place.
+    void setZoom(double zoom, const QPointF& anchor);
+    // The pan: how far the image centre moved from the volume's, mm along u and v.
+    glm::dvec2 pan() const { return pan_; }
+    void resetZoomAndPan();
+
+    // Thick slab along the plane normal; a thickness of 0 is a thin slice.
+    double slabThickness() const { return slabThickness_; }
+    SlabMode slabMode() const { return slabMode_; }
+    void setSlab(double thicknessMm, SlabMode mode);
+
+    void applyWindowPreset(int index); // into windowPresets(); all linked views follow
+
+    Tool tool() const { return tool_; }
+    void setTool(Tool tool);
+    const SliceMeasurements& measurements() const { return measurements_; }
+    void clearMeasurements();
+
+    bool cineRunning() const;
+    void setCineRunning(bool running);
+    int cineIntervalMs() const;
+
+    // The view's actions (presets, slab, tools, cine, resets), as the context menu shows them.
+    void fillContextMenu(QMenu& menu);
+
+    QSize sizeHint() const override { return {400, 400}; }
+    QSize minimumSizeHint() const override { return {120, 120}; }
+
+protected:
+    void paintEvent(QPaintEvent* event) override;
+    void wheelEvent(QWheelEvent* event) override;
+    void mousePressEvent(QMouseEvent* event) override;
+    void mouseMoveEvent(QMouseEvent* event) override;
+    void mouseReleaseEvent(QMouseEvent* event) override;
+    void keyPressEvent(QKeyEvent* event) override;
+
+private:
+    // The normal flipped so that its strongest patient component is positive.
+    glm::dvec3 positiveNormal() const;
+    // Moves by whole slices; returns whether the plane moved (it stops at the volume's end).
+    bool moveSlices(double slices);
+    void setCrosshair(const QPointF& pos);
+    void rotateOthers(const QPointF& pos);
+    void nextCineFrame();
+    void cycleSlabMode();
+    void changeSlabThickness(int steps);
+    void showContextMenu(const QPoint& globalPos);
+    QString sliceText() const;
+
+    Orientation orientation_;
+    MprCursor* cursor_;
+    std::shared_ptr<const Volume> volume_;
+
+    std::vector<float> samples_;
+    SlicePlane sampledPlane_;
+    bool samplesValid_ = false;
+    QImage image_;
+    double imageCenter_ = 0.0;
+    double imageWidth_ = 0.0;
+    bool imageValid_ = false;
+
+    double zoom_ = 1.0;
+    glm::dvec2 pan_{0.0};
+    double slabThickness_ = 0.0;
+    double lastSlabThickness_ = 10.0;
+    SlabMode slabMode_ = SlabMode::Mip;
+    Tool tool_ = Tool::Crosshair;
+    SliceMeasurements measurements_;
+    QTimer* cine_;
+
+    enum class Drag { None, Crosshair, Window, Pan, Rotate, Measure };
+    Drag drag_ = Drag::None;
+    QPoint dragStart_;
+    double dragCenter_ = 0.0;
+    double dragWidth_ = 0.0;
+    glm::dvec2 dragPan_{0.0};
+    double dragAngle_ = 0.0;
+    std::array<glm::dmat3, 3> dragRotations_{};
+    bool measureBegan_ = false; // this press began the measurement being drawn
+    int wheelRemainder_ = 0;
+};
+
+} // namespace lucent

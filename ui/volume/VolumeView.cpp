@@ -1,0 +1,472 @@
+#include "ui/volume/VolumeView.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <QKeyEvent>
+#include <QMouseEvent>
+#include <QOpenGLContext>
+#include <QPainter>
+#include <QPen>
+#include <QStackedLayout>
+#include <QWheelEvent>
+
+#include "core/scene/ViewFrame.h"
+#include "ui/volume/VolumeSurfaces.h"
+
+namespace lucent {
+
+namespace {
+
+// Why a 4.3 core context cannot be made here; empty when it can.
+QString glUnavailableReason() {
+    QOpenGLContext probe;
+    probe.setFormat(VolumeView::surfaceFormat());
+    if (!probe.create()) {
+        return QObject::tr("no OpenGL context on this display");
+    }
+    const QSurfaceFormat f = probe.format();
+    if (f.version() < qMakePair(4, 3) || f.profile() != QSurfaceFormat::CoreProfile) {
+        return QObject::tr("OpenGL %1.%2 only; the GPU renderer needs 4.3 core")
+            .arg(f.majorVersion())
+            .arg(f.minorVersion());
+    }
+    return {};
+}
+
+TransferFunction defaultTransferFunction(const Volume* volume) {
+    const bool mr = volume != nullptr && volume->modality == "MR";
+    try {
+        return loadPreset(mr ? "mr-default" : "ct-bone");
+    } catch (const std::exception&) {
+        // No presets installed: a grey ramp over the data.
+        const auto [lo, hi] = volume ? volume->valueRange() : std::pair{0.0, 1.0};
+        TransferFunction tf;
+        tf.name = "ramp";
+        tf.opacity = {{lo, 0.0}, {hi > lo ? hi : lo + 1.0, 0.5}};
+        tf.colour = {{lo, glm::dvec3(1.0)}};
+        return tf;
+    }
+}
+
+} // namespace
+
+VolumeView::VolumeView(QWidget* parent, Backend preferred)
+    : QWidget(parent), local_(std::make_unique<LocalRenderBackend>()),
+      remote_(std::make_unique<RemoteRenderBackend>()),
+      transferFunction_(defaultTransferFunction(nullptr)) {
+    setMinimumSize(120, 120);
+    setFocusPolicy(Qt::StrongFocus);
+    auto* layout = new QStackedLayout(this);
+    layout->setContentsMargins(0, 0, 0, 0);
+    for (RenderBackend* backend :
+         {static_cast<RenderBackend*>(local_.get()), static_cast<RenderBackend*>(remote_.get())}) {
+        connect(backend, &RenderBackend::frameReady, this, [this, backend](const BackendFrame& f) {
+            if (backend == &activeBackend()) {
+                onFrame(f);
+            }
+        });
+        connect(backend, &RenderBackend::frameFailed, this, [this, backend](const QString& why) {
+            if (backend == &activeBackend()) {
+                onFrameFailed(why);
+            }
+        });
+    }
+    connect(local_.get(), &LocalRenderBackend::renderWanted, this, &VolumeView::updateSurface);
+    // Not now: the GL surface is in the middle of painting and is replaced.
+    connect(local_.get(), &LocalRenderBackend::gpuFailed, this, &VolumeView::fallBackToCpu,
+            Qt::QueuedConnection);
+    connect(remote_.get(), &RemoteRenderBackend::statusChanged, this, [this] {
+        if (backend_ == Backend::Remote) {
+            frameError_.clear();
+            updateNotice();
+        }
+    });
+    if (preferred == Backend::Gpu) {
+        glFailure_ = glUnavailableReason();
+    } else {
+        glFailure_ = tr("the CPU renderer was chosen");
+    }
+    useSurface(glFailure_.isEmpty() ? Backend::Gpu : Backend::Cpu);
+}
+
+VolumeView::~VolumeView() {
+    // The backends outlive the surface; nothing they say reaches a view going away.
+    local_->disconnect(this);
+    remote_->disconnect(this);
+}
+
+QSurfaceFormat VolumeView::surfaceFormat() {
+    QSurfaceFormat format = QSurfaceFormat::defaultFormat();
+    if (format.version() < qMakePair(4, 3) || format.profile() != QSurfaceFormat::CoreProfile) {
+        format.setVersion(4, 3);
+        format.setProfile(QSurfaceFormat::CoreProfile);
+    }
+    return format;
+}
+
+RenderBackend& VolumeView::activeBackend() {
+    if (backend_ == Backend::Remote) {
+        return *remote_;
+    }
+    return *local_;
+}
+
+void VolumeView::useSurface(Backend backend) {
+    auto* layout = static_cast<QStackedLayout*>(this->layout());
+    const bool wasRemote = backend_ == Backend::Remote;
+    // A GL surface releases the local backend's GL resources as it goes.
+    surface_.reset();
+    backend_ = backend;
+    if (backend == Backend::Gpu) {
+        local_->setDevice(LocalRenderBackend::Device::Gpu);
+        surface_ = std::make_unique<VolumeGlSurface>(this);
+    } else {
+        local_->setDevice(LocalRenderBackend::Device::Cpu);
+        surface_ = std::make_unique<VolumeFrameSurface>(this);
+    }
+    if (backend != Backend::Remote && wasRemote) {
+        remote_->disconnectFromServer();
+    }
+    layout->addWidget(surface_.get());
+    layout->setCurrentWidget(surface_.get());
+    frameError_.clear();
+    updateNotice();
+    emit backendChanged(backend_);
+    requestRender();
+}
+
+void VolumeView::renderOnServer(const RemoteServerSettings& settings) {
+    remote_->setVolume(volume_);
+    if (backend_ != Backend::Remote) {
+        useSurface(Backend::Remote);
+    }
+    if (settings != remote_->settings() || remote_->status() == BackendStatus::Failed ||
+        remote_->status() == BackendStatus::Disconnected) {
+        remote_->connectTo(settings);
+    }
+    requestRender();
+}
+
+void VolumeView::renderLocally() {
+    if (backend_ != Backend::Remote) {
+        return;
+    }
+    useSurface(glFailure_.isEmpty() ? Backend::Gpu : Backend::Cpu);
+}
+
+void VolumeView::fallBackToCpu(const QString& reason) {
+    if (backend_ != Backend::Gpu) {
+        return;
+    }
+    glFailure_ = reason;
+    useSurface(Backend::Cpu);
+}
+
+void VolumeView::updateNotice() {
+    QString line;
+    if (backend_ == Backend::Cpu) {
+        line = tr("3D on the CPU: %1").arg(glFailure_);
+    } else if (backend_ == Backend::Remote) {
+        line = tr("3D on the server: %1").arg(remote_->statusMessage());
+    }
+    if (!frameError_.isEmpty()) {
+        line = line.isEmpty() ? frameError_ : line + "; " + frameError_;
+    }
+    if (line != notice_) {
+        notice_ = line;
+        emit noticeChanged(notice_);
+        updateSurface();
+    }
+}
+
+void VolumeView::updateSurface() {
+    if (surface_) {
+        surface_->update();
+    }
+}
+
+void VolumeView::setVolume(std::shared_ptr<const Volume> volume) {
+    volume_ = std::move(volume);
+    ++volumeGeneration_;
+    // The GPU caster is remade on its next frame, in its own context.
+    local_->setVolume(volume_);
+    remote_->setVolume(volume_);
+    lastFrame_ = {};
+    lastFrameCurrent_ = false;
+    transferFunction_ = defaultTransferFunction(volume_.get());
+    clip_ = ClipBox{};
+    camera_ = Camera{};
+    emit volumeChanged();
+    emit transferFunctionChanged(transferFunction_);
+    emit cameraChanged(camera_);
+    requestRender();
+}
+
+void VolumeView::setTransferFunction(const TransferFunction& tf) {
+    if (tf == transferFunction_) {
+        return;
+    }
+    transferFunction_ = tf;
+    emit transferFunctionChanged(transferFunction_);
+    requestRender();
+}
+
+void VolumeView::setCamera(const Camera& camera) {
+    camera_ = camera;
+    emit cameraChanged(camera_);
+    requestRender();
+}
+
+void VolumeView::resetCamera() {
+    setCamera(Camera{});
+}
+
+void VolumeView::setMode(RenderMode mode) {
+    mode_ = mode;
+    requestRender();
+}
+
+void VolumeView::setIsoValue(double value) {
+    isoValue_ = value;
+    requestRender();
+}
+
+void VolumeView::setClipBox(const ClipBox& clip) {
+    clip_ = clip;
+    emit clipBoxChanged(clip_);
+    requestRender();
+}
+
+void VolumeView::setClipHandlesShown(bool shown) {
+    if (shown == clipHandlesShown_) {
+        return;
+    }
+    clipHandlesShown_ = shown;
+    emit clipHandlesShownChanged(shown);
+    updateSurface();
+}
+
+ClipHandles VolumeView::clipHandles() const {
+    if (!volume_) {
+        return {};
+    }
+    return lucent::clipHandles(volume_->geometry(), camera_, clip_, QSizeF(size()));
+}
+
+double VolumeView::mmPerPixel(const Camera& camera) const {
+    if (!volume_) {
+        return 0.0;
+    }
+    const int w = std::max(1, width()), h = std::max(1, height());
+    const double distance =
+        camera.distance > 0.0 ? camera.distance : fitDistance(volume_->geometry(), camera, w, h);
+    return 2.0 * distance * std::tan(glm::radians(camera.fieldOfView) * 0.5) / camera.zoom / h;
+}
+
+void VolumeView::setSampling(const SamplingSettings& sampling) {
+    sampling_ = sampling;
+    requestRender();
+}
+
+void VolumeView::requestRender() {
+    if (!surface_) {
+        return;
+    }
+    if (!volume_ || volume_->empty()) {
+        updateSurface();
+        return;
+    }
+    activeBackend().request(description(), FrameOptions{interacting(), quality_});
+}
+
+void VolumeView::resizeEvent(QResizeEvent* event) {
+    QWidget::resizeEvent(event);
+    requestRender();
+}
+
+RenderDescription VolumeView::description() const {
+    const QSize s = size() * devicePixelRatioF();
+    return description(std::max(1, s.width()), std::max(1, s.height()));
+}
+
+RenderDescription VolumeView::description(int width, int height) const {
+    RenderDescription d;
+    d.volume = volume_.get();
+    d.transferFunction = transferFunction_;
+    d.camera = camera_;
+    d.mode = mode_;
+    d.isoValue = isoValue_;
+    d.clip = clip_;
+    d.sampling = sampling_;
+    d.width = width;
+    d.height = height;
+    return d;
+}
+
+QImage VolumeView::grabImage() {
+    if (auto* gl = qobject_cast<VolumeGlSurface*>(surface_.get())) {
+        return gl->grabFramebuffer();
+    }
+    return surface_->grab().toImage();
+}
+
+void VolumeView::renderPending() {
+    if (backend_ != Backend::Remote) {
+        local_->renderPending();
+    }
+}
+
+void VolumeView::onFrame(const BackendFrame& frame) {
+    const RenderDescription still = description();
+    lastFrame_ = frame.interactive ? scaledTo(frame.image, still.width, still.height) : frame.image;
+    lastFrameCurrent_ = frame.current;
+    if (!frameError_.isEmpty()) {
+        frameError_.clear();
+        updateNotice();
+    }
+    emit renderedFrame(frame.stats, frame.interactive);
+    if (backend_ == Backend::Remote) {
+        updateSurface(); // local frames come from inside the surface's paint
+    }
+}
+
+void VolumeView::onFrameFailed(const QString& reason) {
+    frameError_ = tr("Cannot render: %1").arg(reason);
+    updateNotice();
+}
+
+void VolumeView::paintFrame(QPainter& painter) {
+    const QRectF area(QPointF(0, 0), QSizeF(painter.device()->width(), painter.device()->height()));
+    painter.fillRect(area, Qt::black);
+    if (!volume_ || volume_->empty()) {
+        painter.setPen(Qt::gray);
+        painter.drawText(area, Qt::AlignCenter, tr("No volume"));
+    } else if (!lastFrame_.pixels.empty()) {
+        const QImage image(lastFrame_.pixels.data(), lastFrame_.width, lastFrame_.height,
+                           4 * lastFrame_.width, QImage::Format_RGBA8888);
+        painter.setRenderHint(QPainter::SmoothPixmapTransform, false);
+        painter.drawImage(area, image);
+        if (clipHandlesShown_) {
+            paintClipBox(painter);
+        }
+    }
+    if (!notice_.isEmpty()) {
+        painter.setPen(QColor(255, 200, 80));
+        painter.drawText(area.adjusted(6, 4, -6, -4),
+                         Qt::AlignLeft | Qt::AlignTop | Qt::TextWordWrap, notice_);
+    }
+}
+
+void VolumeView::paintClipBox(QPainter& painter) const {
+    painter.save();
+    painter.setRenderHint(QPainter::Antialiasing, true);
+    // The device may have more pixels than the widget (high-DPI): draw in widget units.
+    painter.scale(double(painter.device()->width()) / std::max(1, width()),
+                  double(painter.device()->height()) / std::max(1, height()));
+    const QSizeF viewSize(size());
+    painter.setPen(QPen(QColor(255, 220, 60, 170), 1.0));
+    for (const auto& [a, b] : clipEdges(volume_->geometry(), camera_, clip_, viewSize)) {
+        if (a != b) {
+            painter.drawLine(a, b);
+        }
+    }
+    const ClipHandles handles = clipHandles();
+    for (std::size_t n = 0; n < handles.size(); ++n) {
+        if (!handles[n].visible) {
+            continue;
+        }
+        const bool active = dragHandle_ == int(n);
+        painter.setPen(QPen(QColor(255, 220, 60), 1.5));
+        painter.setBrush(active ? QColor(255, 220, 60) : QColor(40, 40, 40, 160));
+        painter.drawEllipse(handles[n].screen, kHandleRadius * 0.6, kHandleRadius * 0.6);
+    }
+    painter.restore();
+}
+
+void VolumeView::keyPressEvent(QKeyEvent* event) {
+    if (event->key() == Qt::Key_B && event->modifiers() == Qt::NoModifier) {
+        setClipHandlesShown(!clipHandlesShown_);
+        return;
+    }
+    QWidget::keyPressEvent(event);
+}
+
+void VolumeView::mousePressEvent(QMouseEvent* event) {
+    if (dragButton_ != Qt::NoButton) {
+        return;
+    }
+    const Qt::MouseButton b = event->button();
+    if (b != Qt::LeftButton && b != Qt::RightButton && b != Qt::MiddleButton) {
+        return;
+    }
+    dragButton_ = b;
+    dragStart_ = event->position();
+    dragCamera_ = camera_;
+    dragClip_ = clip_;
+    dragHandle_.reset();
+    if (b == Qt::LeftButton && clipHandlesShown_) {
+        dragHandle_ = hitClipHandle(clipHandles(), dragStart_, kHandleRadius);
+    }
+}
+
+void VolumeView::mouseMoveEvent(QMouseEvent* event) {
+    if (dragButton_ == Qt::NoButton) {
+        return;
+    }
+    const QPointF d = event->position() - dragStart_;
+    if (dragHandle_ && volume_) {
+        const ClipHandles handles =
+            lucent::clipHandles(volume_->geometry(), camera_, dragClip_, QSizeF(size()));
+        const ClipBox moved =
+            dragClipFace(dragClip_, handles[std::size_t(*dragHandle_)], d, volume_->dims());
+        if (moved.lo != clip_.lo || moved.hi != clip_.hi) {
+            setClipBox(moved);
+        }
+        return;
+    }
+    Camera c = dragCamera_;
+    if (dragButton_ == Qt::LeftButton) {
+        c.azimuth = dragCamera_.azimuth + d.x() * kDegreesPerPixel;
+        c.elevation = std::clamp(dragCamera_.elevation + d.y() * kDegreesPerPixel, -90.0, 90.0);
+    } else if (dragButton_ == Qt::RightButton) {
+        c.zoom = std::clamp(dragCamera_.zoom * std::exp(-d.y() * kZoomPerPixel), 0.05, 50.0);
+    } else {
+        // What lies at the point looked at follows the mouse.
+        const double mm = mmPerPixel(dragCamera_);
+        c.panRight = dragCamera_.panRight - d.x() * mm;
+        c.panUp = dragCamera_.panUp + d.y() * mm;
+    }
+    setCamera(c);
+}
+
+void VolumeView::mouseReleaseEvent(QMouseEvent* event) {
+    if (event->button() != dragButton_) {
+        return;
+    }
+    dragButton_ = Qt::NoButton;
+    dragHandle_.reset();
+    requestRender(); // the still frame, at full quality
+}
+
+void VolumeView::wheelEvent(QWheelEvent* event) {
+    const double notches = event->angleDelta().y() / 120.0;
+    if (notches == 0.0) {
+        return;
+    }
+    Camera c = camera_;
+    if (event->modifiers() & Qt::ShiftModifier) {
+        // Towards the point looked at (and through it), never onto it.
+        const double now = c.distance > 0.0
+                               ? c.distance
+                               : fitDistance(volume_ ? volume_->geometry() : VolumeGeometry{}, c,
+                                             std::max(1, width()), std::max(1, height()));
+        c.distance = std::max(now * std::pow(kDollyPerNotch, notches), 1e-3);
+    } else {
+        c.zoom = std::clamp(c.zoom * std::pow(kWheelZoomPerNotch, notches), 0.05, 50.0);
+    }
+    setCamera(c);
+    event->accept();
+}
+
+} // namespace lucent

@@ -1,0 +1,179 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+
+#include <QImage>
+#include <QPointF>
+#include <QString>
+#include <QSurfaceFormat>
+#include <QWidget>
+
+#include "core/raycast/CpuRayCaster.h"
+#include "core/quality/InteractiveQuality.h"
+#include "core/scene/RenderDescription.h"
+#include "render/LocalRenderBackend.h"
+#include "render/RemoteRenderBackend.h"
+#include "ui/volume/ClipBoxHandles.h"
+
+class QPainter;
+
+namespace lucent {
+
+// The 3D view: the volume ray cast on the GPU (GpuRayCaster in a QOpenGLWidget's
+// context) or, where OpenGL 4.3 cannot be had, on the CPU (CpuRayCaster), with a
+// one-line notice saying why; or on a lucent-server (renderOnServer), switched at
+// run time. Frames come from a RenderBackend (LocalRenderBackend or
+// RemoteRenderBackend); the view owns the camera, mode, clip box and transfer
+// function it renders with, so a switch keeps them.
+//
+// Mouse: left-drag rotates (kDegreesPerPixel of azimuth per pixel right, of
+// elevation per pixel down), right-drag zooms (up = closer), middle-drag pans
+// the camera (what lies at the point looked at follows the mouse), the wheel
+// zooms (kWheelZoomPerNotch per notch), Shift+wheel moves the eye towards the
+// point looked at (kDollyPerNotch of its distance per notch; on into the
+// volume). B shows the clip box with a handle on each face: a left-drag on a
+// handle moves that face. While a button is down frames use
+// interactiveDescription() scaled up to the view; on release one frame at full
+// quality follows.
+class VolumeView : public QWidget {
+    Q_OBJECT
+
+public:
+    enum class Backend { Gpu, Cpu, Remote };
+    static constexpr double kDegreesPerPixel = 0.5;
+    static constexpr double kZoomPerPixel = 0.01; // zoom *= exp(-dy * this)
+    static constexpr double kWheelZoomPerNotch = 1.1;
+    static constexpr double kDollyPerNotch = 0.85; // distance *= this per notch forward
+    static constexpr double kHandleRadius = 8.0;   // pixels
+
+    // preferred = Gpu tries OpenGL first and falls back to the CPU by itself.
+    explicit VolumeView(QWidget* parent = nullptr, Backend preferred = Backend::Gpu);
+    ~VolumeView() override;
+
+    // The format the GL path asks for (4.3 core). Best set as the application's
+    // default with QSurfaceFormat::setDefaultFormat before QApplication exists.
+    static QSurfaceFormat surfaceFormat();
+
+    void setVolume(std::shared_ptr<const Volume> volume);
+    const std::shared_ptr<const Volume>& volume() const { return volume_; }
+    std::uint64_t volumeGeneration() const { return volumeGeneration_; }
+
+    const TransferFunction& transferFunction() const { return transferFunction_; }
+    const Camera& camera() const { return camera_; }
+    RenderMode mode() const { return mode_; }
+    double isoValue() const { return isoValue_; }
+    const ClipBox& clipBox() const { return clip_; }
+    const SamplingSettings& sampling() const { return sampling_; }
+    // The clip box's face handles where they are on the view now.
+    bool clipHandlesShown() const { return clipHandlesShown_; }
+    ClipHandles clipHandles() const;
+    void setInteractiveQuality(const InteractiveQuality& quality) { quality_ = quality; }
+
+    // What a still frame renders now, at this size in device pixels (the view's
+    // size when not given).
+    RenderDescription description() const;
+    RenderDescription description(int width, int height) const;
+
+    Backend backend() const { return backend_; }
+    // Renders on a lucent-server from now on: camera, transfer function, mode
+    // and clip box go with it. The connection status is in notice().
+    void renderOnServer(const RemoteServerSettings& settings);
+    // Back to this computer: the GPU, or the CPU where OpenGL cannot be had.
+    void renderLocally();
+    LocalRenderBackend& localBackend() { return *local_; }
+    RemoteRenderBackend& remoteBackend() { return *remote_; }
+
+    // The view's notice line: why it is not on the GPU, the server's status, or
+    // the last render error; empty otherwise.
+    QString notice() const { return notice_; }
+    bool interacting() const { return dragButton_ != Qt::NoButton; }
+    // The last frame as shown (scaled up when it was an interactive one).
+    const ImageRGBA8& lastFrame() const { return lastFrame_; }
+    // Whether it shows the newest request (a server's frames may lag behind).
+    bool lastFrameCurrent() const { return lastFrameCurrent_; }
+    // The view's pixels as on screen.
+    QImage grabImage();
+
+    // Used by the surfaces, from their paint: renders a waiting local request
+    // (the GL surface's context is current), then paints the last frame.
+    void renderPending();
+    void paintFrame(QPainter& painter);
+    // Called when OpenGL fails: switches to the CPU renderer.
+    void fallBackToCpu(const QString& reason);
+
+public slots:
+    void setTransferFunction(const lucent::TransferFunction& tf);
+    void setCamera(const lucent::Camera& camera);
+    void resetCamera();
+    void setMode(lucent::RenderMode mode);
+    void setIsoValue(double value);
+    void setClipBox(const lucent::ClipBox& clip);
+    void setSampling(const lucent::SamplingSettings& sampling);
+    void setClipHandlesShown(bool shown);
+    void requestRender();
+
+signals:
+    void volumeChanged();
+    void cameraChanged(const lucent::Camera& camera);
+    void transferFunctionChanged(const lucent::TransferFunction& tf);
+    // After each frame: its statistics and whether it was an interactive one.
+    void renderedFrame(const lucent::RenderStats& stats, bool interactive);
+    void noticeChanged(const QString& notice);
+    void backendChanged(lucent::VolumeView::Backend backend);
+    void clipBoxChanged(const lucent::ClipBox& clip);
+    void clipHandlesShownChanged(bool shown);
+
+protected:
+    void mousePressEvent(QMouseEvent* event) override;
+    void mouseMoveEvent(QMouseEvent* event) override;
+    void mouseReleaseEvent(QMouseEvent* event) override;
+    void wheelEvent(QWheelEvent* event) override;
+    void keyPressEvent(QKeyEvent* event) override;
+    void resizeEvent(QResizeEvent* event) override;
+
+private:
+    void useSurface(Backend backend);
+    RenderBackend& activeBackend();
+    void onFrame(const BackendFrame& frame);
+    void onFrameFailed(const QString& reason);
+    void updateNotice();
+    void updateSurface();
+    void paintClipBox(QPainter& painter) const;
+    // Millimetres at the point looked at per view pixel.
+    double mmPerPixel(const Camera& camera) const;
+
+    std::shared_ptr<const Volume> volume_;
+    std::uint64_t volumeGeneration_ = 0;
+    // Before surface_: the GL surface releases the local backend's GL resources
+    // when it goes, so the backends must outlive it.
+    std::unique_ptr<LocalRenderBackend> local_;
+    std::unique_ptr<RemoteRenderBackend> remote_;
+
+    TransferFunction transferFunction_;
+    Camera camera_;
+    RenderMode mode_ = RenderMode::Dvr;
+    double isoValue_ = 300.0;
+    ClipBox clip_;
+    SamplingSettings sampling_;
+    InteractiveQuality quality_;
+    bool clipHandlesShown_ = false;
+
+    Backend backend_ = Backend::Cpu;
+    std::unique_ptr<QWidget> surface_; // a child: VolumeGlSurface or VolumeFrameSurface
+    QString notice_;
+    QString backendNotice_; // why not the GPU, or the server's status
+    QString frameError_;    // the last request that failed, until a frame comes
+    QString glFailure_;
+    ImageRGBA8 lastFrame_;
+    bool lastFrameCurrent_ = false;
+
+    Qt::MouseButton dragButton_ = Qt::NoButton;
+    QPointF dragStart_;
+    Camera dragCamera_;
+    std::optional<int> dragHandle_; // the clip face being dragged
+    ClipBox dragClip_;
+};
+
+} // namespace lucent
