@@ -1,6 +1,7 @@
 #include "render/GpuRayCaster.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -78,6 +79,7 @@ struct GpuRayCaster::State {
     std::map<std::string, std::unique_ptr<ShaderProgram>> programs; // by their #defines
     GlVertexArray vao;
     RenderTarget target;
+    GpuFrameStats last; // the last frame's
     std::unique_ptr<BrickPool> pool;
     std::tuple<int, bool> poolKind{0, false};
     std::string poolNote; // why the pool is smaller than the budget, if it is
@@ -150,7 +152,40 @@ GpuRayCaster::GpuRayCaster(const Volume& volume, GpuOptions options) {
 
 GpuRayCaster::~GpuRayCaster() = default;
 
-GpuRenderResult GpuRayCaster::render(const RenderDescription& desc) {
+RenderResult GpuRayCaster::render(const RenderDescription& description) {
+    return renderWithGpuStats(description).frame;
+}
+
+std::string GpuRayCaster::device() const {
+    const auto text = [](GLenum name) {
+        const GLubyte* s = glGetString(name);
+        return s ? std::string(reinterpret_cast<const char*>(s)) : std::string("?");
+    };
+    return text(GL_RENDERER) + ", " + text(GL_VERSION);
+}
+
+const GpuFrameStats& GpuRayCaster::lastFrame() const {
+    return state_->last;
+}
+
+FrameDetails GpuRayCaster::frameDetails() const {
+    const GpuFrameStats& g = state_->last;
+    const auto mib = [](std::size_t bytes) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.1f", double(bytes) / 1048576.0);
+        return std::string(text);
+    };
+    return {{"uploads", std::to_string(g.bricksUploaded)},
+            {"upload_mib", mib(g.bytesUploaded)},
+            {"resident", std::to_string(g.bricksResident)},
+            {"pool_slots", std::to_string(g.poolSlots)},
+            {"budget_mib", std::to_string(g.budgetBytes >> 20)},
+            {"gradients", g.gradientsCached ? "cached" : "computed"},
+            {"resident_mib", mib(g.residentBytes)},
+            {"pool_mib", mib(g.poolBytes)}};
+}
+
+GpuRenderResult GpuRayCaster::renderWithGpuStats(const RenderDescription& desc) {
     desc.validate();
     State& s = *state_;
     if (desc.volume != nullptr && desc.volume != &s.volume) {
@@ -444,6 +479,7 @@ GpuRenderResult GpuRayCaster::render(const RenderDescription& desc) {
             px[3] = 255;
         }
     }
+    s.last = out.gpu;
     return out;
 }
 

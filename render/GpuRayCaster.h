@@ -4,8 +4,8 @@
 #include <memory>
 #include <string>
 
-#include "core/raycast/CpuRayCaster.h"
 #include "core/scene/RenderDescription.h"
+#include "core/scene/Renderer.h"
 
 namespace lucent {
 
@@ -47,18 +47,26 @@ struct GpuRenderResult {
 // transfer function and clip box need, at the finest level of detail that
 // fits the budget. Needs a current OpenGL 4.3 core context (an
 // OffscreenContext, or a QOpenGLWidget's) for its whole life.
-class GpuRayCaster {
+class GpuRayCaster : public Renderer {
 public:
     // Throws GlError when the context is missing or too old or the shaders fail.
     explicit GpuRayCaster(const Volume& volume, GpuOptions options = {});
-    ~GpuRayCaster();
+    ~GpuRayCaster() override;
     GpuRayCaster(const GpuRayCaster&) = delete;
     GpuRayCaster& operator=(const GpuRayCaster&) = delete;
 
     // Renders and reads the image back. Throws std::invalid_argument for a
     // setting out of range, BudgetError when even the coarsest level does not
     // fit the budget, GlError when the driver refuses.
-    GpuRenderResult render(const RenderDescription& description);
+    RenderResult render(const RenderDescription& description) override;
+    // The same, with what the frame did on the GPU.
+    GpuRenderResult renderWithGpuStats(const RenderDescription& description);
+    std::string backend() const override { return "gl"; }
+    // The GL renderer and version of the current context.
+    std::string device() const override;
+    // The last frame's GpuFrameStats as key=value pairs (uploads, pool, gradients).
+    FrameDetails frameDetails() const override;
+    const GpuFrameStats& lastFrame() const;
 
 private:
     struct State;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <map>
+#include <thread>
 #include <optional>
 #include <stdexcept>
 #include <string_view>
@@ -99,6 +100,11 @@ CpuRayCaster::CpuRayCaster(const Volume& volume)
 }
 
 CpuRayCaster::~CpuRayCaster() = default;
+
+std::string CpuRayCaster::device() const {
+    return "cpu: " + std::to_string(std::max(1u, std::thread::hardware_concurrency())) +
+           " threads";
+}
 
 RenderResult CpuRayCaster::render(const RenderDescription& desc) {
     desc.validate();

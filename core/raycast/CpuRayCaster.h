@@ -1,41 +1,31 @@
 #pragma once
 
 #include <memory>
+#include <string>
 #include <vector>
 
-#include "core/image/Image.h"
 #include "core/scene/RenderDescription.h"
+#include "core/scene/Renderer.h"
 
 namespace lucent {
-
-struct RenderStats {
-    std::size_t samples = 0;     // volume samples taken along all rays
-    std::size_t bricksTotal = 0; // bricks of the volume
-    std::size_t bricksUsed = 0;  // bricks visible under the transfer function and clip box
-    int lod = 0;                 // level of detail rendered (0: full resolution)
-};
-
-struct RenderResult {
-    ImageRGBA8 image;                     // opaque: composited over the background
-    std::vector<glm::vec4> premultiplied; // per pixel, before the background (row-major)
-    RenderStats stats;
-};
 
 // The reference renderer: a CPU ray caster over one volume, multithreaded over
 // image tiles. It keeps what depends only on the volume (B-spline
 // coefficients, brick min/max) between renders, so a sequence of frames pays
 // for them once. Double precision evaluates the transfer function exactly;
 // float precision uses a 4096-entry table.
-class CpuRayCaster {
+class CpuRayCaster : public Renderer {
 public:
     explicit CpuRayCaster(const Volume& volume);
-    ~CpuRayCaster();
+    ~CpuRayCaster() override;
     CpuRayCaster(const CpuRayCaster&) = delete;
     CpuRayCaster& operator=(const CpuRayCaster&) = delete;
 
     // description.volume must be this caster's volume (or null). Throws
     // std::invalid_argument naming a setting that is out of range.
-    RenderResult render(const RenderDescription& description);
+    RenderResult render(const RenderDescription& description) override;
+    std::string backend() const override { return "cpu"; }
+    std::string device() const override;
 
 private:
     struct Cache;

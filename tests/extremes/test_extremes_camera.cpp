@@ -52,7 +52,7 @@ class TestExtremesCamera : public QObject {
         if (context_) {
             GpuRenderResult g;
             try {
-                g = GpuRayCaster(*s.volume).render(s.desc);
+                g = GpuRayCaster(*s.volume).renderWithGpuStats(s.desc);
             } catch (const std::exception& e) {
                 QTest::qFail(qPrintable(what + ": GL threw " + e.what()), __FILE__, __LINE__);
                 return ref;

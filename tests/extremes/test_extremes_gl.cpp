@@ -36,7 +36,7 @@ private slots:
             d.sampling.precision = Precision::Double;
             r = CpuRayCaster(*s.volume).render(d);
             GpuRayCaster gpu(*s.volume);
-            g = gpu.render(s.desc);
+            g = gpu.renderWithGpuStats(s.desc);
         } catch (const std::exception& e) {
             QFAIL(qPrintable(name + ": threw " + e.what()));
         }
@@ -56,7 +56,7 @@ private slots:
         for (const double a : {1e-6, 0.3, 1.0}) {
             s.desc.transferFunction = flatTf(a);
             s.desc.sampling.earlyTermination = 1.0;
-            const GpuRenderResult g = gpu.render(s.desc);
+            const GpuRenderResult g = gpu.renderWithGpuStats(s.desc);
             QVERIFY2(badPixels(g.frame.premultiplied, s.desc.transferFunction).isEmpty(), "bad");
             const double want = 1.0 - std::pow(1.0 - a, 2.0001);
             const double got = centrePixel(g.frame, 15, 15).a;
@@ -81,7 +81,7 @@ private slots:
         QString trace;
         for (const double step : {2.0, 1.0, 0.5, 0.25}) {
             d.sampling.step = step;
-            const double p = psnr(gpu.render(d).frame.image, reference.image);
+            const double p = psnr(gpu.renderWithGpuStats(d).frame.image, reference.image);
             trace += QString(" %1:%2").arg(step).arg(p, 0, 'f', 2);
             QVERIFY2(p > previous, qPrintable("psnr does not rise:" + trace));
             previous = p;
@@ -96,7 +96,7 @@ private slots:
         GpuRayCaster gpu(v);
         const auto refuses = [&](RenderDescription d, const char* word) {
             try {
-                gpu.render(d);
+                gpu.renderWithGpuStats(d);
             } catch (const std::invalid_argument& e) {
                 return QString(e.what()).contains(word);
             }
@@ -117,7 +117,7 @@ private slots:
         d.transferFunction.opacity[1].opacity = 1.5;
         QVERIFY(refuses(d, "opacity[1]"));
         d = describe(v, rampTf(true), 16);
-        QVERIFY(badPixels(gpu.render(d).frame.premultiplied, d.transferFunction).isEmpty());
+        QVERIFY(badPixels(gpu.renderWithGpuStats(d).frame.premultiplied, d.transferFunction).isEmpty());
     }
 };
 

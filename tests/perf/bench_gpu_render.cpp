@@ -118,7 +118,7 @@ private slots:
             RenderDescription f = d;
             f.camera.azimuth = 5.0 * std::max(0, frame - 1);
             const auto t0 = Clock::now();
-            GpuRenderResult r = gpu.render(f);
+            GpuRenderResult r = gpu.renderWithGpuStats(f);
             (frame == 0 ? firstMs : ms.emplace_back()) = msSince(t0);
             uploadedMib += double(r.gpu.bytesUploaded) / 1048576.0;
             if (frame == 1) {
@@ -173,7 +173,7 @@ private slots:
             GpuRenderResult first;
             for (int frame = 0; frame < 4; ++frame) {
                 const auto t = Clock::now();
-                GpuRenderResult r = gpu.render(d);
+                GpuRenderResult r = gpu.renderWithGpuStats(d);
                 if (frame > 0) {
                     ms.push_back(msSince(t));
                 } else {
@@ -221,7 +221,7 @@ private slots:
             RenderDescription f = d;
             f.camera.azimuth = 5.0 * frame;
             const auto t = Clock::now();
-            GpuRenderResult r = gpu.render(f);
+            GpuRenderResult r = gpu.renderWithGpuStats(f);
             (frame == 0 ? firstMs : ms.emplace_back()) = msSince(t);
             if (frame == 0) {
                 first = std::move(r);

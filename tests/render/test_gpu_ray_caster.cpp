@@ -91,7 +91,7 @@ class TestGpuRayCaster : public QObject {
             d.sampling.interpolation = c.interp;
             d.sampling.classification = c.preclassify ? Classification::Pre : Classification::Post;
             d.sampling.preintegrate = c.preintegrate;
-            const GpuRenderResult g = gpu.render(d);
+            const GpuRenderResult g = gpu.renderWithGpuStats(d);
             const RenderResult r = cpu.render(reference(d));
             const std::string name = prefix + "-" + c.name;
             const double p = comparedPsnr(g.frame.image, r.image, name, 40.0);
@@ -133,10 +133,10 @@ private slots:
         d.camera.elevation = -15.0;
         d.sampling.interpolation = Interpolation::Cubic;
         d.sampling.brickSize = 256; // one brick: no borders at all
-        const ImageRGBA8 whole = gpu.render(d).frame.image;
+        const ImageRGBA8 whole = gpu.renderWithGpuStats(d).frame.image;
         for (const int size : {16, 32, 64, 128}) {
             d.sampling.brickSize = size;
-            const GpuRenderResult r = gpu.render(d);
+            const GpuRenderResult r = gpu.renderWithGpuStats(d);
             const std::string name = "brick" + std::to_string(size);
             const double p = comparedPsnr(r.frame.image, whole, name, 50.0);
             QVERIFY2(p >= 50.0, qPrintable(QString("brick %1: psnr %2 dB").arg(size).arg(p)));
@@ -154,9 +154,9 @@ private slots:
                 v, v.modality == "CT" && v.dims().x > 100 ? loadPreset("ct-bone") : madeTf(), 96);
             d.mode = mode;
             d.isoValue = 300.0;
-            const GpuRenderResult leapt = gpu.render(d);
+            const GpuRenderResult leapt = gpu.renderWithGpuStats(d);
             d.sampling.emptySpaceLeaping = false;
-            const GpuRenderResult full = gpu.render(d);
+            const GpuRenderResult full = gpu.renderWithGpuStats(d);
             QVERIFY2(leapt.frame.stats.samples < full.frame.stats.samples * 0.8,
                      qPrintable(QString("%1: %2 samples leaping, %3 without")
                                     .arg(renderModeName(mode))
@@ -177,7 +177,7 @@ private slots:
             RenderDescription d = describe(v, madeTf(), 96);
             d.camera.azimuth = 25.0;
             d.sampling.interpolation = interp;
-            const GpuRenderResult a = cached.render(d), b = computed.render(d);
+            const GpuRenderResult a = cached.renderWithGpuStats(d), b = computed.renderWithGpuStats(d);
             QVERIFY(a.gpu.gradientsCached);
             QVERIFY(!b.gpu.gradientsCached);
             const double p =
@@ -195,7 +195,7 @@ private slots:
         d.clip.lo = {10.5, 0, 5};
         d.clip.hi = {50, 40.25, 100};
         const double p =
-            comparedPsnr(gpu.render(d).frame.image, cpu.render(reference(d)).image, "clip", 40.0);
+            comparedPsnr(gpu.renderWithGpuStats(d).frame.image, cpu.render(reference(d)).image, "clip", 40.0);
         QVERIFY2(p >= 40.0, qPrintable(QString("psnr %1").arg(p)));
     }
 
@@ -212,19 +212,19 @@ private slots:
         drag.sampling.step = 1.0;
         RenderDescription other = still;
         other.sampling.step = 2.0;
-        const ImageRGBA8 first = gpu.render(still).frame.image;
-        const ImageRGBA8 dragged = gpu.render(drag).frame.image;
+        const ImageRGBA8 first = gpu.renderWithGpuStats(still).frame.image;
+        const ImageRGBA8 dragged = gpu.renderWithGpuStats(drag).frame.image;
         for (int round = 0; round < 2; ++round) {
-            QVERIFY(gpu.render(still).frame.image == first);
-            QVERIFY(gpu.render(drag).frame.image == dragged);
+            QVERIFY(gpu.renderWithGpuStats(still).frame.image == first);
+            QVERIFY(gpu.renderWithGpuStats(drag).frame.image == dragged);
         }
-        (void)gpu.render(other); // a third step: the oldest table goes
-        QVERIFY(gpu.render(drag).frame.image == dragged);
-        QVERIFY(gpu.render(still).frame.image == first);
+        (void)gpu.renderWithGpuStats(other); // a third step: the oldest table goes
+        QVERIFY(gpu.renderWithGpuStats(drag).frame.image == dragged);
+        QVERIFY(gpu.renderWithGpuStats(still).frame.image == first);
         for (const auto& [d, name] :
              {std::pair{still, "preint-step-0.5"}, {drag, "preint-step-1"}}) {
             const double p =
-                comparedPsnr(gpu.render(d).frame.image, cpu.render(reference(d)).image, name, 40.0);
+                comparedPsnr(gpu.renderWithGpuStats(d).frame.image, cpu.render(reference(d)).image, name, 40.0);
             QVERIFY2(p >= 40.0, qPrintable(QString("%1: psnr %2").arg(name).arg(p)));
         }
     }

@@ -41,7 +41,7 @@ private slots:
         const Volume v = realOrMade();
         GpuRayCaster gpu(v);
         RenderDescription d = describe(v, loadPreset("ct-bone"), 64);
-        const GpuRenderResult bone = gpu.render(d);
+        const GpuRenderResult bone = gpu.renderWithGpuStats(d);
         QVERIFY(bone.gpu.bricksUploaded > 0);
         QCOMPARE(bone.gpu.bricksUploaded, bone.frame.stats.bricksUsed);
         QVERIFY(bone.frame.stats.bricksUsed < bone.frame.stats.bricksTotal);
@@ -56,7 +56,7 @@ private slots:
         QVERIFY(bone.gpu.poolBytes >= bone.gpu.residentBytes);
 
         d.transferFunction = loadPreset("ct-soft-tissue");
-        const GpuRenderResult soft = gpu.render(d);
+        const GpuRenderResult soft = gpu.renderWithGpuStats(d);
         QVERIFY(soft.frame.stats.bricksUsed >= bone.frame.stats.bricksUsed);
         // Only what bone did not already bring.
         QCOMPARE(soft.gpu.bricksUploaded, soft.gpu.bricksResident - bone.gpu.bricksResident);
@@ -66,13 +66,13 @@ private slots:
         }
 
         d.transferFunction = loadPreset("ct-bone");
-        const GpuRenderResult again = gpu.render(d);
+        const GpuRenderResult again = gpu.renderWithGpuStats(d);
         QCOMPARE(again.gpu.bricksUploaded, std::size_t(0));
         // The same image from the bricks the grown pool copied over.
         QCOMPARE(maxDifference(again.frame.premultiplied, bone.frame.premultiplied), 0.0f);
 
         d.camera.azimuth = 90.0; // a new view of the same scene needs no upload either
-        QCOMPARE(gpu.render(d).gpu.bricksUploaded, std::size_t(0));
+        QCOMPARE(gpu.renderWithGpuStats(d).gpu.bricksUploaded, std::size_t(0));
     }
 
     // Zoomed in, only the bricks in view are resident, and the image is still
@@ -81,11 +81,11 @@ private slots:
         const Volume v = realOrMade();
         GpuRayCaster gpu(v);
         RenderDescription d = describe(v, loadPreset("ct-bone"), 96);
-        const std::size_t whole = gpu.render(d).frame.stats.bricksUsed;
+        const std::size_t whole = gpu.renderWithGpuStats(d).frame.stats.bricksUsed;
         GpuRayCaster zoomed(v);
         d.camera.zoom = 4.0;
         d.camera.azimuth = 20.0;
-        const GpuRenderResult r = zoomed.render(d);
+        const GpuRenderResult r = zoomed.renderWithGpuStats(d);
         QVERIFY2(r.frame.stats.bricksUsed * 2 < whole,
                  qPrintable(
                      QString("%1 bricks in view of %2").arg(r.frame.stats.bricksUsed).arg(whole)));
@@ -103,13 +103,13 @@ private slots:
         const Volume v = realOrMade();
         RenderDescription d = describe(v, loadPreset("ct-bone"), 96);
         GpuRayCaster full(v);
-        const GpuRenderResult fine = full.render(d);
+        const GpuRenderResult fine = full.renderWithGpuStats(d);
         QCOMPARE(fine.frame.stats.lod, 0);
 
         GpuOptions small;
         small.budgetBytes = v.byteCount() / 3;
         GpuRayCaster gpu(v, small);
-        const GpuRenderResult coarse = gpu.render(d);
+        const GpuRenderResult coarse = gpu.renderWithGpuStats(d);
         QVERIFY2(coarse.frame.stats.lod > 0,
                  "a budget of a third of the volume should need a coarser level");
         QVERIFY(!coarse.gpu.lodReason.empty());
@@ -131,7 +131,7 @@ private slots:
             GpuRayCaster cachedGpu(v, cachedOptions);
             GpuRenderResult cached;
             try {
-                cached = cachedGpu.render(d);
+                cached = cachedGpu.renderWithGpuStats(d);
             } catch (const BudgetError&) {
                 continue;
             }
@@ -139,7 +139,7 @@ private slots:
                 continue;
             }
             GpuRayCaster computedGpu(v, computedOptions);
-            const GpuRenderResult computed = computedGpu.render(d);
+            const GpuRenderResult computed = computedGpu.renderWithGpuStats(d);
             QCOMPARE(computed.frame.stats.lod, cached.frame.stats.lod); // gradients cost no level
             QVERIFY(!computed.gpu.gradientsCached);
             QVERIFY(cached.gpu.poolBytes <= cachedOptions.budgetBytes);
@@ -160,7 +160,7 @@ private slots:
         tiny.budgetBytes = 1024; // not one brick
         GpuRayCaster gpu(v, tiny);
         try {
-            gpu.render(describe(v, loadPreset("ct-bone"), 32));
+            gpu.renderWithGpuStats(describe(v, loadPreset("ct-bone"), 32));
             QFAIL("a 1 KiB budget rendered");
         } catch (const BudgetError& e) {
             QVERIFY2(std::string(e.what()).find("budget") != std::string::npos, e.what());
@@ -173,11 +173,11 @@ private slots:
         const Volume v = realOrMade();
         GpuRayCaster gpu(v);
         const RenderDescription still = describe(v, loadPreset("ct-bone"), 128);
-        const GpuRenderResult full = gpu.render(still);
+        const GpuRenderResult full = gpu.renderWithGpuStats(still);
         const RenderDescription moving = interactiveDescription(still);
         QCOMPARE(moving.width, 64);
         QCOMPARE(moving.sampling.step, 2.0 * still.sampling.step);
-        const GpuRenderResult quick = gpu.render(moving);
+        const GpuRenderResult quick = gpu.renderWithGpuStats(moving);
         QVERIFY2(quick.frame.stats.samples * 4 < full.frame.stats.samples,
                  qPrintable(QString("%1 vs %2 samples")
                                 .arg(quick.frame.stats.samples)
@@ -207,7 +207,7 @@ private slots:
         RenderDescription d = describe(v, loadPreset("ct-bone"), 64);
         d.camera.azimuth = 90.0;
         GpuRayCaster gpu(v);
-        const GpuRenderResult r = gpu.render(d);
+        const GpuRenderResult r = gpu.renderWithGpuStats(d);
         QCOMPARE(r.frame.stats.lod, 0);
         RenderDescription ref = d;
         ref.sampling.precision = Precision::Double;
@@ -234,7 +234,7 @@ private slots:
         GpuRayCaster gpu(v);
         RenderDescription d = describe(v, loadPreset("ct-bone"), 32);
         d.sampling.step = -1.0;
-        QVERIFY_THROWS_EXCEPTION(std::invalid_argument, gpu.render(d));
+        QVERIFY_THROWS_EXCEPTION(std::invalid_argument, gpu.renderWithGpuStats(d));
     }
 };
 
