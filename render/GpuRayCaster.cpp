@@ -467,6 +467,7 @@ GpuRenderResult GpuRayCaster::renderWithGpuStats(const RenderDescription& desc) 
     r.stats.bricksTotal = grid.count();
     r.stats.bricksUsed = plan->needed;
     r.stats.lod = level;
+    r.stats.lodReason = out.gpu.lodReason;
     r.image = ImageRGBA8::filled(desc.width, desc.height, 0);
     for (int y = 0; y < desc.height; ++y) {
         for (int x = 0; x < desc.width; ++x) {

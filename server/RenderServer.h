@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "core/io/SeriesEntry.h"
+#include "render/RenderDevice.h"
 #include "server/HttpFrontDoor.h"
 #include "server/RenderWorker.h"
 #include "server/ServedSeries.h"
@@ -35,7 +36,7 @@ struct ServerOptions {
     QHostAddress address = QHostAddress::LocalHost;
     quint16 port = 0; // 0: any free port
     std::vector<std::string> tokens;
-    Backend backend = Backend::Gl;
+    RendererKind backend = RendererKind::Gl;
     int maxClients = 64;
     int maxSessions = 16;
     int maxSessionMembers = 64; // the presenter included

@@ -6,11 +6,9 @@
 #include <QImageWriter>
 
 #include "core/io/Catalog.h"
-#include "core/raycast/CpuRayCaster.h"
-#include "render/GlError.h"
-#include "render/GpuRayCaster.h"
-#include "render/OffscreenContext.h"
+#include "core/quality/InteractiveQuality.h"
 #include "protocol/PngEncoder.h"
+#include "render/RenderDevice.h"
 
 namespace lucent::remote {
 namespace {
@@ -44,47 +42,30 @@ QByteArray encode(const ImageRGBA8& image, Quality quality, int jpegQuality) {
 
 } // namespace
 
-RenderDescription scaledInteractiveDescription(const RenderDescription& still, double scale) {
-    RenderDescription d = still;
-    d.sampling.step *= 2.0;
-    d.width = std::max(1, int(still.width * scale));
-    d.height = std::max(1, int(still.height * scale));
-    return d;
-}
-
 struct RenderWorker::LoadedSeries {
     std::shared_ptr<const SeriesEntry> entry; // held: its address identifies it
     std::unique_ptr<Volume> volume;
-    std::unique_ptr<GpuRayCaster> gpu;
-    std::unique_ptr<CpuRayCaster> cpu;
+    std::unique_ptr<Renderer> renderer;
 };
 
-RenderWorker::RenderWorker(Backend backend) : backend_(backend) {}
+RenderWorker::RenderWorker(RendererKind backend) : backend_(backend) {}
 
 RenderWorker::~RenderWorker() {
     stop();
 }
 
 QString RenderWorker::start() {
-    QString description = "cpu";
-    if (backend_ == Backend::Gl) {
-        try {
-            context_ = OffscreenContext::create();
-            description = "gl: " + QString::fromStdString(context_->description());
-        } catch (const GlError& e) {
-            backend_ = Backend::Cpu;
-            description = "cpu (the GL backend is not available: " + QString(e.what()) + ")";
-        }
+    device_ = RenderDevice::open(backend_);
+    const QString description = QString::fromStdString(device_->description());
+    if (!device_->fallbackReason().empty()) {
+        return description + " (" + QString::fromStdString(device_->fallbackReason()) + ")";
     }
     return description;
 }
 
 void RenderWorker::stop() {
-    if (context_) {
-        context_->makeCurrent();
-    }
-    loaded_.clear();
-    context_.reset();
+    loaded_.clear(); // each GL renderer frees its textures in its own context
+    device_.reset();
 }
 
 RenderWorker::LoadedSeries& RenderWorker::loaded(const std::shared_ptr<const SeriesEntry>& entry) {
@@ -95,21 +76,13 @@ RenderWorker::LoadedSeries& RenderWorker::loaded(const std::shared_ptr<const Ser
         }
     }
     while (loaded_.size() >= kLoadedSeriesLimit) {
-        loaded_.pop_back(); // frees its GPU resources first: the context is current here
+        loaded_.pop_back();
     }
     auto series = std::make_unique<LoadedSeries>();
     series->entry = entry;
     series->volume = std::make_unique<Volume>(loadSeries(*entry));
-    if (context_) {
-        try {
-            series->gpu = std::make_unique<GpuRayCaster>(*series->volume);
-        } catch (const GlError&) {
-            series->gpu.reset(); // the CPU renders this series
-        }
-    }
-    if (!series->gpu) {
-        series->cpu = std::make_unique<CpuRayCaster>(*series->volume);
-    }
+    // Where GL fails for this series (its shaders, its size), the CPU renders it.
+    series->renderer = device_->openRenderer(*series->volume).renderer;
     loaded_.push_front(std::move(series));
     return *loaded_.front();
 }
@@ -124,12 +97,11 @@ void RenderWorker::render(const RenderJob& job) {
         description.volume = series.volume.get();
         const bool interactive = job.quality == Quality::Interactive;
         if (interactive) {
-            description = scaledInteractiveDescription(description, job.scale);
+            description = interactiveDescription(description, InteractiveQuality{2.0, job.scale});
         }
         QElapsedTimer timer;
         timer.start();
-        const ImageRGBA8 image = series.gpu ? series.gpu->render(description).frame.image
-                                            : series.cpu->render(description).image;
+        const ImageRGBA8 image = series.renderer->render(description).image;
         FrameHeader header;
         header.renderMs = millisecondsSince(timer);
         timer.restart();

@@ -1,7 +1,7 @@
 #pragma once
-// The server's render thread: one object that lives on a QThread, owns the EGL
-// context (current on that thread for its whole life) or falls back to the
-// CPU ray caster, loads the series that clients open, renders and encodes.
+// The server's render thread: one object that lives on a QThread, opens its
+// RenderDevice there (an EGL context, or the CPU where GL cannot be had),
+// loads the series that clients open, renders and encodes.
 
 #include <QByteArray>
 #include <QObject>
@@ -16,12 +16,11 @@
 #include "protocol/ProtocolMessages.h"
 
 namespace lucent {
-class OffscreenContext;
+class RenderDevice;
+enum class RendererKind;
 }
 
 namespace lucent::remote {
-
-enum class Backend { Gl, Cpu };
 
 // One frame a view needs (a client's own view or a teaching session's).
 struct RenderJob {
@@ -47,14 +46,10 @@ struct RenderedFrame {
 inline constexpr double kFixedInteractiveScale = 0.5;
 inline constexpr int kFixedInteractiveJpegQuality = 85;
 
-// The description of an interactive frame at this scale: the image's sides
-// scaled (at least 1 pixel), the sampling step doubled.
-RenderDescription scaledInteractiveDescription(const RenderDescription& still, double scale);
-
 class RenderWorker : public QObject {
     Q_OBJECT
 public:
-    explicit RenderWorker(Backend backend);
+    explicit RenderWorker(RendererKind backend);
     ~RenderWorker() override;
 
     // These run on the render thread (queued calls).
@@ -74,8 +69,8 @@ private:
     // (a new entry with the same id) is loaded again.
     LoadedSeries& loaded(const std::shared_ptr<const SeriesEntry>& entry);
 
-    Backend backend_;
-    std::unique_ptr<OffscreenContext> context_;
+    RendererKind backend_;
+    std::unique_ptr<RenderDevice> device_; // made on the render thread by start()
     std::list<std::unique_ptr<LoadedSeries>> loaded_; // most recently used first
 };
 

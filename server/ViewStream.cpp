@@ -4,17 +4,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/scene/DefaultPreset.h"
 #include "server/ClientConnection.h"
 #include "server/RenderServer.h"
 
 namespace lucent::remote {
-
-std::string defaultPreset(const SeriesEntry& series, RenderMode mode) {
-    if (series.modality != "CT") {
-        return "mr-default";
-    }
-    return mode == RenderMode::Dvr ? "ct-bone" : "ct-mip";
-}
 
 ViewStream::ViewStream(quint64 id, RenderServer& server, QObject* parent)
     : QObject(parent), id_(id), server_(server) {
@@ -59,7 +53,7 @@ void ViewStream::reset(const SeriesEntry& like) {
     description_ = RenderDescription{};
     description_.width = width;
     description_.height = height;
-    preset_ = defaultPreset(like, description_.mode);
+    preset_ = defaultPresetName(like.modality, description_.mode);
     description_.transferFunction = loadPreset(preset_);
     quality_ = Quality::Still;
     interacting_ = false;

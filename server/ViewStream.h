@@ -92,7 +92,4 @@ private:
     QByteArray lastFrame_;
 };
 
-// The preset a series opens with.
-std::string defaultPreset(const SeriesEntry& series, RenderMode mode);
-
 } // namespace lucent::remote

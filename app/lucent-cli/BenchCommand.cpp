@@ -9,16 +9,18 @@
 #include <cmath>
 #include <functional>
 #include <memory>
+#include <tuple>
 
 #include "CliCommand.h"
 #include "QualityPlot.h"
 #include "TerminalProgress.h"
 #include "core/io/Catalog.h"
-#include "core/raycast/CpuRayCaster.h"
 #include "core/quality/QualityFront.h"
+#include "core/raycast/CpuRayCaster.h"
+#include "core/scene/DefaultPreset.h"
+#include "core/scene/RenderOptions.h"
 #include "render/GlError.h"
-#include "render/GpuRayCaster.h"
-#include "render/OffscreenContext.h"
+#include "render/RenderDevice.h"
 
 namespace lucent::cli {
 namespace {
@@ -63,10 +65,13 @@ int runBench(const QStringList& args) {
         return kUsage;
     }
     const QString backend = parser.value("backend");
-    bool okW = false, okH = false, okF = false;
-    const QStringList wh = parser.value("size").split('x');
-    const int width = wh.size() == 2 ? wh[0].toInt(&okW) : 0;
-    const int height = wh.size() == 2 ? wh[1].toInt(&okH) : 0;
+    bool okSize = true, okF = false;
+    int width = 0, height = 0;
+    try {
+        std::tie(width, height) = parseImageSize(parser.value("size").toStdString());
+    } catch (const std::invalid_argument&) {
+        okSize = false;
+    }
     const int frames = parser.value("frames").toInt(&okF);
     std::vector<double> steps;
     std::vector<int> bricks;
@@ -81,7 +86,7 @@ int runBench(const QStringList& args) {
         bricks.push_back(s.toInt(&ok));
         listsOk = listsOk && ok && bricks.back() > 0;
     }
-    if (!okW || !okH || width < 1 || height < 1 || !okF || frames < 1 || !listsOk ||
+    if (!okSize || !okF || frames < 1 || !listsOk ||
         (backend != "cpu" && backend != "gl")) {
         err << "lucent-cli bench: bad --size, --frames, --steps, --bricks or --backend\n";
         return kUsage;
@@ -102,20 +107,27 @@ int runBench(const QStringList& args) {
         base.volume = &volume;
         base.width = width;
         base.height = height;
-        const std::string preset = parser.isSet("preset")    ? parser.value("preset").toStdString()
-                                   : volume.modality == "CT" ? "ct-bone"
-                                                             : "mr-default";
+        const std::string preset = parser.isSet("preset")
+                                       ? parser.value("preset").toStdString()
+                                       : defaultPresetName(volume.modality, base.mode);
         base.transferFunction = loadPreset(preset);
 
-        CpuRayCaster cpu(volume);
-        std::unique_ptr<OffscreenContext> context;
-        std::unique_ptr<GpuRayCaster> gpu;
-        if (backend == "gl") {
-            context = OffscreenContext::create();
-            gpu = std::make_unique<GpuRayCaster>(volume);
+        CpuRayCaster cpu(volume); // the reference, and what a CPU bench measures
+        Renderer* measured = &cpu;
+        RenderDevice::Opened opened;
+        if (parseRendererKind(backend.toStdString()) == RendererKind::Gl) {
+            // A bench of the GL backend measures GL or nothing: no silent CPU fallback.
+            const std::unique_ptr<RenderDevice> device = RenderDevice::open(RendererKind::Gl);
+            opened = device->openRenderer(volume);
+            for (const std::string& reason : {device->fallbackReason(), opened.fallbackReason}) {
+                if (!reason.empty()) {
+                    throw GlError(reason);
+                }
+            }
+            measured = opened.renderer.get();
         }
         const std::function<RenderResult(const RenderDescription&)> render =
-            [&](const RenderDescription& d) { return gpu ? gpu->render(d).frame : cpu.render(d); };
+            [&](const RenderDescription& d) { return measured->render(d); };
 
         const std::vector<QualityPoint> points = measureQuality(
             base, qualitySweep(steps, bricks), render,

@@ -26,5 +26,6 @@ int runCompare(const QStringList& args);
 int runRender(const QStringList& args);
 int runPacs(const QStringList& args); // exit 4: the PACS or the network failed
 int runBench(const QStringList& args);
+int runOptions(const QStringList& args); // the render options table
 
 } // namespace lucent::cli

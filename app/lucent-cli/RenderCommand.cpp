@@ -11,15 +11,15 @@
 #include "CliCommand.h"
 #include "QualityOption.h"
 #include "RemoteStillFrame.h"
+#include "RenderFlags.h"
 #include "TerminalProgress.h"
 #include "core/image/PngIO.h"
 #include "core/io/Catalog.h"
-#include "core/raycast/CpuRayCaster.h"
 #include "core/quality/SceneCost.h"
+#include "core/scene/DefaultPreset.h"
 #include "core/volume/BrickResidency.h"
 #include "render/GlError.h"
-#include "render/GpuRayCaster.h"
-#include "render/OffscreenContext.h"
+#include "render/RenderDevice.h"
 
 namespace lucent::cli {
 namespace {
@@ -41,79 +41,29 @@ double number(const QCommandLineParser& p, const QString& name, double fallback)
     return v;
 }
 
-template <class E>
-E choice(const QCommandLineParser& p, const QString& name, E fallback,
-         std::initializer_list<std::pair<const char*, E>> options) {
-    if (!p.isSet(name)) {
-        return fallback;
-    }
-    std::string known;
-    for (const auto& [key, value] : options) {
-        if (p.value(name) == key) {
-            return value;
-        }
-        known += (known.empty() ? "" : ", ") + std::string(key);
-    }
-    throw UsageError("--" + name.toStdString() + ": '" + p.value(name).toStdString() +
-                     "' is not one of " + known);
-}
-
+// The description the flags ask for: the table's options, then the transfer
+// function (whose preset may depend on the mode), then the options again,
+// since shading lives in the transfer function.
 RenderDescription describe(const QCommandLineParser& p, const Volume& volume) {
     RenderDescription d;
     d.volume = &volume;
-    if (p.isSet("size")) {
-        const QStringList wh = p.value("size").split('x');
-        bool okW = false, okH = false;
-        if (wh.size() == 2) {
-            d.width = wh[0].toInt(&okW);
-            d.height = wh[1].toInt(&okH);
-        }
-        if (!okW || !okH) {
-            throw UsageError("--size: '" + p.value("size").toStdString() + "' is not WIDTHxHEIGHT");
-        }
-    }
-    d.mode = choice(p, "mode", RenderMode::Dvr,
-                    {{"dvr", RenderMode::Dvr},
-                     {"mip", RenderMode::Mip},
-                     {"minip", RenderMode::MinIp},
-                     {"avg", RenderMode::Average},
-                     {"iso", RenderMode::Isosurface}});
-    d.isoValue = number(p, "iso", d.isoValue);
-    d.camera.azimuth = number(p, "azimuth", 0.0);
-    d.camera.elevation = number(p, "elevation", 0.0);
-    d.camera.zoom = number(p, "zoom", 1.0);
-    d.camera.distance = number(p, "distance", 0.0);
-    d.camera.panRight = number(p, "pan-right", 0.0);
-    d.camera.panUp = number(p, "pan-up", 0.0);
-    SamplingSettings& s = d.sampling;
-    s.step = number(p, "step", s.step);
-    s.interpolation = choice(p, "interp", Interpolation::Linear,
-                             {{"nearest", Interpolation::Nearest},
-                              {"linear", Interpolation::Linear},
-                              {"cubic", Interpolation::Cubic}});
-    s.precision = choice(p, "precision", Precision::Float,
-                         {{"float", Precision::Float}, {"double", Precision::Double}});
-    s.classification = p.isSet("preclassify") ? Classification::Pre : Classification::Post;
-    s.preintegrate = p.isSet("preintegrate");
-    s.emptySpaceLeaping = !p.isSet("no-leaping");
-    s.brickSize = static_cast<int>(number(p, "brick", s.brickSize));
+    applyRenderFlags(p, d);
     if (p.isSet("preset") && p.isSet("tf")) {
         throw UsageError("--preset and --tf exclude each other");
     }
     if (p.isSet("tf")) {
         d.transferFunction = readTransferFunction(p.value("tf").toStdString());
     } else {
-        std::string preset = p.value("preset").toStdString();
-        if (preset.empty()) {
-            const bool ct = volume.modality == "CT";
-            preset = !ct ? "mr-default" : d.mode == RenderMode::Dvr ? "ct-bone" : "ct-mip";
-        }
-        d.transferFunction = loadPreset(preset);
+        d.transferFunction = loadPreset(p.isSet("preset")
+                                            ? p.value("preset").toStdString()
+                                            : defaultPresetName(volume.modality, d.mode));
     }
-    if (p.isSet("no-shading")) {
-        d.transferFunction.shading.enabled = false;
-    }
+    applyRenderFlags(p, d);
     return d;
+}
+
+std::string mib(std::size_t bytes) {
+    return QString::number(double(bytes) / 1048576.0, 'f', 1).toStdString();
 }
 
 // PATH is a series UID the server holds; one still frame, written as it comes.
@@ -207,31 +157,11 @@ int runRender(const QStringList& args) {
     parser.addOptions({
         {{"o", "output"}, "The PNG to write.", "OUT.png"},
         {"series", "Series id or UID (default: the largest volume).", "UID"},
-        {"backend", "cpu, gl (an EGL context, no display needed) or ws://HOST:PORT (later).",
-         "NAME", "cpu"},
+        {"backend", "cpu, gl (an EGL context, no display needed) or ws://HOST:PORT.", "NAME",
+         "cpu"},
         {"token", "Access token for a remote backend.", "T"},
-        {"size", "Image size (default 512x512).", "WxH"},
         {"preset", "Transfer function preset (default ct-bone, ct-mip or mr-default).", "NAME"},
         {"tf", "Transfer function JSON file.", "FILE.json"},
-        {"mode", "dvr, mip, minip, avg or iso.", "MODE"},
-        {"iso", "Isosurface value (HU for CT).", "HU"},
-        {"azimuth", "Turn about the head-foot axis, degrees.", "DEG"},
-        {"elevation", "Turn about the left-right axis, degrees.", "DEG"},
-        {"zoom", "1 fits the volume.", "F"},
-        {"distance",
-         "Eye to the point looked at, mm (default: fit the volume; less than the "
-         "volume's radius puts the eye inside).",
-         "MM"},
-        {"pan-right", "Move the point looked at to the view's right, mm.", "MM"},
-        {"pan-up", "Move the point looked at up in the view, mm.", "MM"},
-        {"step", "Sampling step in voxels of the smallest spacing (default 0.5).", "VOXELS"},
-        {"interp", "nearest, linear or cubic.", "NAME"},
-        {"precision", "float (fast) or double (reference).", "NAME"},
-        {"preclassify", "Classify voxels before interpolation."},
-        {"preintegrate", "Pre-integrated transfer function."},
-        {"no-shading", "Switch shading off."},
-        {"no-leaping", "Switch empty-space leaping off."},
-        {"brick", "Brick size in voxels (default 64).", "N"},
         {"gpu-budget", "GPU memory budget (GPU backend).", "MiB"},
         {"gradient-cache", "GPU: keep each brick's gradient for faster shading (the default)."},
         {"no-gradient-cache", "GPU: compute gradients from six fetches (less memory, slower)."},
@@ -243,6 +173,7 @@ int runRender(const QStringList& args) {
         {"stats", "Print timing and sampling figures."},
         {"repeat", "Render N frames turning 5 degrees each; render_ms is their median.", "N"},
     });
+    addRenderFlags(parser);
     parser.addHelpOption();
     QTextStream err(stderr);
     if (!parser.parse(args)) {
@@ -261,7 +192,10 @@ int runRender(const QStringList& args) {
     if (backend.startsWith("ws://") || backend.startsWith("wss://")) {
         return renderRemote(parser, err);
     }
-    if (backend != "cpu" && backend != "gl") {
+    RendererKind kind = RendererKind::Cpu;
+    try {
+        kind = parseRendererKind(backend.toStdString());
+    } catch (const std::invalid_argument&) {
         err << "lucent-cli render: backend '" << backend
             << "' is not available (use --backend cpu, gl or ws://HOST:PORT)\n";
         return kUsage;
@@ -320,80 +254,44 @@ int runRender(const QStringList& args) {
         RenderDescription desc = describe(parser, volume);
         desc.validate();
         // The GL backend needs an EGL context; without one the CPU renders, and says so.
-        std::unique_ptr<OffscreenContext> context;
-        std::unique_ptr<GpuRayCaster> gpu;
-        std::string gpuExtra;
-        if (backend == "gl") {
-            try {
-                context = OffscreenContext::create();
-                gpu = std::make_unique<GpuRayCaster>(volume, gpuOptions);
-            } catch (const GlError& e) {
-                err << "lucent-cli render: the GL backend is not available (" << e.what()
-                    << "); rendering on the CPU instead\n";
-                gpu.reset();
-                context.reset();
+        const std::unique_ptr<RenderDevice> device = RenderDevice::open(kind);
+        RenderDevice::Opened opened = device->openRenderer(volume, gpuOptions);
+        for (const std::string& reason : {device->fallbackReason(), opened.fallbackReason}) {
+            if (!reason.empty()) {
+                err << "lucent-cli render: " << QString::fromStdString(reason)
+                    << "; rendering on the CPU instead\n";
             }
         }
-        std::unique_ptr<CpuRayCaster> cpu = gpu ? nullptr : std::make_unique<CpuRayCaster>(volume);
+        Renderer& renderer = *opened.renderer;
         std::string qualityStats;
         if (quality) {
             qualityStats = applyQuality(
-                *quality, desc, gpu ? "gl" : "cpu",
-                [&](const RenderDescription& d) {
-                    return gpu ? gpu->render(d).frame : cpu->render(d);
-                },
-                err);
+                *quality, desc, renderer.backend(),
+                [&](const RenderDescription& d) { return renderer.render(d); }, err);
         }
         const RenderDescription firstDesc = desc; // the frame whose figures --stats prints
         std::vector<double> frames;
         RenderResult first;
+        FrameDetails details;
         for (int n = 0; n < repeat; ++n) {
             timer.restart();
-            RenderResult r;
-            if (gpu) {
-                GpuRenderResult g = gpu->render(desc);
-                r = std::move(g.frame);
-                if (n == 0) {
-                    const GpuFrameStats& gs = g.gpu;
-                    gpuExtra =
-                        " backend=gl uploads=" + std::to_string(gs.bricksUploaded) +
-                        " upload_mib=" +
-                        QString::number(double(gs.bytesUploaded) / 1048576.0, 'f', 1)
-                            .toStdString() +
-                        " resident=" + std::to_string(gs.bricksResident) +
-                        " pool_slots=" + std::to_string(gs.poolSlots) +
-                        " budget_mib=" + std::to_string(gs.budgetBytes >> 20) +
-                        " gradients=" + (gs.gradientsCached ? "cached" : "computed") +
-                        " resident_mib=" +
-                        QString::number(double(gs.residentBytes) / 1048576.0, 'f', 1)
-                            .toStdString() +
-                        " pool_mib=" +
-                        QString::number(double(gs.poolBytes) / 1048576.0, 'f', 1).toStdString() +
-                        " volume_mib=" +
-                        QString::number(double(volume.byteCount()) / 1048576.0, 'f', 1)
-                            .toStdString();
-                    if (!gs.lodReason.empty()) {
-                        err << "lucent-cli render: rendered from level " << r.stats.lod << ": "
-                            << QString::fromStdString(gs.lodReason) << "\n";
-                    }
-                } else {
-                    gpuExtra += n + 1 == repeat
-                                    ? " uploads_after_first=" + std::to_string(g.gpu.bricksUploaded)
-                                    : "";
-                }
-            } else {
-                r = cpu->render(desc);
-            }
+            RenderResult r = renderer.render(desc);
             frames.push_back(double(timer.nsecsElapsed()) / 1e6);
             if (n == 0) {
+                if (!r.stats.lodReason.empty()) {
+                    err << "lucent-cli render: rendered from level " << r.stats.lod << ": "
+                        << QString::fromStdString(r.stats.lodReason) << "\n";
+                }
                 first = std::move(r);
+                details = renderer.frameDetails();
+            } else if (n + 1 == repeat && !details.empty()) {
+                for (const auto& [key, value] : renderer.frameDetails()) {
+                    if (key == "uploads") {
+                        details.emplace_back("uploads_after_first", value);
+                    }
+                }
             }
             desc.camera.azimuth += 5.0;
-        }
-        if (context) {
-            gpuExtra += " renderer=\"" + context->description() + "\"";
-        } else {
-            gpuExtra = " backend=cpu";
         }
         writePng(first.image, parser.value("output").toStdString());
         if (parser.isSet("stats")) {
@@ -408,7 +306,16 @@ int runRender(const QStringList& args) {
                 << " samples=" << s.samples << " bricks_total=" << s.bricksTotal
                 << " bricks_used=" << s.bricksUsed << " lod=" << s.lod
                 << " brute_samples=" << bruteForceSamples(firstDesc) << " frames=" << repeat
-                << QString::fromStdString(qualityStats) << QString::fromStdString(gpuExtra) << "\n";
+                << QString::fromStdString(qualityStats)
+                << " backend=" << QString::fromStdString(renderer.backend());
+            for (const auto& [key, value] : details) {
+                out << " " << QString::fromStdString(key) << "=" << QString::fromStdString(value);
+            }
+            if (renderer.backend() == "gl") {
+                out << " volume_mib=" << QString::fromStdString(mib(volume.byteCount()))
+                    << " renderer=\"" << QString::fromStdString(renderer.device()) << "\"";
+            }
+            out << "\n";
         }
     } catch (const UsageError& e) {
         err << "lucent-cli render: " << e.what() << "\n";

@@ -12,9 +12,10 @@ const char* kUsageText =
     "usage: lucent-cli COMMAND ...\n"
     "  info PATH [--json]                   what PATH holds: series, geometry, warnings\n"
     "  convert PATH OUT.mhd [--series UID]  write one series as MetaImage (.mhd + .raw)\n"
-    "  render PATH -o OUT.png [options]     volume rendering (CPU ray caster); --help lists "
-    "options\n"
+    "  render PATH -o OUT.png [options]     volume rendering (CPU, GL or a server); --help "
+    "lists options\n"
     "  compare A.png B.png                  print psnr_db=<x> ssim=<y> for two images\n"
+    "  options [--markdown]                 every render option: flag, wire key, range, default\n"
     "  bench quality PATH [--backend cpu|gl] [--csv OUT.csv] [--plot OUT.png]\n"
     "                                       time against PSNR/SSIM of every sampling setting\n"
     "PATH: a DICOM folder (searched recursively), a DICOM file, a DICOMDIR,\n"
@@ -64,6 +65,9 @@ int main(int argc, char** argv) {
     }
     if (command == "bench") {
         return lucent::cli::runBench(args);
+    }
+    if (command == "options") {
+        return lucent::cli::runOptions(args);
     }
     if (command == "compare") {
         return lucent::cli::runCompare(args);

@@ -84,12 +84,12 @@ int main(int argc, char** argv) {
         err << "lucent-server: --listen: '" << parser.value("listen") << "' is not HOST:PORT\n";
         return kUsage;
     }
-    const QString backend = parser.value("backend");
-    if (backend != "gl" && backend != "cpu") {
-        err << "lucent-server: --backend: '" << backend << "' is not gl or cpu\n";
+    try {
+        options.backend = lucent::parseRendererKind(parser.value("backend").toStdString());
+    } catch (const std::invalid_argument& e) {
+        err << "lucent-server: --" << e.what() << "\n";
         return kUsage;
     }
-    options.backend = backend == "gl" ? lucent::remote::Backend::Gl : lucent::remote::Backend::Cpu;
     bool ok = false;
     options.maxClients = parser.value("max-clients").toInt(&ok);
     if (!ok || options.maxClients < 1) {

@@ -8,14 +8,14 @@ namespace lucent {
 
 RenderDescription interactiveDescription(const RenderDescription& still,
                                          const InteractiveQuality& quality) {
-    if (!(quality.stepFactor >= 1.0) || quality.imageDivisor < 1) {
-        throw std::invalid_argument("interactive quality: the step factor and the image divisor "
-                                    "must be at least 1");
+    if (!(quality.stepFactor >= 1.0) || !(quality.imageScale > 0.0 && quality.imageScale <= 1.0)) {
+        throw std::invalid_argument("interactive quality: the step factor must be at least 1 and "
+                                    "the image scale lie in (0, 1]");
     }
     RenderDescription d = still;
     d.sampling.step *= quality.stepFactor;
-    d.width = std::max(1, still.width / quality.imageDivisor);
-    d.height = std::max(1, still.height / quality.imageDivisor);
+    d.width = std::max(1, int(still.width * quality.imageScale));
+    d.height = std::max(1, int(still.height * quality.imageScale));
     return d;
 }
 

@@ -78,8 +78,9 @@ InteractiveQuality chooseInteractive(const std::vector<QualityPoint>& points,
                                      const QualitySetting& still, double budgetMs, TimeModel time,
                                      int imageDivisor) {
     InteractiveQuality quality;
-    quality.imageDivisor = std::max(1, imageDivisor);
-    time.scale /= double(quality.imageDivisor * quality.imageDivisor);
+    const int divisor = std::max(1, imageDivisor);
+    quality.imageScale = 1.0 / divisor;
+    time.scale /= double(divisor * divisor);
     const QualityPoint* best = nullptr;
     const QualityPoint* coarsest = nullptr;
     for (const QualityPoint& p : points) {

@@ -21,6 +21,7 @@ struct RenderStats {
     std::size_t bricksTotal = 0; // bricks of the volume
     std::size_t bricksUsed = 0;  // bricks visible under the transfer function and clip box
     int lod = 0;                 // level of detail rendered (0: full resolution)
+    std::string lodReason;       // why a coarser level, when one was used
 };
 
 struct RenderResult {

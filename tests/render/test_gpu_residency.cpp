@@ -187,7 +187,7 @@ private slots:
         const double p = psnr(shown, full.frame.image);
         QVERIFY2(p > 20.0, qPrintable(QString("interactive vs still: %1 dB").arg(p)));
         QVERIFY_THROWS_EXCEPTION(std::invalid_argument,
-                                 interactiveDescription(still, InteractiveQuality{0.5, 2}));
+                                 interactiveDescription(still, InteractiveQuality{0.5, 0.5}));
     }
 
     // Longer than one 3D texture may be (GL_MAX_3D_TEXTURE_SIZE, 2048 on llvmpipe):

@@ -127,7 +127,7 @@ private slots:
         QualitySetting still = chooseQuality(pts, 250, true).setting; // cubic 0.5
         // A quarter of the pixels while dragging: cubic 1 (100 ms) fits 30 ms * 4.
         InteractiveQuality q = chooseInteractive(pts, still, 30, {}, 2);
-        QCOMPARE(q.imageDivisor, 2);
+        QCOMPARE(q.imageScale, 0.5);
         QCOMPARE(q.stepFactor, 2.0);
         // Nothing fits: the coarsest step of that filter.
         q = chooseInteractive(pts, still, 1, {}, 2);

@@ -74,7 +74,7 @@ private slots:
         QVERIFY2(fast && fast->pareto, qPrintable(controls.qualityStatus()));
         // Dragging: a measured step of the same filter, no finer than the still one.
         const InteractiveQuality drag = controls.dragQuality();
-        QCOMPARE(drag.imageDivisor, 2);
+        QCOMPARE(drag.imageScale, 0.5);
         QVERIFY(drag.stepFactor >= 1.0);
         bool dragMeasured = false;
         for (const QualityPoint& p : front->points) {
