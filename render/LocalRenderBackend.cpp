@@ -45,7 +45,7 @@ RenderResult LocalRenderBackend::renderOnGpu(const RenderDescription& descriptio
         gpuCaster_ = std::make_unique<GpuRayCaster>(*volume_, gpuOptions_);
         gpuGeneration_ = generation_;
     }
-    return gpuCaster_->render(description).frame;
+    return gpuCaster_->render(description);
 }
 
 void LocalRenderBackend::renderPending() {

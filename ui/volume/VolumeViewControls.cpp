@@ -282,7 +282,7 @@ void VolumeViewControls::startMeasuring(const RenderDescription& description,
                     GpuRayCaster gpu(*volume);
                     m->front = measureQuickFront(
                         description, backend,
-                        [&](const RenderDescription& d) { return gpu.render(d).frame; }, reference,
+                        [&](const RenderDescription& d) { return gpu.render(d); }, reference,
                         tick);
                     return;
                 } catch (const MeasuringCancelled&) {
