@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/volume/BrickResidency.h"
-#include "render/GlObjects.h"
+#include "render/GlObjects_p.h"
 
 namespace lucent {
 

@@ -1,4 +1,4 @@
-#include "render/GlObjects.h"
+#include "render/GlObjects_p.h"
 
 #include <algorithm>
 #include <cstdio>

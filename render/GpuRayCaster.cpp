@@ -16,7 +16,7 @@
 #include "core/volume/LodPyramid.h"
 #include "render/BrickPool.h"
 #include "render/GlError.h"
-#include "render/GlObjects.h"
+#include "render/GlObjects_p.h"
 #include "render/GpuBudget.h"
 #include "render/RenderTarget.h"
 #include "render/SceneTextures.h"

@@ -7,7 +7,7 @@
 
 #include <glm/glm.hpp>
 
-#include "render/GlObjects.h"
+#include "render/GlObjects_p.h"
 
 namespace lucent {
 

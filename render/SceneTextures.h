@@ -13,7 +13,7 @@
 #include "core/tf/TransferFunction.h"
 #include "core/volume/BrickGrid.h"
 #include "core/volume/BrickResidency.h"
-#include "render/GlObjects.h"
+#include "render/GlObjects_p.h"
 
 namespace lucent {
 

@@ -1,7 +1,7 @@
 // Header reading for one DICOM file with GDCM: classic single-frame images,
 // legacy multi-frame, and Enhanced CT/MR with per-frame functional groups.
 #include "core/dicom/DicomStructure.h"
-#include "core/dicom/DicomTags.h"
+#include "core/dicom/DicomTags_p.h"
 #include "core/dicom/ImageRecord.h"
 #include "core/io/LoadControl.h"
 

@@ -1,4 +1,4 @@
-#include "core/dicom/DicomTags.h"
+#include "core/dicom/DicomTags_p.h"
 
 #include <charconv>
 #include <cstring>

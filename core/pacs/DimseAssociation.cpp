@@ -1,4 +1,4 @@
-#include "core/pacs/DimseAssociation.h"
+#include "core/pacs/DimseAssociation_p.h"
 
 #include <cstdlib>
 #include <mutex>

@@ -7,7 +7,7 @@
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcuid.h>
 
-#include "core/pacs/DimseAssociation.h"
+#include "core/pacs/DimseAssociation_p.h"
 
 namespace lucent {
 namespace {

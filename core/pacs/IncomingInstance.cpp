@@ -1,4 +1,4 @@
-#include "core/pacs/IncomingInstance.h"
+#include "core/pacs/IncomingInstance_p.h"
 
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcfilefo.h>

@@ -5,8 +5,8 @@
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcuid.h>
 
-#include "core/pacs/DimseAssociation.h"
-#include "core/pacs/IncomingInstance.h"
+#include "core/pacs/DimseAssociation_p.h"
+#include "core/pacs/IncomingInstance_p.h"
 
 namespace lucent {
 namespace {

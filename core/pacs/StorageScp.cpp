@@ -4,7 +4,7 @@
 #include <dcmtk/dcmdata/dcuid.h>
 #include <dcmtk/dcmnet/scp.h>
 
-#include "core/pacs/IncomingInstance.h"
+#include "core/pacs/IncomingInstance_p.h"
 #include "core/pacs/PacsNode.h"
 
 #include <netinet/in.h>

@@ -93,10 +93,10 @@ QString firstComponent(const QString& path) {
     return slash < 0 ? QString() : path.left(slash);
 }
 
-// The project folder an include points into ("render" for "render/GpuRayCaster.h" or for
-// "../render/GpuRayCaster.h" written in core/x/), or "" for anything else.
-QString projectFolderOf(const QString& root, const QString& relPath, const QString& include,
-                        bool quoted) {
+// The path, relative to the root, of the header an include names ("render/GpuRayCaster.h" for
+// "render/GpuRayCaster.h", or for "../render/GpuRayCaster.h" written in core/x/).
+QString projectHeaderPath(const QString& root, const QString& relPath, const QString& include,
+                          bool quoted) {
     QString target = QDir::cleanPath(include);
     if (quoted) {
         const QString dir = QFileInfo(relPath).path();
@@ -105,7 +105,13 @@ QString projectFolderOf(const QString& root, const QString& relPath, const QStri
             target = besideFile;
         }
     }
-    const QString folder = firstComponent(target);
+    return target;
+}
+
+// The project folder an include points into ("render"), or "" for anything else.
+QString projectFolderOf(const QString& root, const QString& relPath, const QString& include,
+                        bool quoted) {
+    const QString folder = firstComponent(projectHeaderPath(root, relPath, include, quoted));
     return kSourceFolders.contains(folder) ? folder : QString();
 }
 
@@ -137,6 +143,14 @@ void checkInclude(const QString& root, const QString& relPath, int line, const Q
                 relPath, line, subject, Rule::Layers,
                 QStringLiteral("layers: %1/ may include only %2").arg(layer, folderList(allowed)));
         }
+        // A private header (Qt's "_p.h") belongs to its folder.
+        const QString resolved = projectHeaderPath(root, relPath, include, quoted);
+        if (resolved.endsWith(QStringLiteral("_p.h")) &&
+            QFileInfo(resolved).path() != QFileInfo(relPath).path()) {
+            out << make(relPath, line, subject, Rule::Layers,
+                        QStringLiteral("layers: %1 is private to %2/")
+                            .arg(resolved, QFileInfo(resolved).path()));
+        }
         return; // a project header is none of the kinds below
     }
 
@@ -162,10 +176,11 @@ void checkInclude(const QString& root, const QString& relPath, int line, const Q
     }
 
     // (4) Third-party headers: .cpp files only, in the libraries' folders.
-    if (isHeaderFile(relPath) && layer != "app" && isThirdPartyHeader(include)) {
+    if (isHeaderFile(relPath) && !relPath.endsWith(QStringLiteral("_p.h")) && layer != "app" &&
+        isThirdPartyHeader(include)) {
         out << make(relPath, line, subject, Rule::ThirdParty,
-                    QStringLiteral("third-party: library headers only in .cpp files, not in a "
-                                   "public header of %1/")
+                    QStringLiteral("third-party: library headers only in .cpp files and private "
+                                   "headers (_p.h), not in a public header of %1/")
                         .arg(layer));
     }
 }

@@ -192,6 +192,9 @@ private slots:
         QTest::newRow("render header includes epoxy") << "render/Bad.h"
                                                       << "#pragma once\n#include <epoxy/gl.h>\n"
                                                       << QStringList{"third-party:2"};
+        QTest::newRow("render includes a private header of core/dicom")
+            << "render/Bad.cpp" << "// tags\n#include \"core/dicom/Tags_p.h\"\n"
+            << QStringList{"layers:2"};
         QTest::newRow("ui calls glClear")
             << "ui/mpr/Bad.cpp"
             << "void clear(QOpenGLFunctions* gl) {\n    gl->glClear(GL_COLOR_BUFFER_BIT);\n}\n"
@@ -236,6 +239,9 @@ private slots:
              "const char* r = R\"x(glClear( \" #include <QWidget>)x\";\n"
              "const char c = '\"';\nint n = 1'000'000; // glClear(\n"},
             {"core/dicom/Reader.h", "#pragma once\n#include <string>\n"},
+            // A private header ("_p.h") may show the library; its folder includes it.
+            {"core/dicom/Tags_p.h", "#pragma once\n#include <gdcmDataSet.h>\n"},
+            {"core/dicom/Tags.cpp", "#include \"core/dicom/Tags_p.h\"\n#include \"Tags_p.h\"\n"},
             {"protocol/Messages.h", "#pragma once\n#include \"core/scene/Camera.h\"\n"},
             {"protocol/Messages.cpp",
              "#include \"protocol/Messages.h\"\n#include \"core/volume/Volume.h\"\n"},

@@ -5,7 +5,7 @@
 #include "core/quality/InteractiveQuality.h"
 #include "core/volume/BrickResidency.h"
 #include "render/GlError.h"
-#include "render/GlObjects.h"
+#include "render/GlObjects_p.h"
 #include "tests/render/GlTestSupport.h"
 #include "tests/core/raycast/RaycastScenes.h"
 

@@ -9,7 +9,7 @@
 #include "core/formats/MetaImage.h"
 #include "core/formats/Nifti.h"
 #include "core/io/LoadControl.h"
-#include "tests/formats/FormatTestFiles.h"
+#include "tests/core/formats/FormatTestFiles.h"
 
 using namespace lucent;
 using namespace lucent::test;
