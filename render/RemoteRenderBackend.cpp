@@ -3,10 +3,9 @@
 #include <algorithm>
 
 #include <QImage>
-#include <QJsonArray>
-#include <QJsonDocument>
-#include <QJsonObject>
+#include <QNetworkRequest>
 #include <QWebSocket>
+#include <QWebSocketHandshakeOptions>
 
 #include "protocol/ProtocolMessages.h"
 
@@ -14,32 +13,13 @@ namespace lucent {
 
 namespace {
 
-constexpr int kMinSide = 16;
+// Camera keys that servers of version 1 before its camera distance and pan refuse.
+constexpr std::string_view kCentreKeys[] = {"distance", "pan_right", "pan_up"};
 
-bool sameCamera(const Camera& a, const Camera& b) {
-    return a.azimuth == b.azimuth && a.elevation == b.elevation && a.zoom == b.zoom &&
-           a.distance == b.distance && a.panRight == b.panRight && a.panUp == b.panUp;
-}
-
-bool movedFromTheCentre(const Camera& c) {
-    return c.distance != 0.0 || c.panRight != 0.0 || c.panUp != 0.0;
-}
-
-bool sameClip(const ClipBox& a, const ClipBox& b) {
-    return a.lo == b.lo && a.hi == b.hi;
-}
-
-bool clipsNothing(const ClipBox& clip) {
-    return sameClip(clip, ClipBox{});
-}
-
-QJsonArray vector3(const glm::dvec3& v) {
-    return {v.x, v.y, v.z};
-}
-
-std::pair<RenderMode, double> modeOf(const RenderDescription& d) {
-    // The iso value matters only to isosurfaces.
-    return {d.mode, d.mode == RenderMode::Isosurface ? d.isoValue : 0.0};
+bool offCentre(const remote::CameraUpdate& camera) {
+    return std::any_of(std::begin(kCentreKeys), std::end(kCentreKeys), [&](std::string_view key) {
+        return camera.number(key).value_or(0.0) != 0.0;
+    });
 }
 
 ImageRGBA8 toImage(const QImage& decoded) {
@@ -57,6 +37,10 @@ bool hopeless(const QString& code) {
            code == "unknown-type" || code == "out-of-order" || code == "too-large";
 }
 
+QString text(const std::string& s) {
+    return QString::fromStdString(s);
+}
+
 } // namespace
 
 void RemoteRenderBackend::SocketDropper::operator()(QWebSocket* socket) const {
@@ -64,7 +48,8 @@ void RemoteRenderBackend::SocketDropper::operator()(QWebSocket* socket) const {
     socket->deleteLater();
 }
 
-RemoteRenderBackend::RemoteRenderBackend(QObject* parent) : RenderBackend(parent) {
+RemoteRenderBackend::RemoteRenderBackend(QObject* parent)
+    : RenderBackend(parent), offeredVersion_(remote::kProtocolVersion) {
     reconnectTimer_.setSingleShot(true);
     handshakeTimer_.setSingleShot(true);
     cameraTimer_.setSingleShot(true);
@@ -148,27 +133,40 @@ void RemoteRenderBackend::open() {
     wasOpen_ = false;
     seqSent_ = 0; // a new connection: the server counts from 0 again
     firstViewSeq_ = 0;
+    serverVersion_ = 0;
     refused_.clear();
     phase_ = Phase::Connecting;
     QWebSocket* s = socket_.get();
     connect(s, &QWebSocket::connected, this, &RemoteRenderBackend::onConnected);
     connect(s, &QWebSocket::textMessageReceived, this, &RemoteRenderBackend::onText);
     connect(s, &QWebSocket::binaryMessageReceived, this, &RemoteRenderBackend::onBinary);
-    connect(s, &QWebSocket::disconnected, this,
-            [this, s] { onLost(s->closeReason().isEmpty() ? tr("closed") : s->closeReason()); });
+    // A refused connection may report its close before its error: the error says why.
+    connect(s, &QWebSocket::disconnected, this, [this, s] {
+        onLost(!s->closeReason().isEmpty()                         ? s->closeReason()
+               : s->error() != QAbstractSocket::UnknownSocketError ? s->errorString()
+                                                                   : tr("closed"));
+    });
     // Qt 6.4 names the signal error (errorOccurred from 6.5).
     connect(s, qOverload<QAbstractSocket::SocketError>(&QWebSocket::error), this,
             [this, s](QAbstractSocket::SocketError) { onLost(s->errorString()); });
     setStatus(retry ? BackendStatus::Reconnecting : BackendStatus::Connecting,
               retry ? tr("reconnecting to %1").arg(where()) : tr("connecting to %1").arg(where()));
     handshakeTimer_.start(kHandshakeTimeoutMs);
-    s->open(settings_.url);
+    // The versions this client speaks, newest first: the server selects the
+    // first it speaks, and its hello says which.
+    QStringList versions;
+    for (int v = offeredVersion_; v >= remote::kOldestProtocolVersion; --v) {
+        versions << text(remote::subprotocolName(v));
+    }
+    QWebSocketHandshakeOptions options;
+    options.setSubprotocols(versions);
+    s->open(QNetworkRequest(settings_.url), options);
 }
 
 void RemoteRenderBackend::onConnected() {
     handshakeTimer_.stop();
     phase_ = Phase::Authenticating;
-    sendJson({{"type", "auth"}, {"token", settings_.token}});
+    send(remote::writeClientMessage(remote::AuthRequest{settings_.token.toStdString()}));
 }
 
 void RemoteRenderBackend::onLost(const QString& why) {
@@ -185,6 +183,12 @@ void RemoteRenderBackend::onLost(const QString& why) {
         return;
     }
     const QString reason = refusal_.isEmpty() ? why : refusal_;
+    if (!retrying_) {
+        setStatus(BackendStatus::Failed,
+                  wasOpen_ ? tr("lost the connection to %1 (%2)").arg(where(), reason)
+                           : tr("cannot reach %1 (%2)").arg(where(), reason));
+        return;
+    }
     const QString in = tr("%1 s").arg(nextDelayMs_ / 1000.0, 0, 'g', 2);
     setStatus(
         BackendStatus::Reconnecting,
@@ -194,42 +198,53 @@ void RemoteRenderBackend::onLost(const QString& why) {
     nextDelayMs_ = std::min(2 * nextDelayMs_, maxDelayMs_);
 }
 
-void RemoteRenderBackend::sendJson(const QJsonObject& message) {
+void RemoteRenderBackend::send(const std::string& json) {
     if (socket_) {
-        socket_->sendTextMessage(
-            QString::fromUtf8(QJsonDocument(message).toJson(QJsonDocument::Compact)));
+        socket_->sendTextMessage(text(json));
     }
 }
 
-void RemoteRenderBackend::sendView(const QJsonObject& message) {
-    sendJson(message);
+void RemoteRenderBackend::sendView(const std::string& type, const std::string& json) {
+    send(json);
     ++seqSent_;
     // A new value of a refused kind may be accepted (an unnamed refusal: any).
-    refused_.remove(message["type"].toString());
+    refused_.remove(text(type));
     refused_.remove(QString());
 }
 
-void RemoteRenderBackend::onText(const QString& text) {
-    const QJsonObject m = QJsonDocument::fromJson(text.toUtf8()).object();
-    const QString type = m["type"].toString();
-    if (type == "error") {
-        onServerError(m["code"].toString(), m["message"].toString(), m["fatal"].toBool());
-    } else if (type == "hello" && phase_ == Phase::Authenticating) {
-        serverBackend_ = m["backend"].toString();
+void RemoteRenderBackend::onText(const QString& message) {
+    remote::ServerMessage m;
+    try {
+        m = remote::parseServerMessage(message.toStdString());
+    } catch (const remote::ProtocolError& e) {
+        if (e.fatal()) {
+            emit frameFailed(tr("the server sent a message that cannot be read: %1").arg(e.what()));
+        }
+        return; // a type this client does not know: a newer server's, skipped
+    }
+    if (const auto* error = std::get_if<remote::ErrorReply>(&m)) {
+        onServerError(text(error->code), text(error->message), error->fatal);
+    } else if (const auto* hello = std::get_if<remote::Hello>(&m);
+               hello && phase_ == Phase::Authenticating) {
+        serverBackend_ = text(hello->backend);
+        serverVersion_ = hello->version;
         phase_ = Phase::Listing;
-        sendJson({{"type", "list"}});
-    } else if (type == "series" && phase_ == Phase::Listing) {
-        chooseSeries(m["series"].toArray());
-    } else if (type == "opened" && phase_ == Phase::Opening) {
+        send(remote::writeClientMessage(remote::ListRequest{}));
+    } else if (const auto* list = std::get_if<remote::SeriesListReply>(&m);
+               list && phase_ == Phase::Listing) {
+        offered_.clear();
+        for (const remote::SeriesSummary& s : list->series) {
+            offered_.push_back({text(s.uid), text(s.description), text(s.modality), s.dims});
+        }
+        chooseSeries();
+    } else if (const auto* opened = std::get_if<remote::Opened>(&m);
+               opened && phase_ == Phase::Opening) {
         phase_ = Phase::Open;
         wasOpen_ = true;
-        openSeries_ = m["series"].toString();
+        openSeries_ = text(opened->series);
         nextDelayMs_ = firstDelayMs_;
         QString note;
-        const QJsonArray dims = m["dims"].toArray();
-        if (volume_ && settings_.series.isEmpty() &&
-            (dims.size() != 3 || dims[0].toInt() != volume_->dims().x ||
-             dims[1].toInt() != volume_->dims().y || dims[2].toInt() != volume_->dims().z)) {
+        if (volume_ && settings_.series.isEmpty() && opened->dims != volume_->dims()) {
             note = tr("; its volume's size differs from the one loaded here");
         }
         setStatus(BackendStatus::Connected,
@@ -253,7 +268,7 @@ void RemoteRenderBackend::onServerError(const QString& code, const QString& mess
     } else if (code == "rate-limited") {
         // The camera was dropped: send it again a little later.
         --seqSent_;
-        sent_.camera.reset();
+        sent_.erase("camera");
         cameraTimer_.start(kCameraIntervalMs);
     } else if (code == "bad-request") {
         // Not counted by the server, and not shown: until a new value of its
@@ -268,7 +283,7 @@ void RemoteRenderBackend::onServerError(const QString& code, const QString& mess
     }
 }
 
-void RemoteRenderBackend::chooseSeries(const QJsonArray& offered) {
+void RemoteRenderBackend::chooseSeries() {
     const QString wanted = !settings_.series.isEmpty() ? settings_.series
                            : volume_                   ? QString::fromStdString(volume_->seriesUid)
                                                        : QString();
@@ -276,44 +291,34 @@ void RemoteRenderBackend::chooseSeries(const QJsonArray& offered) {
         fail(tr("no volume is loaded and the settings name no series"));
         return;
     }
-    offered_.clear();
-    for (const QJsonValue& entry : offered) {
-        const QJsonObject s = entry.toObject();
-        const QJsonArray d = s["dims"].toArray();
-        offered_.push_back({s["uid"].toString(), s["description"].toString(),
-                            s["modality"].toString(),
-                            glm::ivec3(d.at(0).toInt(), d.at(1).toInt(), d.at(2).toInt())});
-    }
     // The server names further parts of one UID "UID#n": the one of our size.
     QString chosen;
-    for (const QJsonValue& entry : offered) {
-        const QJsonObject s = entry.toObject();
-        const QString uid = s["uid"].toString();
-        if (uid == wanted) {
-            chosen = uid;
+    for (const OfferedSeries& s : offered_) {
+        if (s.uid == wanted) {
+            chosen = s.uid;
             break;
         }
-        const QJsonArray d = s["dims"].toArray();
-        if (chosen.isEmpty() && uid.startsWith(wanted + "#") && volume_ && d.size() == 3 &&
-            d[0].toInt() == volume_->dims().x && d[1].toInt() == volume_->dims().y &&
-            d[2].toInt() == volume_->dims().z) {
-            chosen = uid;
+        if (chosen.isEmpty() && s.uid.startsWith(wanted + "#") && volume_ &&
+            s.dims == volume_->dims()) {
+            chosen = s.uid;
         }
     }
     if (chosen.isEmpty()) {
         fail(tr("%1 does not have series %2 (it offers %3 series)")
                  .arg(where(), wanted)
-                 .arg(offered.size()));
+                 .arg(offered_.size()));
         return;
     }
     phase_ = Phase::Opening;
-    sent_ = ViewParts{};
-    refused_.clear(); // everything goes out again
+    sent_.clear(); // everything goes out again
+    interacting_ = false;
+    sentOffCentre_ = false;
+    refused_.clear();
     // The server counts view messages per connection, across re-opens: the
     // count goes on, and frames of the series before are older than the new
     // view's first (firstViewSeq_, set by the first sync).
     firstViewSeq_ = 0;
-    sendView({{"type", "open"}, {"series", chosen}});
+    sendView("open", remote::writeClientMessage(remote::OpenRequest{chosen.toStdString()}));
 }
 
 void RemoteRenderBackend::setVolume(std::shared_ptr<const Volume> volume) {
@@ -323,7 +328,7 @@ void RemoteRenderBackend::setVolume(std::shared_ptr<const Volume> volume) {
         // Open the new volume's series (or the one the settings name) again.
         phase_ = Phase::Listing;
         cameraTimer_.stop();
-        sendJson({{"type", "list"}});
+        send(remote::writeClientMessage(remote::ListRequest{}));
     }
 }
 
@@ -337,73 +342,89 @@ void RemoteRenderBackend::sync() {
         return;
     }
     const RenderDescription& d = wanted_->still;
-    // Camera messages are paced; the rest waits with them so that a still
-    // frame never shows an old camera.
-    if (sent_.camera && !sameCamera(*sent_.camera, d.camera) && cameraClock_.isValid() &&
-        cameraClock_.elapsed() < kCameraIntervalMs) {
-        cameraTimer_.start(int(kCameraIntervalMs - cameraClock_.elapsed()));
-        return;
+    std::vector<remote::ClientMessage> messages = remote::viewMessages(d);
+    for (remote::ClientMessage& m : messages) {
+        auto* camera = std::get_if<remote::CameraUpdate>(&m);
+        // A version 1 server before camera distance and pan refuses those keys:
+        // they go once the view has left the orbit about the centre, and to such a
+        // server nothing else is lost.
+        if (camera && serverVersion_ < 2 && !offCentre(*camera) && !sentOffCentre_) {
+            std::erase_if(camera->values, [](const remote::OptionValue& v) {
+                return std::find(std::begin(kCentreKeys), std::end(kCentreKeys),
+                                 v.option->wireKey) != std::end(kCentreKeys);
+            });
+        }
+        // Camera messages are paced; the rest waits with them so that a still
+        // frame never shows an old camera.
+        if (camera && sent_.count("camera") && sent_["camera"] != remote::writeClientMessage(m) &&
+            cameraClock_.isValid() && cameraClock_.elapsed() < kCameraIntervalMs) {
+            cameraTimer_.start(int(kCameraIntervalMs - cameraClock_.elapsed()));
+            return;
+        }
     }
     // A drag is an interaction: adaptive JPEG frames until its end, which owes
     // one lossless still (after `open` the server is not interacting). The
     // start goes before the changes and the end after them, so that no still
     // is rendered for a half-way camera.
-    const bool interacting = sent_.interactive.value_or(false);
+    const bool interacting = interacting_;
     if (wanted_->interactive && !interacting) {
-        sendView({{"type", "interaction"}, {"state", "start"}});
+        sendView("interaction", remote::writeClientMessage(remote::InteractionUpdate{true}));
     }
-    sent_.interactive = wanted_->interactive;
-    const QSize size(std::clamp(d.width, kMinSide, remote::kMaxImageSide),
-                     std::clamp(d.height, kMinSide, remote::kMaxImageSide));
-    if (sent_.size != size) {
-        sendView({{"type", "size"}, {"width", size.width()}, {"height", size.height()}});
-        sent_.size = size;
-    }
-    if (sent_.transferFunction != d.transferFunction) {
-        const QJsonObject tf =
-            QJsonDocument::fromJson(QByteArray::fromStdString(toJson(d.transferFunction))).object();
-        sendView({{"type", "tf"}, {"tf", tf}});
-        sent_.transferFunction = d.transferFunction;
-    }
-    if (sent_.mode != modeOf(d)) {
-        QJsonObject mode{{"type", "mode"}, {"mode", renderModeName(d.mode)}};
-        if (d.mode == RenderMode::Isosurface) {
-            mode["iso"] = d.isoValue;
+    interacting_ = wanted_->interactive;
+    for (const remote::ClientMessage& m : messages) {
+        const std::string type(remote::messageType(m));
+        const std::string json = remote::writeClientMessage(m);
+        if (const auto it = sent_.find(type); it != sent_.end() && it->second == json) {
+            continue;
         }
-        sendView(mode);
-        sent_.mode = modeOf(d);
-    }
-    if (!sent_.clip || !sameClip(*sent_.clip, d.clip)) {
-        QJsonObject clip{{"type", "clip"}};
-        if (!clipsNothing(d.clip)) {
-            clip["lo"] = vector3(d.clip.lo);
-            clip["hi"] = vector3(d.clip.hi);
+        sent_[type] = json;
+        if (remote::messageVersion(m) > serverVersion_) {
+            refuseNewerMessage(type, json, d);
+            continue;
         }
-        sendView(clip);
-        sent_.clip = d.clip;
-    }
-    if (!sent_.camera || !sameCamera(*sent_.camera, d.camera)) {
-        QJsonObject camera{{"type", "camera"},
-                           {"azimuth", d.camera.azimuth},
-                           {"elevation", d.camera.elevation},
-                           {"zoom", d.camera.zoom}};
-        // Sent once the view has left the orbit about the centre: a server older
-        // than these fields refuses them, and to it nothing else is lost.
-        if (movedFromTheCentre(d.camera) || (sent_.camera && movedFromTheCentre(*sent_.camera))) {
-            camera["distance"] = d.camera.distance;
-            camera["pan_right"] = d.camera.panRight;
-            camera["pan_up"] = d.camera.panUp;
+        sendView(type, json);
+        if (const auto* camera = std::get_if<remote::CameraUpdate>(&m)) {
+            sentOffCentre_ = sentOffCentre_ || offCentre(*camera);
+            cameraClock_.start();
         }
-        sendView(camera);
-        sent_.camera = d.camera;
-        cameraClock_.start();
     }
     if (!wanted_->interactive && interacting) {
-        sendView({{"type", "interaction"}, {"state", "end"}});
+        sendView("interaction", remote::writeClientMessage(remote::InteractionUpdate{false}));
     }
     if (firstViewSeq_ == 0) {
         firstViewSeq_ = seqSent_;
     }
+}
+
+void RemoteRenderBackend::refuseNewerMessage(const std::string& type, const std::string& json,
+                                             const RenderDescription& wanted) {
+    // Only sampling is newer than version 1. The server renders with the
+    // sampling a description has by default (shading: the transfer function's):
+    // a view that asks for that loses nothing.
+    RenderDescription server;
+    server.transferFunction = wanted.transferFunction;
+    const remote::SamplingUpdate theirs{remote::optionUpdate(kWireSampling, server)};
+    if (type != "sampling" || json == remote::writeClientMessage(theirs)) {
+        if (refused_.remove(text(type))) {
+            // The frames since the refusal show the view wanted now: one more says so.
+            sendView("render", remote::writeClientMessage(remote::RenderRequest{}));
+        }
+        return;
+    }
+    QStringList settings;
+    for (const remote::OptionValue& v : remote::optionUpdate(kWireSampling, wanted).values) {
+        if (theirs.text(v.option->wireKey) != v.text) {
+            settings << QString::fromUtf8(v.option->name.data(), qsizetype(v.option->name.size())) +
+                            " " + text(v.text);
+        }
+    }
+    refused_.insert(text(type));
+    emit frameFailed(tr("%1 speaks protocol version %2, which cannot carry the sampling settings "
+                        "(%3): it renders with its own (sampling needs version %4)")
+                         .arg(where())
+                         .arg(serverVersion_)
+                         .arg(settings.join(", "))
+                         .arg(remote::messageTypeVersion(type)));
 }
 
 void RemoteRenderBackend::onBinary(const QByteArray& message) {

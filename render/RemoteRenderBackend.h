@@ -1,20 +1,19 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <QElapsedTimer>
 #include <QSet>
-#include <QSize>
 #include <QTimer>
 
 #include "render/RemoteServerSettings.h"
 #include "render/RenderBackend.h"
 
-class QJsonArray;
-class QJsonObject;
 class QWebSocket;
 
 namespace lucent {
@@ -27,19 +26,22 @@ struct OfferedSeries {
     glm::ivec3 dims{0};
 };
 
-// A lucent-server client (docs/protocol.md, v1) behind RenderBackend:
-// authenticates, lists the server's series and opens the one matching the
-// loaded volume (or the one the settings name), sends only the parts of the
-// view that changed (size, transfer function, mode, clip box, camera; a drag
-// as interaction start/end, so the server adapts its JPEG frames to hold the
-// frame rate), decodes the PNG (still) and JPEG (interactive) frames, tells
-// from their `seq` whether they show the newest request. A lost connection is
-// reopened by itself with growing delays and the whole view sent again; the
-// status says connecting, connected, reconnecting or failed (with the
-// server's refusal: a wrong token, a series it does not have).
+// A lucent-server client (docs/protocol.md, version 2, and version 1 servers)
+// behind RenderBackend: authenticates, lists the server's series and opens the
+// one matching the loaded volume (or the one the settings name), sends only the
+// view messages that changed (remote::viewMessages: size, transfer function,
+// mode, clip box, camera, sampling; a drag as interaction start/end, so the
+// server adapts its JPEG frames to hold the frame rate), decodes the PNG
+// (still) and JPEG (interactive) frames, tells from their `seq` whether they
+// show the newest request. A lost connection is reopened by itself with
+// growing delays and the whole view sent again; the status says connecting,
+// connected, reconnecting or failed (with the server's refusal: a wrong token,
+// a series it does not have).
 //
-// The protocol carries azimuth, elevation and zoom of the camera; the view's
-// other camera fields and the sampling settings are the server's defaults.
+// All JSON goes through the protocol's one writer and reader (protocol/). A
+// version 1 server has no sampling message: sampling other than its default is
+// not sent but refused with frameFailed (naming the settings), and the frames
+// that follow are never current.
 class RemoteRenderBackend : public RenderBackend {
     Q_OBJECT
 
@@ -70,23 +72,22 @@ public:
     // What the server offered in its last `series` reply (kept after a failure,
     // so that the user can pick one).
     const std::vector<OfferedSeries>& offeredSeries() const { return offered_; }
+    // The protocol version of the connection, from the server's hello (0 before).
+    int serverVersion() const { return serverVersion_; }
     // View messages the server has accepted or owes a frame for on this connection.
     std::uint64_t sentSeq() const { return seqSent_; }
 
     // The first retry after firstMs, each next one twice as late, at most maxMs.
     void setReconnectDelays(int firstMs, int maxMs);
+    // false: a connection that fails or is lost is not tried again; the status
+    // becomes Failed, saying why (for one-shot clients such as lucent-cli).
+    void setRetrying(bool retrying) { retrying_ = retrying; }
+    // The newest protocol version this client offers (remote::kProtocolVersion):
+    // an older one gets it served as a server of that version serves it.
+    void setProtocolVersion(int version) { offeredVersion_ = version; }
 
 private:
     enum class Phase { Idle, Connecting, Authenticating, Listing, Opening, Open };
-    // What the server has been told, part by part; nullopt: not yet (sent whole).
-    struct ViewParts {
-        std::optional<Camera> camera;
-        std::optional<TransferFunction> transferFunction;
-        std::optional<std::pair<RenderMode, double>> mode;
-        std::optional<ClipBox> clip;
-        std::optional<QSize> size;
-        std::optional<bool> interactive;
-    };
     struct WantedView {
         RenderDescription still;
         bool interactive = false;
@@ -98,10 +99,14 @@ private:
     void onBinary(const QByteArray& message);
     void onLost(const QString& why);
     void onServerError(const QString& code, const QString& message, bool fatal);
-    void chooseSeries(const QJsonArray& offered);
+    void chooseSeries();
     void sync();
-    void sendJson(const QJsonObject& message);
-    void sendView(const QJsonObject& message);
+    void send(const std::string& json);
+    // A view message of this type, as JSON: counted, and its kind no longer refused.
+    void sendView(const std::string& type, const std::string& json);
+    // A view message that the server's version does not have.
+    void refuseNewerMessage(const std::string& type, const std::string& json,
+                            const RenderDescription& wanted);
     // Stops the timers and drops the socket (no status change).
     void closeConnection();
     void fail(const QString& message);
@@ -124,11 +129,18 @@ private:
     std::vector<OfferedSeries> offered_;
     QString refusal_; // a fatal refusal, reported when the server closes
     bool retryAfterRefusal_ = true;
+    bool retrying_ = true;
     bool wasOpen_ = false; // this connection got as far as an open series
+    int serverVersion_ = 0;
+    int offeredVersion_; // set in the constructor
 
     std::shared_ptr<const Volume> volume_;
     std::optional<WantedView> wanted_;
-    ViewParts sent_;
+    // What the server has been told since `open`: the last view message of each
+    // type, as written (a message equal to it is not sent again).
+    std::map<std::string, std::string> sent_;
+    bool interacting_ = false;   // an interaction start was sent and no end yet
+    bool sentOffCentre_ = false; // a camera with distance or pan went to a version 1 server
     std::uint64_t seqSent_ = 0;
     std::uint64_t firstViewSeq_ = 0; // frames before this show the server's defaults
     // Kinds of view message the server refused ("camera", ...; "" when it did

@@ -3,8 +3,6 @@
 #include <QLoggingCategory>
 #include <QWebSocketHandshakeOptions>
 
-#include <nlohmann/json.hpp>
-
 #include "server/RenderServer.h"
 #include "server/TeachingSession.h"
 #include "server/ViewStream.h"
@@ -27,18 +25,21 @@ QStringList offeredSubprotocols(const QWebSocket& socket) {
     return offered;
 }
 
-nlohmann::json seriesSummary(const SeriesEntry& s, bool withDescription) {
-    const glm::ivec3 d = s.geometry.dims;
-    nlohmann::json entry{{"uid", s.id}, {"modality", s.modality}, {"dims", {d.x, d.y, d.z}}};
-    entry["description"] = withDescription ? s.description : std::string();
-    return entry;
+SeriesSummary seriesSummary(const SeriesEntry& s, bool withDescription) {
+    return {s.id, withDescription ? s.description : std::string(), s.modality, s.geometry.dims};
+}
+
+// The version the handshake selected (Qt's server picks one of
+// supportedSubprotocols() that the client offered); 1 when none.
+int connectionVersion(const QWebSocket& socket) {
+    return subprotocolVersion(socket.subprotocol().toStdString()).value_or(kOldestProtocolVersion);
 }
 
 } // namespace
 
 ClientConnection::ClientConnection(quint64 id, QWebSocket* socket, RenderServer& server)
-    : QObject(&server), id_(id), socket_(socket), server_(server),
-      ownView_(new ViewStream(server.newViewId(), server, this)) {
+    : QObject(&server), id_(id), version_(connectionVersion(*socket)), socket_(socket),
+      server_(server), ownView_(new ViewStream(server.newViewId(), server, this)) {
     socket->setParent(this);
     ownView_->addMember(this);
     ownView_->setPacer(this);
@@ -147,7 +148,8 @@ void ClientConnection::onText(const QString& text) {
     lastHeard_.restart();
     const QByteArray utf8 = text.toUtf8();
     try {
-        handle(parseClientMessage(std::string_view(utf8.constData(), std::size_t(utf8.size()))));
+        handle(parseClientMessage(std::string_view(utf8.constData(), std::size_t(utf8.size())),
+                                  version_));
     } catch (const ProtocolError& e) {
         sendError(e.code(), e.what(), e.fatal());
     }
@@ -160,11 +162,8 @@ void ClientConnection::authenticate(const std::string& token) {
     }
     authenticated_ = true;
     authTimer_.stop();
-    qCInfo(lcClient) << "client" << id_ << "authenticated";
-    sendJson(nlohmann::json{{"type", "hello"},
-                            {"version", kProtocolVersion},
-                            {"backend", server_.backendDescription().toStdString()}}
-                 .dump());
+    qCInfo(lcClient) << "client" << id_ << "authenticated, protocol version" << version_;
+    sendJson(writeServerMessage(Hello{version_, server_.backendDescription().toStdString()}));
 }
 
 void ClientConnection::handle(const ClientMessage& message) {
@@ -209,18 +208,18 @@ void ClientConnection::handle(const ClientMessage& message) {
 }
 
 void ClientConnection::sendList() {
-    nlohmann::json list = nlohmann::json::array();
+    SeriesListReply list;
     if (session_ && !session_->isPresenter(*this)) {
         // A follower sees the session's de-identified series only.
         if (const auto& shared = session_->view().series()) {
-            list.push_back(seriesSummary(*shared, false));
+            list.series.push_back(seriesSummary(*shared, false));
         }
     } else {
         for (const auto& s : server_.series()) {
-            list.push_back(seriesSummary(*s, true));
+            list.series.push_back(seriesSummary(*s, true));
         }
     }
-    sendJson(nlohmann::json{{"type", "series"}, {"series", list}}.dump());
+    sendJson(writeServerMessage(list));
 }
 
 void ClientConnection::handleOpen(const OpenRequest& open) {
@@ -251,9 +250,7 @@ void ClientConnection::handleSession(const ClientMessage& message) {
         const auto shared = ownView_->series();
         ownView_->close();
         session_ = session;
-        sendJson(
-            nlohmann::json{{"type", "session-created"}, {"session", session->id().toStdString()}}
-                .dump());
+        sendJson(writeServerMessage(SessionCreated{session->id().toStdString()}));
         session->broadcastState();
         if (shared) {
             session->share(shared); // the series this client had open, de-identified
@@ -295,7 +292,7 @@ void ClientConnection::handleSession(const ClientMessage& message) {
         }
         const std::string id = session_->id().toStdString();
         leaveSession();
-        sendJson(nlohmann::json{{"type", "session-left"}, {"session", id}}.dump());
+        sendJson(writeServerMessage(SessionLeft{id}));
     }
 }
 

@@ -27,9 +27,8 @@ inline constexpr double kCameraBurst = 60.0;
 inline constexpr double kCameraPerSecond = 60.0;
 // A client must authenticate within this time.
 inline constexpr int kAuthTimeoutMs = 10000;
-// The subprotocol a client selects, and the prefix of the one that carries
-// its token (browsers cannot set headers on a WebSocket).
-inline constexpr char kSubprotocol[] = "lucent.v1";
+// The prefix of the subprotocol that carries a client's token (browsers cannot
+// set headers on a WebSocket); the version rides in another (ProtocolVersion.h).
 inline constexpr char kTokenSubprotocolPrefix[] = "lucent.token.";
 
 class ClientConnection : public QObject {
@@ -42,6 +41,9 @@ public:
     void start();
 
     quint64 id() const { return id_; }
+    // The protocol version of this connection: the lucent.v<N> subprotocol the
+    // handshake selected, 1 when none.
+    int version() const { return version_; }
     void sendJson(const std::string& json);
     // Sends an error; a fatal one closes the connection after it.
     void sendError(const std::string& code, const std::string& message, bool fatal);
@@ -69,6 +71,7 @@ private:
     bool takeCameraToken();
 
     quint64 id_;
+    int version_;
     QPointer<QWebSocket> socket_;
     RenderServer& server_;
     QTimer authTimer_;

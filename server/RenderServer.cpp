@@ -60,8 +60,13 @@ RenderServer::RenderServer(ServerOptions options, SeriesList storeSeries, Series
     renderThread_.setObjectName("lucent-render");
     connect(worker_.get(), &RenderWorker::frameRendered, this, &RenderServer::onFrameRendered);
     connect(socketServer_, &QWebSocketServer::newConnection, this, &RenderServer::onNewConnection);
-    // A client that offers subprotocols gets this one (its token may ride in another).
-    socketServer_->setSupportedSubprotocols({QString::fromLatin1(kSubprotocol)});
+    // A client that offers a lucent.v<N> this server speaks gets it (its token may
+    // ride in another subprotocol).
+    QStringList versions;
+    for (const std::string& name : supportedSubprotocols()) {
+        versions << QString::fromStdString(name);
+    }
+    socketServer_->setSupportedSubprotocols(versions);
     removeStaleCopies();
 }
 

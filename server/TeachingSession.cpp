@@ -2,8 +2,6 @@
 
 #include <QLoggingCategory>
 
-#include <nlohmann/json.hpp>
-
 #include "server/ClientConnection.h"
 #include "server/RenderServer.h"
 
@@ -95,26 +93,27 @@ void TeachingSession::share(std::shared_ptr<const SeriesEntry> original) {
 }
 
 void TeachingSession::broadcastState() {
-    nlohmann::json ids = nlohmann::json::array();
+    SessionState state;
+    state.session = id_.toStdString();
+    state.members = memberCount();
     for (const auto& m : std::as_const(members_)) {
         if (m) {
-            ids.push_back(m->id());
+            state.memberIds.push_back(m->id());
         }
+    }
+    if (presenter_) {
+        state.presenter = presenter_->id();
+    }
+    if (view_->series()) {
+        state.series = view_->series()->id;
     }
     for (const auto& m : std::as_const(members_)) {
         if (!m) {
             continue;
         }
-        nlohmann::json state{
-            {"type", "session-state"},
-            {"session", id_.toStdString()},
-            {"members", memberCount()},
-            {"member_ids", ids},
-            {"presenter", presenter_ ? nlohmann::json(presenter_->id()) : nlohmann::json()},
-            {"you", m->id()},
-            {"role", m == presenter_ ? "presenter" : "follower"},
-            {"series", view_->series() ? nlohmann::json(view_->series()->id) : nlohmann::json()}};
-        m->sendJson(state.dump());
+        state.you = m->id();
+        state.role = m == presenter_ ? "presenter" : "follower";
+        m->sendJson(writeServerMessage(state));
     }
 }
 

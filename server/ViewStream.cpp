@@ -2,8 +2,6 @@
 
 #include "core/scene/ViewFrame.h"
 
-#include <nlohmann/json.hpp>
-
 #include "core/scene/DefaultPreset.h"
 #include "server/ClientConnection.h"
 #include "server/RenderServer.h"
@@ -66,14 +64,9 @@ std::string ViewStream::show(std::shared_ptr<const SeriesEntry> series) {
     series_ = std::move(series);
     opening_ = false;
     renderWanted_ = true;
-    const glm::ivec3 d = series_->geometry.dims;
-    const std::string opened = nlohmann::json{
-        {"type", "opened"},
-        {"series", series_->id},
-        {"dims", {d.x, d.y, d.z}},
-        // The volume's bounding sphere, which zoom 1 fits: clients turn pixels into pan mm.
-        {"radius_mm", volumeRadius(series_->geometry)},
-        {"preset", preset_}}.dump();
+    // The volume's bounding sphere, which zoom 1 fits: clients turn pixels into pan mm.
+    const std::string opened = writeServerMessage(
+        Opened{series_->id, series_->geometry.dims, volumeRadius(series_->geometry), preset_});
     // The caller sends `opened` first; the frame follows from the event loop.
     QMetaObject::invokeMethod(this, &ViewStream::pump, Qt::QueuedConnection);
     return opened;
@@ -87,31 +80,12 @@ void ViewStream::close() {
 }
 
 std::optional<std::string> ViewStream::apply(const ClientMessage& message) {
-    if (const auto* camera = std::get_if<CameraUpdate>(&message)) {
-        Camera& c = description_.camera;
-        c.azimuth = camera->azimuth.value_or(c.azimuth);
-        c.elevation = camera->elevation.value_or(c.elevation);
-        c.zoom = camera->zoom.value_or(c.zoom);
-        c.distance = camera->distance.value_or(c.distance);
-        c.panRight = camera->panRight.value_or(c.panRight);
-        c.panUp = camera->panUp.value_or(c.panUp);
-    } else if (const auto* tf = std::get_if<TransferFunctionUpdate>(&message)) {
-        try {
-            description_.transferFunction =
-                tf->preset ? loadPreset(*tf->preset) : *tf->transferFunction;
-        } catch (const TransferFunctionError& e) {
-            return std::string(e.what());
-        }
-    } else if (const auto* mode = std::get_if<ModeUpdate>(&message)) {
-        description_.mode = mode->mode;
-        description_.isoValue = mode->isoValue.value_or(description_.isoValue);
-    } else if (const auto* clip = std::get_if<ClipUpdate>(&message)) {
-        description_.clip = clip->box;
-    } else if (const auto* quality = std::get_if<QualityUpdate>(&message)) {
+    // Size, transfer function, mode, clip, camera and sampling: the description.
+    if (auto error = applyViewMessage(message, description_)) {
+        return error;
+    }
+    if (const auto* quality = std::get_if<QualityUpdate>(&message)) {
         quality_ = quality->quality;
-    } else if (const auto* size = std::get_if<SizeUpdate>(&message)) {
-        description_.width = size->width;
-        description_.height = size->height;
     } else if (const auto* interaction = std::get_if<InteractionUpdate>(&message)) {
         stillOwed_ = !interaction->active;
         interacting_ = interaction->active;

@@ -51,7 +51,7 @@ public:
     // description: it may identify a patient).
     std::string open(std::shared_ptr<const SeriesEntry> series);
     // Resets the view for a series like this one (camera, mode dvr, no clip,
-    // still, default preset; the size is kept) and owes a frame; view
+    // still, default preset, default sampling; the size is kept) and owes a frame; view
     // messages apply from now on, frames start once show() gives the series
     // (a teaching session's de-identified copy takes a while).
     void reset(const SeriesEntry& like);

@@ -10,7 +10,7 @@
 
 #include "CliCommand.h"
 #include "QualityOption.h"
-#include "RemoteStillFrame.h"
+#include "RemoteRender.h"
 #include "RenderFlags.h"
 #include "TerminalProgress.h"
 #include "core/image/PngIO.h"
@@ -64,88 +64,6 @@ RenderDescription describe(const QCommandLineParser& p, const Volume& volume) {
 
 std::string mib(std::size_t bytes) {
     return QString::number(double(bytes) / 1048576.0, 'f', 1).toStdString();
-}
-
-// PATH is a series UID the server holds; one still frame, written as it comes.
-int renderRemote(const QCommandLineParser& p, QTextStream& err) {
-    RemoteStillRequest r;
-    r.url = QUrl(p.value("backend"));
-    r.token = p.value("token");
-    r.series = p.positionalArguments()[0];
-    try {
-        if (r.token.isEmpty()) {
-            throw UsageError("--backend ws:// needs --token");
-        }
-        if (p.isSet("size")) {
-            const QStringList wh = p.value("size").split('x');
-            bool okW = false, okH = false;
-            if (wh.size() == 2) {
-                r.width = wh[0].toInt(&okW);
-                r.height = wh[1].toInt(&okH);
-            }
-            if (!okW || !okH) {
-                throw UsageError("--size: '" + p.value("size").toStdString() +
-                                 "' is not WIDTHxHEIGHT");
-            }
-        }
-        if (p.isSet("preset")) {
-            r.preset = p.value("preset");
-        }
-        if (p.isSet("tf")) {
-            // Validated here, so that a bad file is our error, not the server's.
-            const TransferFunction tf = readTransferFunction(p.value("tf").toStdString());
-            r.transferFunction =
-                QJsonDocument::fromJson(QByteArray::fromStdString(toJson(tf))).object();
-        }
-        if (p.isSet("mode")) {
-            r.mode = p.value("mode");
-        }
-        if (p.isSet("iso")) {
-            r.iso = number(p, "iso", 0.0);
-        }
-        r.azimuth = number(p, "azimuth", 0.0);
-        r.elevation = number(p, "elevation", 0.0);
-        r.zoom = number(p, "zoom", 1.0);
-        for (const char* local : {"step", "interp", "precision", "preclassify", "preintegrate",
-                                  "no-shading", "no-leaping", "brick", "gpu-budget", "quality"}) {
-            if (p.isSet(local)) {
-                err << "lucent-cli render: --" << local
-                    << " is not sent to a remote backend (the server chooses its sampling)\n";
-            }
-        }
-        if (p.isSet("distance")) {
-            r.distance = number(p, "distance", 0.0);
-        }
-        if (p.isSet("pan-right")) {
-            r.panRight = number(p, "pan-right", 0.0);
-        }
-        if (p.isSet("pan-up")) {
-            r.panUp = number(p, "pan-up", 0.0);
-        }
-    } catch (const std::exception& e) {
-        err << "lucent-cli render: " << e.what() << "\n";
-        return kUsage;
-    }
-    QElapsedTimer timer;
-    timer.start();
-    try {
-        const RemoteStillFrame frame = requestStillFrame(r, 120000);
-        QFile out(p.value("output"));
-        if (!out.open(QIODevice::WriteOnly | QIODevice::Truncate) ||
-            out.write(frame.png) != frame.png.size()) {
-            err << "lucent-cli render: cannot write " << p.value("output") << "\n";
-            return kBadInput;
-        }
-        if (p.isSet("stats")) {
-            QTextStream(stdout) << "render_ms=" << QString::number(double(timer.elapsed()), 'f', 1)
-                                << " server_render_ms=" << QString::number(frame.renderMs, 'f', 1)
-                                << " backend=remote server_backend=\"" << frame.backend << "\"\n";
-        }
-    } catch (const RemoteError& e) {
-        err << "lucent-cli render: " << e.what() << "\n";
-        return kNetwork;
-    }
-    return kOk;
 }
 
 } // namespace

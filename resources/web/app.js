@@ -1,4 +1,5 @@
-// Lucent browser client: protocol v1 (docs/protocol.md) over a WebSocket to the
+// Lucent browser client: protocol version 2 (docs/protocol.md; it sends no
+// sampling message, so it needs nothing of version 2) over a WebSocket to the
 // server that served this page: authentication, series, view changes, teaching
 // sessions, reconnect with backoff. The canvas lives in view.js. Plain
 // JavaScript, no build step.
@@ -15,7 +16,9 @@
     sessionInfo: $("session-info"),
   };
 
-  const kSubprotocol = "lucent.v1";
+  // The protocol versions this page speaks, newest first, offered in the
+  // handshake: the server selects the first it speaks and says it in hello.
+  const kSubprotocols = ["lucent.v2", "lucent.v1"];
   const kTokenSubprotocolPrefix = "lucent.token.";
   // Characters a WebSocket subprotocol may hold (RFC 6455, an HTTP token).
   const kSubprotocolChars = /^[!#$%&'*+\-.^_`|~0-9A-Za-z]+$/;
@@ -41,6 +44,7 @@
   let cameraTimer = 0;
   let lastCameraSent = 0;
   let sentSize = "";
+  let protocolVersion = 0;      // the connection's, from hello
 
   const canvasView = window.createLucentView($("view"), {
     onCamera: changeCamera,
@@ -55,7 +59,8 @@
     onError: (text) => setStatus(text, "bad"),
   });
   // Read by tests and handy in the console: counters and the view, never the token.
-  window.lucent = { stats: canvasView.stats, view, session: () => session };
+  window.lucent = { stats: canvasView.stats, view, session: () => session,
+                    protocolVersion: () => protocolVersion };
 
   function controlling() {
     return authenticated && opened && (!session || session.role === "presenter");
@@ -104,7 +109,7 @@
     // The token rides in a subprotocol when it can (no extra round trip), else in
     // the first message; never in the URL.
     const tokenInProtocol = kSubprotocolChars.test(token);
-    const protocols = [kSubprotocol];
+    const protocols = [...kSubprotocols];
     if (tokenInProtocol) {
       protocols.push(kTokenSubprotocolPrefix + token);
     }
@@ -155,6 +160,7 @@
     switch (message.type) {
       case "hello":
         authenticated = true;
+        protocolVersion = message.version;
         backoffMs = kBackoffFirstMs;
         setStatus("connected (" + message.backend + ")", "good");
         send({ type: "list" });

@@ -1,14 +1,21 @@
 // lucent-cli render SERIES --backend ws://HOST:PORT --token T against a real
-// lucent-server: the still frame equals the local render; a wrong token, an
+// lucent-server: the still frame equals the local render, with the sampling
+// options too (they travel in version 2's sampling message); a wrong token, an
 // unknown series and no server are exit 4 with a message that says which.
+// RemoteRenderBackend, which the command uses, speaking version 1 to the server:
+// sampling it cannot send is refused, naming it.
 #include <QJsonArray>
+#include <QRegularExpression>
 #include <QTest>
+
+#include <limits>
 
 #include "RemoteTestFixture.h"
 #include "core/image/ImageMetrics.h"
 #include "core/image/PngIO.h"
 #include "core/io/Catalog.h"
 #include "core/raycast/CpuRayCaster.h"
+#include "render/RemoteRenderBackend.h"
 #include "tests/support/CliRunner.h"
 
 using namespace lucent;
@@ -25,6 +32,23 @@ QString onlySeries(quint16 port) {
     client.send({{"type", "list"}});
     const QJsonArray series = client.waitForText("series")["series"].toArray();
     return series.size() == 1 ? series[0].toObject()["uid"].toString() : QString();
+}
+
+// A small real CT series (512 x 512 x 28).
+QString realSeries() {
+    return QString(LUCENT_TEST_DATA_DIR) + "/dcm_qa_ct/Philips_S21570/S2010";
+}
+
+// `lucent-cli compare A B`'s PSNR (inf for equal images); NaN when it failed.
+double comparePsnr(const QString& a, const QString& b) {
+    const CliRun r = runCli({"compare", a, b});
+    const auto match = QRegularExpression("psnr_db=(\\S+)").match(r.out);
+    if (r.exitCode != 0 || !match.hasMatch()) {
+        qWarning() << "compare failed:" << r.err << r.out;
+        return std::numeric_limits<double>::quiet_NaN();
+    }
+    return match.captured(1) == "inf" ? std::numeric_limits<double>::infinity()
+                                      : match.captured(1).toDouble();
 }
 
 } // namespace
@@ -112,6 +136,130 @@ private slots:
         QVERIFY(psnr(local, centred) < 30.0); // the camera's change shows
     }
 
+    // Every sampling option goes to the server: the remote still equals the local
+    // render of the same options (same size, camera, default preset), and options
+    // that change the image change the remote one too.
+    void samplingOptionsTravel_data() {
+        QTest::addColumn<QStringList>("options");
+        QTest::addColumn<bool>("changesTheImage");
+        QTest::newRow("cubic") << QStringList{"--step", "0.25", "--interp", "cubic"} << true;
+        QTest::newRow("coarse") << QStringList{"--step", "2", "--interp", "nearest"} << true;
+        QTest::newRow("unshaded, pre-classified, pre-integrated")
+            << QStringList{"--no-shading", "--preclassify", "--preintegrate"} << true;
+        QTest::newRow("double, no leaping")
+            << QStringList{"--precision", "double", "--no-leaping"} << false;
+    }
+    void samplingOptionsTravel() {
+        QFETCH(QStringList, options);
+        QFETCH(bool, changesTheImage);
+        if (!QFileInfo(realSeries()).isDir()) {
+            QSKIP(qPrintable("real data absent: " + realSeries()));
+        }
+        ServerProcess server("cpu", realSeries());
+        const QString uid = onlySeries(server.port());
+        QVERIFY(!uid.isEmpty());
+        QTemporaryDir dir;
+        const QString url = QString("ws://127.0.0.1:%1").arg(server.port());
+        const QStringList view{"--size", "96x96", "--azimuth", "30", "--elevation", "10"};
+        const auto remote = [&](const QString& name, const QStringList& more) {
+            const QString png = dir.filePath(name);
+            const CliRun r = runCli(QStringList{"render", uid, "-o", png, "--backend", url,
+                                                "--token", kToken, "--stats"} +
+                                    view + more);
+            return r.exitCode == 0 && !r.err.contains("not sent") ? png : r.err;
+        };
+        const QString sampled = remote("sampled.png", options);
+        QVERIFY2(QFile::exists(sampled), qPrintable(sampled));
+        const QString local = dir.filePath("local.png");
+        const CliRun l = runCli(
+            QStringList{"render", realSeries(), "-o", local, "--backend", "cpu"} + view + options);
+        QVERIFY2(l.exitCode == 0, qPrintable(l.err));
+        const double same = comparePsnr(sampled, local);
+        const QString plain = remote("plain.png", {});
+        QVERIFY2(QFile::exists(plain), qPrintable(plain));
+        const double change = comparePsnr(sampled, plain);
+        qInfo("%s: remote vs local %.1f dB, vs the default sampling %.1f dB",
+              QTest::currentDataTag(), same, change);
+        QVERIFY2(same >= 40.0, qPrintable(QString("remote vs local: %1 dB").arg(same)));
+        if (changesTheImage) {
+            QVERIFY2(change < 35.0, "the options did not reach the server");
+        }
+    }
+
+    // RemoteRenderBackend (what the command uses) served version 1: sampling
+    // the server renders anyway goes through; other sampling is refused with a
+    // message naming it, the frames after it are not current, and going back
+    // to the default makes them current again. Served version 2, it is sent.
+    void aVersionOneServerRefusesSamplingCleanly() {
+        ServerProcess server("cpu");
+        const QString uid = onlySeries(server.port());
+        QVERIFY(!uid.isEmpty());
+        RemoteServerSettings settings;
+        settings.url = QUrl(QString("ws://127.0.0.1:%1/").arg(server.port()));
+        settings.token = kToken;
+        settings.series = uid;
+        RenderDescription d;
+        d.width = 64;
+        d.height = 64;
+        d.transferFunction = loadPreset("ct-bone");
+
+        RemoteRenderBackend old;
+        old.setProtocolVersion(1);
+        old.setRetrying(false);
+        QList<BackendFrame> frames;
+        QStringList failures;
+        QObject::connect(&old, &RenderBackend::frameReady,
+                         [&](const BackendFrame& f) { frames.append(f); });
+        QObject::connect(&old, &RenderBackend::frameFailed,
+                         [&](const QString& why) { failures.append(why); });
+        old.connectTo(settings);
+        QVERIFY(QTest::qWaitFor([&] { return old.status() == BackendStatus::Connected; }, 20000));
+        QCOMPARE(old.serverVersion(), 1);
+        const auto currentFrame = [&] {
+            return QTest::qWaitFor([&] { return !frames.isEmpty() && frames.back().current; },
+                                   30000);
+        };
+        old.request(d, {});
+        QVERIFY2(currentFrame(), qPrintable(failures.join("\n")));
+        QVERIFY(failures.isEmpty());
+
+        RenderDescription cubic = d;
+        cubic.sampling.step = 0.25;
+        cubic.sampling.interpolation = Interpolation::Cubic;
+        cubic.camera.azimuth = 30.0;
+        frames.clear();
+        old.request(cubic, {});
+        QVERIFY(QTest::qWaitFor([&] { return !failures.isEmpty(); }, 10000));
+        const QString why = failures.join("\n");
+        QVERIFY2(why.contains("version 1") && why.contains("step 0.25") &&
+                     why.contains("interp cubic") && !why.contains("precision"),
+                 qPrintable(why));
+        QVERIFY(QTest::qWaitFor([&] { return !frames.isEmpty(); }, 30000)); // the camera's
+        QVERIFY(!frames.back().current);
+        QTest::qWait(300);
+        QVERIFY(!frames.back().current);
+        RenderDescription back = cubic;
+        back.sampling = d.sampling;
+        old.request(back, {});
+        QVERIFY(currentFrame());
+        QCOMPARE(failures.size(), 1);
+
+        RemoteRenderBackend now;
+        now.setRetrying(false);
+        QList<BackendFrame> nowFrames;
+        QObject::connect(&now, &RenderBackend::frameReady,
+                         [&](const BackendFrame& f) { nowFrames.append(f); });
+        QObject::connect(&now, &RenderBackend::frameFailed,
+                         [&](const QString& why) { failures.append(why); });
+        now.connectTo(settings);
+        QVERIFY(QTest::qWaitFor([&] { return now.status() == BackendStatus::Connected; }, 20000));
+        QCOMPARE(now.serverVersion(), 2);
+        now.request(cubic, {});
+        QVERIFY(QTest::qWaitFor([&] { return !nowFrames.isEmpty() && nowFrames.back().current; },
+                                30000));
+        QCOMPARE(failures.size(), 1);
+    }
+
     void failuresSayWhich() {
         ServerProcess server("cpu");
         const QString uid = onlySeries(server.port());
@@ -125,7 +273,7 @@ private slots:
         const CliRun unknown =
             runCli({"render", "1.2.3.4", "-o", png, "--backend", url, "--token", kToken});
         QCOMPARE(unknown.exitCode, 4);
-        QVERIFY2(unknown.err.contains("not-found"), qPrintable(unknown.err));
+        QVERIFY2(unknown.err.contains("does not have series 1.2.3.4"), qPrintable(unknown.err));
         const CliRun noToken = runCli({"render", uid, "-o", png, "--backend", url});
         QCOMPARE(noToken.exitCode, 2);
         QVERIFY2(noToken.err.contains("--token"), qPrintable(noToken.err));

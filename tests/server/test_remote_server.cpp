@@ -1,6 +1,7 @@
 // The real lucent-server on loopback: authentication, list/open/render against
 // the local CPU reference, JPEG while interacting, malformed and oversized
-// messages, coalescing of a camera burst.
+// messages, coalescing of a camera burst, the sampling message of version 2 and
+// version 1 peers.
 #include <QJsonArray>
 #include <QTest>
 
@@ -302,6 +303,80 @@ private slots:
         const ImageRGBA8 local = cpu.render(localDescription(volume, {140, -20, 1, 30})).image;
         const double db = psnr(local, client.frames.back().decoded());
         QVERIFY2(db >= 40.0, qPrintable(QString("PSNR %1 dB").arg(db)));
+    }
+
+    // Version 2's sampling message: the still equals the local render of that
+    // sampling, refused settings name their key and cost no frame, `open` resets
+    // the sampling. A version 1 peer (lucent.v1 offered, or no version) is served
+    // version 1, and its sampling message is an unknown type (fatal), as a
+    // version 1 server answers it; other connections go on.
+    void samplingIsVersionTwo() {
+        ServerProcess server;
+        QVERIFY(server.port());
+        const Volume volume = loadPath(server.volumeFile().toStdString());
+        CpuRayCaster cpu(volume);
+        RemoteTestClient v2(server.port(), {"lucent.v2"});
+        const QString uid = openView(v2);
+        QVERIFY(!uid.isEmpty());
+        QCOMPARE(v2.subprotocol(), "lucent.v2");
+        QCOMPARE(v2.waitForText("hello")["version"].toInt(), 2);
+        const ReceivedFrame* first = v2.waitForCurrentFrame();
+        QVERIFY(first);
+        const ImageRGBA8 plain = first->decoded();
+
+        const std::pair<const char*, QJsonObject> refused[] = {
+            {"step", {{"type", "sampling"}, {"step", 0.001}}},
+            {"early_termination", {{"type", "sampling"}, {"early_termination", 1.5}}},
+            {"interp", {{"type", "sampling"}, {"interp", "sinc"}}},
+            {"leaping", {{"type", "sampling"}, {"leaping", "no"}}},
+            {"gradient", {{"type", "sampling"}, {"gradient", true}}},
+        };
+        for (const auto& [key, message] : refused) {
+            const qsizetype from = v2.texts.size();
+            v2.send(message);
+            const QJsonObject error = v2.waitForText("error", 20000, from);
+            QCOMPARE(error["code"].toString(), "bad-request");
+            QVERIFY(!error["fatal"].toBool());
+            QVERIFY2(error["message"].toString().contains(QString("'") + key + "'"),
+                     qPrintable(error["message"].toString()));
+        }
+        v2.change({{"type", "sampling"}, {"step", 2.0}, {"interp", "nearest"}});
+        const ReceivedFrame* coarse = v2.waitForCurrentFrame();
+        QVERIFY2(coarse, qPrintable(v2.allText()));
+        RenderDescription d = localDescription(volume, {});
+        d.sampling.step = 2.0;
+        d.sampling.interpolation = Interpolation::Nearest;
+        const ImageRGBA8 local = cpu.render(d).image;
+        const double db = psnr(local, coarse->decoded());
+        const double change = psnr(plain, coarse->decoded());
+        qInfo("sampling: remote vs local %.1f dB; coarse vs default %.1f dB", db, change);
+        QVERIFY2(db >= 40.0, qPrintable(QString("PSNR %1 dB").arg(db)));
+        QVERIFY2(change < 35.0, "the sampling did not change the image");
+        // `open` resets the sampling to the server's default.
+        const qsizetype from = v2.texts.size();
+        v2.change({{"type", "open"}, {"series", uid}});
+        QVERIFY(!v2.waitForText("opened", 20000, from).isEmpty());
+        v2.change({{"type", "tf"}, {"preset", "ct-bone"}});
+        const ReceivedFrame* reopened = v2.waitForCurrentFrame();
+        QVERIFY(reopened);
+        QVERIFY(psnr(plain, reopened->decoded()) >= 40.0);
+
+        for (const QStringList& offered : {QStringList{"lucent.v1"}, QStringList{}}) {
+            RemoteTestClient v1(server.port(), offered);
+            QVERIFY(!openView(v1).isEmpty());
+            QCOMPARE(v1.waitForText("hello")["version"].toInt(), 1);
+            QVERIFY(v1.waitForCurrentFrame()); // version 1's view messages work
+            v1.send({{"type", "sampling"}, {"step", 0.25}});
+            const QJsonObject error = v1.waitForText("error");
+            QCOMPARE(error["code"].toString(), "unknown-type");
+            QVERIFY(error["fatal"].toBool());
+            QVERIFY2(error["message"].toString().contains("version 1"),
+                     qPrintable(error["message"].toString()));
+            QVERIFY(v1.waitDisconnected());
+        }
+        v2.change({{"type", "camera"}, {"azimuth", 20}});
+        QVERIFY(v2.waitForCurrentFrame());
+        QVERIFY(!v2.disconnected);
     }
 
     // Pan and distance in the camera message: absent fields keep their value,

@@ -2,8 +2,8 @@
 // controls the view, followers receive the same frame bytes (50 of them
 // too), control is handed over and passes on when the presenter goes, killed
 // clients free their places and sessions, bad session messages close only
-// their own connection, and a real DICOM series reaches followers
-// de-identified.
+// their own connection, a real DICOM series reaches followers de-identified,
+// and the presenter's sampling is the session's.
 #include <QJsonArray>
 #include <QProcess>
 #include <QTest>
@@ -13,7 +13,9 @@
 #include <signal.h>
 
 #include "RemoteTestFixture.h"
+#include "core/image/ImageMetrics.h"
 #include "core/io/Catalog.h"
+#include "core/raycast/CpuRayCaster.h"
 
 using namespace lucent;
 using namespace lucent::test;
@@ -140,6 +142,65 @@ private slots:
         const QJsonObject alone = nextText(presenter, "session-state", from);
         QCOMPARE(alone["members"].toInt(), 1);
         QCOMPARE(alone["role"].toString(), "presenter");
+    }
+
+    // The presenter's sampling message (version 2) changes the session's view:
+    // followers (version 1 ones too: they only watch) get the same frame bytes, a
+    // member who joins later gets that frame, and the sampling stays when
+    // control passes on.
+    void followersGetThePresentersSampling() {
+        ServerProcess server;
+        QVERIFY(server.port());
+        RemoteTestClient presenter(server.port(), {"lucent.v2"});
+        std::uint64_t seq = 0;
+        const QString session = startSession(presenter, &seq);
+        QVERIFY(!session.isEmpty());
+        QVERIFY(frameOf(presenter, seq));
+        const ImageRGBA8 plain = presenter.frames.back().decoded();
+        RemoteTestClient follower(server.port());
+        const quint64 followerId = join(follower, session);
+        QVERIFY(followerId > 0);
+
+        presenter.send({{"type", "sampling"}, {"step", 2.0}, {"interp", "nearest"}});
+        ++seq;
+        const ReceivedFrame* mine = frameOf(presenter, seq);
+        const ReceivedFrame* theirs = frameOf(follower, seq);
+        QVERIFY(mine && theirs);
+        QCOMPARE(theirs->header.seq, seq);
+        QCOMPARE(theirs->image, mine->image);
+        const double change = psnr(plain, mine->decoded());
+        qInfo("the presenter's sampling against the default: %.1f dB", change);
+        QVERIFY(change < 35.0);
+
+        RemoteTestClient late(server.port());
+        QVERIFY(join(late, session) > 0);
+        QVERIFY(frameOf(late, seq));
+        QCOMPARE(late.frames.back().image, mine->image);
+
+        qsizetype from = follower.texts.size();
+        presenter.send({{"type", "session-handover"}, {"to", qint64(followerId)}});
+        QCOMPARE(nextText(follower, "session-state", from)["role"].toString(), "presenter");
+        follower.send({{"type", "camera"}, {"azimuth", 60}});
+        ++seq;
+        const ReceivedFrame* turned = frameOf(follower, seq);
+        QVERIFY(turned);
+        const Volume volume = loadPath(server.volumeFile().toStdString());
+        RenderDescription d;
+        d.volume = &volume;
+        d.width = kSide;
+        d.height = kSide;
+        d.transferFunction = loadPreset("ct-bone");
+        d.camera.azimuth = 60.0;
+        const ImageRGBA8 unsampled = CpuRayCaster(volume).render(d).image;
+        d.sampling.step = 2.0;
+        d.sampling.interpolation = Interpolation::Nearest;
+        const ImageRGBA8 sampled = CpuRayCaster(volume).render(d).image;
+        const double kept = psnr(sampled, turned->decoded());
+        qInfo("after the handover: %.1f dB against the local render of that sampling, %.1f dB "
+              "against the default",
+              kept, psnr(unsampled, turned->decoded()));
+        QVERIFY2(kept >= 40.0, qPrintable(QString("PSNR %1 dB").arg(kept)));
+        QVERIFY(psnr(unsampled, turned->decoded()) < 35.0);
     }
 
     void fiftyFollowersReceiveTheSameFrames() {

@@ -1,0 +1,114 @@
+#pragma once
+// The client's messages (docs/protocol.md, "Client messages") as C++ values. Their
+// JSON has one reader and one writer (ClientMessageJson.h).
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <variant>
+
+#include "core/scene/RenderDescription.h"
+#include "core/tf/TransferFunction.h"
+#include "protocol/OptionValues.h"
+#include "protocol/ProtocolVersion.h"
+
+namespace lucent::remote {
+
+// Larger text messages are refused (an error, then the connection closes).
+inline constexpr std::size_t kMaxMessageBytes = 64 * 1024;
+// Frames are at least this and at most this wide and tall.
+inline constexpr int kMinImageSide = 16;
+inline constexpr int kMaxImageSide = 4096;
+
+enum class Quality { Interactive, Still };
+const char* qualityName(Quality quality);
+
+struct AuthRequest {
+    std::string token;
+    bool operator==(const AuthRequest&) const = default;
+};
+struct ListRequest {
+    bool operator==(const ListRequest&) const = default;
+};
+struct OpenRequest {
+    std::string series; // a uid from the list reply
+    bool operator==(const OpenRequest&) const = default;
+};
+// The camera options of the table (azimuth, elevation, zoom, distance, pan_right,
+// pan_up); absent ones keep their value.
+struct CameraUpdate : OptionUpdate {
+    bool operator==(const CameraUpdate&) const = default;
+};
+// Exactly one of the two.
+struct TransferFunctionUpdate {
+    std::optional<std::string> preset;
+    std::optional<TransferFunction> transferFunction;
+    bool operator==(const TransferFunctionUpdate&) const = default;
+};
+// The mode options of the table: mode (required) and iso.
+struct ModeUpdate : OptionUpdate {
+    bool operator==(const ModeUpdate&) const = default;
+};
+struct ClipUpdate {
+    ClipBox box; // voxel index coordinates; the default box clips nothing
+    bool operator==(const ClipUpdate& other) const {
+        return box.lo == other.box.lo && box.hi == other.box.hi;
+    }
+};
+struct QualityUpdate {
+    Quality quality = Quality::Still;
+    bool operator==(const QualityUpdate&) const = default;
+};
+// Version 2: the sampling options of the table (step, interp, classification,
+// preintegrate, shading, leaping, precision, early_termination); absent ones keep
+// their value.
+struct SamplingUpdate : OptionUpdate {
+    bool operator==(const SamplingUpdate&) const = default;
+};
+struct SizeUpdate {
+    int width = 0;
+    int height = 0;
+    bool operator==(const SizeUpdate&) const = default;
+};
+struct RenderRequest {
+    bool operator==(const RenderRequest&) const = default;
+};
+// {"type":"interaction","state":"start"|"end"}: adaptive JPEG frames while
+// active, one lossless still at the end.
+struct InteractionUpdate {
+    bool active = false;
+    bool operator==(const InteractionUpdate&) const = default;
+};
+// Teaching sessions.
+struct SessionCreate {
+    bool operator==(const SessionCreate&) const = default;
+};
+struct SessionJoin {
+    std::string session; // the id session-created gave
+    bool operator==(const SessionJoin&) const = default;
+};
+struct SessionHandover {
+    std::uint64_t to = 0; // a member number from session-state
+    bool operator==(const SessionHandover&) const = default;
+};
+struct SessionLeave {
+    bool operator==(const SessionLeave&) const = default;
+};
+
+using ClientMessage =
+    std::variant<AuthRequest, ListRequest, OpenRequest, CameraUpdate, TransferFunctionUpdate,
+                 ModeUpdate, ClipUpdate, QualityUpdate, SamplingUpdate, SizeUpdate, RenderRequest,
+                 InteractionUpdate, SessionCreate, SessionJoin, SessionHandover, SessionLeave>;
+
+// True for the messages that change a view (and owe a frame).
+bool isViewMessage(const ClientMessage& message);
+// Its `type` on the wire ("camera", "session-join", ...).
+std::string_view messageType(const ClientMessage& message);
+// The protocol version that brought this type of message ("sampling": 2); 0 for a
+// type no version has.
+int messageTypeVersion(std::string_view type);
+int messageVersion(const ClientMessage& message);
+
+} // namespace lucent::remote

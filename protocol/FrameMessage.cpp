@@ -1,0 +1,70 @@
+#include "protocol/FrameMessage.h"
+
+#include <nlohmann/json.hpp>
+
+namespace lucent::remote {
+
+using Json = nlohmann::json;
+
+std::string frameMessage(const FrameHeader& header, std::string_view imageBytes) {
+    const std::string json = Json{
+        {"width", header.width},
+        {"height", header.height},
+        {"format", header.format},
+        {"seq", header.seq},
+        {"quality", qualityName(header.quality)},
+        {"render_ms", header.renderMs},
+        {"encode_ms", header.encodeMs},
+        {"scale", header.scale},
+        {"jpeg_quality",
+         header.jpegQuality}}.dump();
+    const auto n = static_cast<std::uint32_t>(json.size());
+    std::string out;
+    out.reserve(4 + json.size() + imageBytes.size());
+    for (int shift : {24, 16, 8, 0}) {
+        out.push_back(static_cast<char>((n >> shift) & 0xffu));
+    }
+    out += json;
+    out += imageBytes;
+    return out;
+}
+
+ParsedFrame parseFrameMessage(std::string_view message) {
+    auto malformed = [](const std::string& why) {
+        return ProtocolError("malformed", "frame: " + why, true);
+    };
+    if (message.size() < 4) {
+        throw malformed("shorter than its length field");
+    }
+    std::uint32_t n = 0;
+    for (int i = 0; i < 4; ++i) {
+        n = (n << 8) | static_cast<unsigned char>(message[static_cast<std::size_t>(i)]);
+    }
+    if (n > message.size() - 4) {
+        throw malformed("header length exceeds the message");
+    }
+    const Json h = Json::parse(message.substr(4, n), nullptr, false);
+    if (h.is_discarded() || !h.is_object()) {
+        throw malformed("header is not a JSON object");
+    }
+    ParsedFrame f;
+    try {
+        f.header.width = h.at("width").get<int>();
+        f.header.height = h.at("height").get<int>();
+        f.header.format = h.at("format").get<std::string>();
+        f.header.seq = h.at("seq").get<std::uint64_t>();
+        f.header.quality = h.at("quality").get<std::string>() == "interactive"
+                               ? Quality::Interactive
+                               : Quality::Still;
+        f.header.renderMs = h.value("render_ms", 0.0);
+        f.header.encodeMs = h.value("encode_ms", 0.0);
+        f.header.scale = h.value("scale", 1.0);
+        f.header.jpegQuality = h.value("jpeg_quality", 0);
+    } catch (const Json::exception& e) {
+        throw malformed(std::string("header: ") + e.what());
+    }
+    f.image = message.substr(4 + n);
+    return f;
+}
+
+} // namespace lucent::remote

@@ -1,0 +1,40 @@
+#pragma once
+// The binary frame message (docs/protocol.md, "Frames"): 4 bytes big-endian header
+// length N, N bytes of header JSON, then the encoded image.
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "protocol/ClientMessages.h"
+#include "protocol/ProtocolError.h"
+
+namespace lucent::remote {
+
+// What precedes the image bytes.
+struct FrameHeader {
+    int width = 0;
+    int height = 0;
+    std::string format; // "png" or "jpeg"
+    std::uint64_t seq = 0;
+    Quality quality = Quality::Still;
+    double renderMs = 0.0;
+    double encodeMs = 0.0;
+    // Interactive frames: the image scale against the view's size (1, 0.75,
+    // 0.5 or 0.35) and the JPEG quality (60..85); 1 and 0 for PNG stills.
+    double scale = 1.0;
+    int jpegQuality = 0;
+    bool operator==(const FrameHeader&) const = default;
+};
+
+std::string frameMessage(const FrameHeader& header, std::string_view imageBytes);
+
+// The inverse of frameMessage (for clients and tests). Throws ProtocolError
+// ("malformed", fatal) when the layout or the header is wrong.
+struct ParsedFrame {
+    FrameHeader header;
+    std::string_view image; // points into the message
+};
+ParsedFrame parseFrameMessage(std::string_view message);
+
+} // namespace lucent::remote

@@ -1,0 +1,137 @@
+#include "protocol/ServerMessages.h"
+
+#include <nlohmann/json.hpp>
+
+namespace lucent::remote {
+namespace {
+
+using Json = nlohmann::json;
+
+Json dims(const glm::ivec3& d) {
+    return Json::array({d.x, d.y, d.z});
+}
+
+glm::ivec3 readDims(const Json& j) {
+    const auto v = j.get<std::vector<int>>();
+    if (v.size() != 3) {
+        throw ProtocolError("malformed", "'dims' must hold three integers", true);
+    }
+    return {v[0], v[1], v[2]};
+}
+
+template <class T> Json optional(const std::optional<T>& v) {
+    return v ? Json(*v) : Json();
+}
+
+template <class T> std::optional<T> readOptional(const Json& m, const char* key) {
+    const Json& v = m.at(key);
+    return v.is_null() ? std::nullopt : std::optional<T>(v.get<T>());
+}
+
+struct Writer {
+    Json operator()(const Hello& h) const {
+        return {{"type", "hello"}, {"version", h.version}, {"backend", h.backend}};
+    }
+    Json operator()(const SeriesListReply& l) const {
+        Json list = Json::array();
+        for (const SeriesSummary& s : l.series) {
+            list.push_back({{"uid", s.uid},
+                            {"description", s.description},
+                            {"modality", s.modality},
+                            {"dims", dims(s.dims)}});
+        }
+        return {{"type", "series"}, {"series", list}};
+    }
+    Json operator()(const Opened& o) const {
+        return {{"type", "opened"},
+                {"series", o.series},
+                {"dims", dims(o.dims)},
+                {"radius_mm", o.radiusMm},
+                {"preset", o.preset}};
+    }
+    Json operator()(const ErrorReply& e) const {
+        return {{"type", "error"}, {"code", e.code}, {"message", e.message}, {"fatal", e.fatal}};
+    }
+    Json operator()(const SessionCreated& c) const {
+        return {{"type", "session-created"}, {"session", c.session}};
+    }
+    Json operator()(const SessionState& s) const {
+        return {{"type", "session-state"},
+                {"session", s.session},
+                {"members", s.members},
+                {"member_ids", s.memberIds},
+                {"presenter", optional(s.presenter)},
+                {"you", s.you},
+                {"role", s.role},
+                {"series", optional(s.series)}};
+    }
+    Json operator()(const SessionLeft& l) const {
+        return {{"type", "session-left"}, {"session", l.session}};
+    }
+};
+
+ServerMessage read(const Json& m, const std::string& type) {
+    if (type == "hello") {
+        return Hello{m.at("version").get<int>(), m.at("backend").get<std::string>()};
+    }
+    if (type == "series") {
+        SeriesListReply l;
+        for (const Json& s : m.at("series")) {
+            l.series.push_back({s.at("uid").get<std::string>(),
+                                s.value("description", std::string()),
+                                s.at("modality").get<std::string>(), readDims(s.at("dims"))});
+        }
+        return l;
+    }
+    if (type == "opened") {
+        return Opened{m.at("series").get<std::string>(), readDims(m.at("dims")),
+                      m.value("radius_mm", 0.0), m.value("preset", std::string())};
+    }
+    if (type == "error") {
+        return ErrorReply{m.at("code").get<std::string>(), m.at("message").get<std::string>(),
+                          m.at("fatal").get<bool>()};
+    }
+    if (type == "session-created") {
+        return SessionCreated{m.at("session").get<std::string>()};
+    }
+    if (type == "session-state") {
+        return SessionState{m.at("session").get<std::string>(),
+                            m.at("members").get<int>(),
+                            m.at("member_ids").get<std::vector<std::uint64_t>>(),
+                            readOptional<std::uint64_t>(m, "presenter"),
+                            m.at("you").get<std::uint64_t>(),
+                            m.at("role").get<std::string>(),
+                            readOptional<std::string>(m, "series")};
+    }
+    if (type == "session-left") {
+        return SessionLeft{m.at("session").get<std::string>()};
+    }
+    throw ProtocolError("unknown-type", "unknown server message type '" + type.substr(0, 64) + "'",
+                        false);
+}
+
+} // namespace
+
+std::string writeServerMessage(const ServerMessage& message) {
+    return std::visit(Writer{}, message).dump();
+}
+
+ServerMessage parseServerMessage(std::string_view text) {
+    const Json m = Json::parse(text, nullptr, false);
+    if (m.is_discarded() || !m.is_object() || !m.contains("type") || !m["type"].is_string()) {
+        throw ProtocolError("malformed", "a server message must be a JSON object with a 'type'",
+                            true);
+    }
+    const std::string type = m["type"].get<std::string>();
+    try {
+        return read(m, type);
+    } catch (const Json::exception& e) {
+        throw ProtocolError("malformed", type + ": " + e.what(), true);
+    }
+}
+
+std::string errorReply(std::string_view code, std::string_view message, bool fatal) {
+    return writeServerMessage(ErrorReply{std::string(code), std::string(message), fatal});
+}
+
+} // namespace lucent::remote

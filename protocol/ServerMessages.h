@@ -1,0 +1,83 @@
+#pragma once
+// The server's JSON messages (docs/protocol.md, "Server messages") as C++ values,
+// with their one writer (the server) and one reader (clients and tests).
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "protocol/ProtocolError.h"
+#include "protocol/ProtocolVersion.h"
+
+namespace lucent::remote {
+
+// After authentication: the version this connection speaks and what renders.
+struct Hello {
+    int version = kProtocolVersion;
+    std::string backend; // "cpu", "gl: <renderer>, <version>"
+    bool operator==(const Hello&) const = default;
+};
+// One series of the `series` reply (never a patient's name, id or birth date).
+struct SeriesSummary {
+    std::string uid;
+    std::string description; // empty for a session's follower
+    std::string modality;
+    glm::ivec3 dims{0};
+    bool operator==(const SeriesSummary&) const = default;
+};
+struct SeriesListReply {
+    std::vector<SeriesSummary> series;
+    bool operator==(const SeriesListReply&) const = default;
+};
+struct Opened {
+    std::string series;
+    glm::ivec3 dims{0};
+    double radiusMm = 0.0; // the volume's bounding sphere, which zoom 1 fits
+    std::string preset;
+    bool operator==(const Opened&) const = default;
+};
+struct ErrorReply {
+    std::string code;
+    std::string message;
+    bool fatal = false;
+    bool operator==(const ErrorReply&) const = default;
+};
+struct SessionCreated {
+    std::string session;
+    bool operator==(const SessionCreated&) const = default;
+};
+struct SessionState {
+    std::string session;
+    int members = 0;
+    std::vector<std::uint64_t> memberIds;
+    std::optional<std::uint64_t> presenter; // none while the session hands over
+    std::uint64_t you = 0;
+    std::string role;                  // "presenter" or "follower"
+    std::optional<std::string> series; // the shown series' uid
+    bool operator==(const SessionState&) const = default;
+};
+struct SessionLeft {
+    std::string session;
+    bool operator==(const SessionLeft&) const = default;
+};
+
+using ServerMessage = std::variant<Hello, SeriesListReply, Opened, ErrorReply, SessionCreated,
+                                   SessionState, SessionLeft>;
+
+// The message as compact JSON.
+std::string writeServerMessage(const ServerMessage& message);
+// Reads one text message of the server. Fields it does not know are ignored (a
+// newer server may add some). Throws ProtocolError: "malformed" (fatal) when it is
+// not JSON or a field is missing or of the wrong type; "unknown-type" (not fatal:
+// a client skips it) for a type it does not know.
+ServerMessage parseServerMessage(std::string_view text);
+
+// {"type":"error","code":...,"message":...,"fatal":...}
+std::string errorReply(std::string_view code, std::string_view message, bool fatal);
+
+} // namespace lucent::remote
