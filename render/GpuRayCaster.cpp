@@ -1,6 +1,7 @@
 #include "render/GpuRayCaster.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -105,7 +106,7 @@ struct GpuRayCaster::State {
     double valueLo = 0.0, valueHi = 1.0;
 
     std::map<std::string, std::unique_ptr<ShaderProgram>> programs; // by their #defines
-    std::unique_ptr<ShaderProgram> composite;                       // drawInPlace's
+    std::array<std::unique_ptr<ShaderProgram>, 2> composite; // drawInPlace's: composite, stretch
     GlVertexArray vao;
     RenderTarget target;
     // The description whose frame the target holds, and that frame's statistics.
@@ -251,11 +252,14 @@ RenderStats GpuRayCaster::drawInPlace(const RenderDescription& desc,
         stats.samples = s.target.countedSamples();
         s.inTargetStats = stats;
     }
-    if (!s.composite) {
-        s.composite = std::make_unique<ShaderProgram>("composite.vert", "composite.frag");
+    for (const bool stretch : {false, true}) {
+        auto& program = s.composite[stretch ? 1U : 0U];
+        if (!program) {
+            program = std::make_unique<ShaderProgram>("composite.vert", "composite.frag",
+                                                      std::string("#define LUCENT_STRETCH ") +
+                                                          (stretch ? "true" : "false") + "\n");
+        }
     }
-    glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
-    glViewport(target.x, target.y, target.width, target.height);
     glDisable(GL_BLEND);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_SCISSOR_TEST);
@@ -264,17 +268,32 @@ RenderStats GpuRayCaster::drawInPlace(const RenderDescription& desc,
     // Dithering would make the 8-bit target differ from the read back.
     const bool dither = glIsEnabled(GL_DITHER) == GL_TRUE;
     glDisable(GL_DITHER);
-    const ShaderProgram& p = *s.composite;
-    p.use();
-    p.set("uFrame", 0);
-    p.set("uOrigin", glm::ivec2(target.x, target.y));
-    p.set("uSize", glm::ivec2(target.width, target.height));
-    p.set("uSameSize", target.width == s.target.width() && target.height == s.target.height());
-    p.set("uBackground", glm::vec3(desc.background));
     glBindTextureUnit(0, s.target.colour());
     glBindSampler(0, 0);
+    glBindSampler(1, 0);
     glBindVertexArray(s.vao.get());
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    const auto pass = [&](GLuint framebuffer, int x, int y, int width, int height, bool stretch) {
+        const ShaderProgram& p = *s.composite[stretch ? 1U : 0U];
+        p.use();
+        p.set("uFrame", 0);
+        p.set("uShown", 1);
+        p.set("uBackground", glm::vec3(desc.background));
+        p.set("uOrigin", glm::ivec2(x, y));
+        p.set("uSize", glm::ivec2(width, height));
+        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+        glViewport(x, y, width, height);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    };
+    if (target.width == s.target.width() && target.height == s.target.height()) {
+        pass(target.framebuffer, target.x, target.y, target.width, target.height, false);
+    } else {
+        // Composited at the frame's size into 8 bits, then stretched: one
+        // filtered fetch a pixel of the (larger) target.
+        pass(s.target.shownFramebuffer(), 0, 0, s.target.width(), s.target.height(), false);
+        glBindTextureUnit(1, s.target.shown());
+        pass(target.framebuffer, target.x, target.y, target.width, target.height, true);
+        glBindTextureUnit(1, 0);
+    }
     // The framebuffer's owner (a QOpenGLWidget's painter) draws on after this.
     glBindVertexArray(0);
     glBindTextureUnit(0, 0);

@@ -70,9 +70,9 @@ public:
     // that frame with one triangle into `target` (a framebuffer of the current
     // context), composited over the description's background in the shader;
     // nothing is read back but one count a row for the statistics' samples. A
-    // frame smaller than the rectangle (an interactive one) is stretched in
-    // the shader as scaledTo() stretches the read back image (bilinear, pixel
-    // centres aligned, each texel composited and clamped first). A
+    // frame smaller than the rectangle (an interactive one) is composited at
+    // its size into 8 bits and stretched by the sampler, as scaledTo()
+    // stretches the read back image (bilinear, pixel centres aligned). A
     // description that differs from the last one cast in nothing but its
     // background is not cast again: a repaint of the same frame (an overlay
     // changed, a screenshot) draws the frame kept, and returns its statistics.

@@ -31,6 +31,29 @@ void RenderTarget::resize(int width, int height) {
     checkGl("render target");
     width_ = width;
     height_ = height;
+    shownFramebuffer_.reset();
+    shown_.reset();
+}
+
+GLuint RenderTarget::shownFramebuffer() {
+    if (shownFramebuffer_.get() == 0) {
+        shown_ = makeTexture(GL_TEXTURE_2D);
+        glTextureStorage2D(shown_.get(), 1, GL_RGBA8, width_, height_);
+        glTextureParameteri(shown_.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTextureParameteri(shown_.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTextureParameteri(shown_.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(shown_.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        GLuint fb = 0;
+        glCreateFramebuffers(1, &fb);
+        shownFramebuffer_ = GlFramebuffer(fb);
+        glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0, shown_.get(), 0);
+        if (glCheckNamedFramebufferStatus(fb, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+            throw GlError("the " + std::to_string(width_) + "x" + std::to_string(height_) +
+                          " RGBA8 framebuffer is not complete on this driver");
+        }
+        checkGl("shown frame");
+    }
+    return shownFramebuffer_.get();
 }
 
 void RenderTarget::bindAndClear(bool countRows) {

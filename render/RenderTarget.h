@@ -27,13 +27,18 @@ public:
 
     // The premultiplied colour (RGBA32F), row 0 at the bottom.
     GLuint colour() const { return colour_.get(); }
+    // A framebuffer of the target's size with one RGBA8 texture (linear
+    // filtering, clamped to its edges): the frame as shown, before it is
+    // stretched. Made on first use.
+    GLuint shownFramebuffer();
+    GLuint shown() const { return shown_.get(); }
     int width() const { return width_; }
     int height() const { return height_; }
 
 private:
     int width_ = 0, height_ = 0;
-    GlFramebuffer framebuffer_;
-    GlTexture colour_, samples_, rowSamples_;
+    GlFramebuffer framebuffer_, shownFramebuffer_;
+    GlTexture colour_, samples_, rowSamples_, shown_;
 };
 
 } // namespace lucent

@@ -218,8 +218,8 @@ private slots:
         QCOMPARE(drawn.samples, small.stats.samples);
         const ImageRGBA8 scaled = scaledTo(small.image, width, height);
         const std::string name = std::string("stretched_") + QTest::currentDataTag();
-        // The read back was rounded to 8 bits before scaling, the shader
-        // interpolates the float frame: a difference of one at most.
+        // Both composite into 8 bits and then interpolate; the sampler's
+        // weights are not scaledTo()'s doubles: a difference of one at most.
         const double p = comparedPsnr(inPlace, scaled, name + "_vs_scaled", 50.0);
         qInfo("%s: %.2f dB against the scaled read back (largest difference %d)", name.c_str(), p,
               maxDifference(inPlace, scaled));
