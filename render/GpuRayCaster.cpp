@@ -247,10 +247,9 @@ RenderStats GpuRayCaster::drawInPlace(const RenderDescription& desc,
                                     std::to_string(target.height) + " is empty");
     }
     State& s = *state_;
-    if (!s.inTarget || !sameCast(*s.inTarget, desc)) {
-        RenderStats stats = cast(desc, true).frame.stats;
-        stats.samples = s.target.countedSamples();
-        s.inTargetStats = stats;
+    const bool newCast = !s.inTarget || !sameCast(*s.inTarget, desc);
+    if (newCast) {
+        s.inTargetStats = cast(desc, true).frame.stats;
     }
     for (const bool stretch : {false, true}) {
         auto& program = s.composite[stretch ? 1U : 0U];
@@ -302,6 +301,11 @@ RenderStats GpuRayCaster::drawInPlace(const RenderDescription& desc,
         glEnable(GL_DITHER);
     }
     checkGl("drawing the frame in place");
+    if (newCast) {
+        // Read after the draws are queued, so that the driver has the whole
+        // frame when this waits for the cast.
+        s.inTargetStats.samples = s.target.countedSamples();
+    }
     return s.inTargetStats;
 }
 
