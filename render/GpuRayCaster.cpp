@@ -1,8 +1,9 @@
 #include "render/GpuRayCaster.h"
 
 #include <algorithm>
-#include <cstdio>
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <optional>
@@ -63,6 +64,34 @@ int shaderMode(RenderMode m) {
     return 4;
 }
 
+// The fields of a description that decide the ray cast (all but the
+// background): the structured bindings name every field, so that a field
+// added to one of these structs fails to compile here until it is compared.
+auto castFields(const Camera& c) {
+    const auto& [azimuth, elevation, zoom, fieldOfView, distance, panRight, panUp] = c;
+    return std::tie(azimuth, elevation, zoom, fieldOfView, distance, panRight, panUp);
+}
+auto castFields(const ClipBox& c) {
+    const auto& [lo, hi] = c;
+    return std::tie(lo, hi);
+}
+auto castFields(const SamplingSettings& s) {
+    const auto& [step, interpolation, classification, preintegrate, earlyTermination, brickSize,
+                 emptySpaceLeaping, precision, simd] = s;
+    return std::tie(step, interpolation, classification, preintegrate, earlyTermination, brickSize,
+                    emptySpaceLeaping, precision, simd);
+}
+// Whether a and b (of a caster's own volume: null or that one) cast the same frame.
+bool sameCast(const RenderDescription& a, const RenderDescription& b) {
+    const auto& [volume, transferFunction, camera, mode, isoValue, clip, sampling, width, height,
+                 background] = a;
+    (void)volume;     // both are the caster's
+    (void)background; // composited after the cast
+    return transferFunction == b.transferFunction && castFields(camera) == castFields(b.camera) &&
+           mode == b.mode && isoValue == b.isoValue && castFields(clip) == castFields(b.clip) &&
+           castFields(sampling) == castFields(b.sampling) && width == b.width && height == b.height;
+}
+
 } // namespace
 
 struct GpuRayCaster::State {
@@ -77,8 +106,12 @@ struct GpuRayCaster::State {
     double valueLo = 0.0, valueHi = 1.0;
 
     std::map<std::string, std::unique_ptr<ShaderProgram>> programs; // by their #defines
+    std::array<std::unique_ptr<ShaderProgram>, 2> composite; // drawInPlace's: composite, stretch
     GlVertexArray vao;
     RenderTarget target;
+    // The description whose frame the target holds, and that frame's statistics.
+    std::optional<RenderDescription> inTarget;
+    RenderStats inTargetStats;
     GpuFrameStats last; // the last frame's
     std::unique_ptr<BrickPool> pool;
     std::tuple<int, bool> poolKind{0, false};
@@ -186,6 +219,111 @@ FrameDetails GpuRayCaster::frameDetails() const {
 }
 
 GpuRenderResult GpuRayCaster::renderWithGpuStats(const RenderDescription& desc) {
+    State& s = *state_;
+    GpuRenderResult out = cast(desc, false);
+    RenderResult& r = out.frame;
+    s.target.read(r.premultiplied, r.stats.samples);
+    s.inTargetStats = r.stats;
+    r.image = ImageRGBA8::filled(desc.width, desc.height, 0);
+    // Rows in parallel: at 1024x1024 a serial loop is a visible share of a GPU frame.
+#pragma omp parallel for schedule(static)
+    for (int y = 0; y < desc.height; ++y) {
+        for (int x = 0; x < desc.width; ++x) {
+            const glm::vec4 c = r.premultiplied[std::size_t(y) * desc.width + x];
+            const glm::dvec3 rgb = glm::dvec3(c) + (1.0 - double(c.a)) * desc.background;
+            std::uint8_t* px = r.image.at(x, y);
+            for (int ch = 0; ch < 3; ++ch) {
+                px[ch] = static_cast<std::uint8_t>(std::clamp(rgb[ch], 0.0, 1.0) * 255.0 + 0.5);
+            }
+            px[3] = 255;
+        }
+    }
+    return out;
+}
+
+RenderStats GpuRayCaster::drawInPlace(const RenderDescription& desc,
+                                      const FramebufferTarget& target) {
+    if (target.width < 1 || target.height < 1) {
+        throw std::invalid_argument("drawInPlace: the target rectangle " +
+                                    std::to_string(target.width) + "x" +
+                                    std::to_string(target.height) + " is empty");
+    }
+    State& s = *state_;
+    const bool newCast = !s.inTarget || !sameCast(*s.inTarget, desc);
+    if (newCast) {
+        s.inTargetStats = cast(desc, true).frame.stats;
+    }
+    for (const bool stretch : {false, true}) {
+        auto& program = s.composite[stretch ? 1U : 0U];
+        if (!program) {
+            program = std::make_unique<ShaderProgram>("composite.vert", "composite.frag",
+                                                      std::string("#define LUCENT_STRETCH ") +
+                                                          (stretch ? "true" : "false") + "\n");
+        }
+    }
+    glDisable(GL_BLEND);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_STENCIL_TEST);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    // Dithering would make the 8-bit target differ from the read back.
+    const bool dither = glIsEnabled(GL_DITHER) == GL_TRUE;
+    glDisable(GL_DITHER);
+    glBindTextureUnit(0, s.target.colour());
+    glBindSampler(0, 0);
+    glBindSampler(1, 0);
+    glBindVertexArray(s.vao.get());
+    const auto pass = [&](GLuint framebuffer, int x, int y, int width, int height, bool stretch) {
+        const ShaderProgram& p = *s.composite[stretch ? 1U : 0U];
+        p.use();
+        p.set("uFrame", 0);
+        p.set("uShown", 1);
+        p.set("uBackground", glm::vec3(desc.background));
+        p.set("uOrigin", glm::ivec2(x, y));
+        p.set("uSize", glm::ivec2(width, height));
+        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+        glViewport(x, y, width, height);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    };
+    if (target.width == s.target.width() && target.height == s.target.height()) {
+        pass(target.framebuffer, target.x, target.y, target.width, target.height, false);
+    } else {
+        // Composited at the frame's size into 8 bits, then stretched: one
+        // filtered fetch a pixel of the (larger) target.
+        pass(s.target.shownFramebuffer(), 0, 0, s.target.width(), s.target.height(), false);
+        glBindTextureUnit(1, s.target.shown());
+        pass(target.framebuffer, target.x, target.y, target.width, target.height, true);
+        glBindTextureUnit(1, 0);
+    }
+    // The framebuffer's owner (a QOpenGLWidget's painter) draws on after this.
+    glBindVertexArray(0);
+    glBindTextureUnit(0, 0);
+    glUseProgram(0);
+    if (dither) {
+        glEnable(GL_DITHER);
+    }
+    checkGl("drawing the frame in place");
+    if (newCast) {
+        // Read after the draws are queued, so that the driver has the whole
+        // frame when this waits for the cast.
+        s.inTargetStats.samples = s.target.countedSamples();
+    }
+    return s.inTargetStats;
+}
+
+void clearFramebuffer(const FramebufferTarget& target, const glm::dvec3& colour) {
+    glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
+    glViewport(target.x, target.y, target.width, target.height);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(target.x, target.y, target.width, target.height);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glClearColor(float(colour.r), float(colour.g), float(colour.b), 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glDisable(GL_SCISSOR_TEST);
+    checkGl("clearing the framebuffer");
+}
+
+GpuRenderResult GpuRayCaster::cast(const RenderDescription& desc, bool countRows) {
     desc.validate();
     State& s = *state_;
     if (desc.volume != nullptr && desc.volume != &s.volume) {
@@ -391,7 +529,8 @@ GpuRenderResult GpuRayCaster::renderWithGpuStats(const RenderDescription& desc) 
         "\n#define LUCENT_GRADIENT_TEXTURE " + flag(pool.hasGradients()) +
         "\n#define LUCENT_GRADIENT_IN_POOL " + flag(pool.gradientsShareTexture()) +
         "\n#define LUCENT_SPECULAR_INT " +
-        std::to_string(integerPower(desc.transferFunction.shading)) + "\n";
+        std::to_string(integerPower(desc.transferFunction.shading)) +
+        "\n#define LUCENT_ROW_SAMPLES " + flag(countRows) + "\n";
     auto& program = s.programs[defines];
     if (!program) {
         program = std::make_unique<ShaderProgram>("raycast.vert", "raycast.frag", defines);
@@ -456,30 +595,19 @@ GpuRenderResult GpuRayCaster::renderWithGpuStats(const RenderDescription& desc) 
     }
 
     s.target.resize(desc.width, desc.height);
-    s.target.bindAndClear();
+    // From here the target holds no frame until this one is cast.
+    s.inTarget.reset();
+    s.target.bindAndClear(countRows);
     glBindVertexArray(s.vao.get());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     checkGl("ray casting");
-    RenderResult& r = out.frame;
-    std::size_t samples = 0;
-    s.target.read(r.premultiplied, samples);
-    r.stats.samples = samples;
-    r.stats.bricksTotal = grid.count();
-    r.stats.bricksUsed = plan->needed;
-    r.stats.lod = level;
-    r.stats.lodReason = out.gpu.lodReason;
-    r.image = ImageRGBA8::filled(desc.width, desc.height, 0);
-    for (int y = 0; y < desc.height; ++y) {
-        for (int x = 0; x < desc.width; ++x) {
-            const glm::vec4 c = r.premultiplied[std::size_t(y) * desc.width + x];
-            const glm::dvec3 rgb = glm::dvec3(c) + (1.0 - double(c.a)) * desc.background;
-            std::uint8_t* px = r.image.at(x, y);
-            for (int ch = 0; ch < 3; ++ch) {
-                px[ch] = static_cast<std::uint8_t>(std::clamp(rgb[ch], 0.0, 1.0) * 255.0 + 0.5);
-            }
-            px[3] = 255;
-        }
-    }
+    RenderStats& stats = out.frame.stats;
+    stats.bricksTotal = grid.count();
+    stats.bricksUsed = plan->needed;
+    stats.lod = level;
+    stats.lodReason = out.gpu.lodReason;
+    s.inTarget = desc;
+    s.inTarget->volume = &s.volume;
     s.last = out.gpu;
     return out;
 }

@@ -4,6 +4,8 @@
 #include <memory>
 #include <string>
 
+#include <glm/glm.hpp>
+
 #include "core/scene/RenderDescription.h"
 #include "core/scene/Renderer.h"
 
@@ -55,12 +57,30 @@ public:
     GpuRayCaster(const GpuRayCaster&) = delete;
     GpuRayCaster& operator=(const GpuRayCaster&) = delete;
 
-    // Renders and reads the image back. Throws std::invalid_argument for a
-    // setting out of range, BudgetError when even the coarsest level does not
-    // fit the budget, GlError when the driver refuses.
+    // Renders and reads the image back (PNG output, thumbnails, the server).
+    // Throws std::invalid_argument for a setting out of range, BudgetError
+    // when even the coarsest level does not fit the budget, GlError when the
+    // driver refuses.
     RenderResult render(const RenderDescription& description) override;
     // The same, with what the frame did on the GPU.
     GpuRenderResult renderWithGpuStats(const RenderDescription& description);
+
+    bool drawsInPlace() const override { return true; }
+    // Ray casts into the caster's float target as render() does, then draws
+    // that frame with one triangle into `target` (a framebuffer of the current
+    // context), composited over the description's background in the shader;
+    // nothing is read back but one count a row for the statistics' samples. A
+    // frame smaller than the rectangle (an interactive one) is composited at
+    // its size into 8 bits and stretched by the sampler, as scaledTo()
+    // stretches the read back image (bilinear, pixel centres aligned). A
+    // description that differs from the last one cast in nothing but its
+    // background is not cast again: a repaint of the same frame (an overlay
+    // changed, a screenshot) draws the frame kept, and returns its statistics.
+    // Leaves target.framebuffer bound with the rectangle as the viewport, and
+    // no program, vertex array or texture of the caster's bound. Throws as
+    // render(), and std::invalid_argument for an empty rectangle.
+    RenderStats drawInPlace(const RenderDescription& description,
+                            const FramebufferTarget& target) override;
     std::string backend() const override { return "gl"; }
     // The GL renderer and version of the current context.
     std::string device() const override;
@@ -70,7 +90,18 @@ public:
 
 private:
     struct State;
+    // Ray casts into the float target: the statistics but the samples, and
+    // what the frame did on the GPU; no image. countRows: the shader also
+    // counts the samples per row (RenderTarget::countedSamples()).
+    GpuRenderResult cast(const RenderDescription& description, bool countRows);
+
     std::unique_ptr<State> state_;
 };
+
+// Clears the rectangle of `target` (a framebuffer of the current context) to
+// `colour`, opaque: what the 3D view shows where it has no frame to draw.
+// Leaves target.framebuffer bound with the rectangle as the viewport. Throws
+// GlError when the driver reports an error.
+void clearFramebuffer(const FramebufferTarget& target, const glm::dvec3& colour);
 
 } // namespace lucent

@@ -12,11 +12,25 @@ LocalRenderBackend::LocalRenderBackend(QObject* parent) : RenderBackend(parent) 
 
 LocalRenderBackend::~LocalRenderBackend() = default;
 
+void LocalRenderBackend::setKind(RendererKind kind) {
+    if (kind == kind_) {
+        return;
+    }
+    if (holdsGlResources()) {
+        throw std::logic_error("LocalRenderBackend: the GL renderer must be released (releaseGl, "
+                               "its context current) before another kind renders");
+    }
+    dropRenderer();
+    kind_ = kind;
+}
+
 void LocalRenderBackend::setVolume(std::shared_ptr<const Volume> volume) {
-    // The GPU caster is remade on the next render, in its context.
-    cpuCaster_.reset();
+    // A GL renderer is remade on the next render, in its context; it keeps
+    // the volume it renders alive until then.
+    if (!holdsGlResources()) {
+        dropRenderer();
+    }
     volume_ = std::move(volume);
-    ++generation_;
     pending_.reset();
 }
 
@@ -25,27 +39,84 @@ void LocalRenderBackend::request(const RenderDescription& still, const FrameOpti
     emit renderWanted();
 }
 
-CpuRayCaster& LocalRenderBackend::cpuCaster() {
-    if (!volume_) {
-        throw std::logic_error("LocalRenderBackend: no volume");
-    }
-    if (!cpuCaster_) {
-        cpuCaster_ = std::make_unique<CpuRayCaster>(*volume_);
-    }
-    return *cpuCaster_;
+void LocalRenderBackend::dropRenderer() {
+    renderer_.reset();
+    rendererVolume_.reset();
+    rendererIsGl_ = false;
+    last_.reset();
+    lastInPlace_ = false;
 }
 
 void LocalRenderBackend::releaseGl() {
-    gpuCaster_.reset();
+    if (rendererIsGl_) {
+        dropRenderer();
+    }
 }
 
-RenderResult LocalRenderBackend::renderOnGpu(const RenderDescription& description) {
-    if (!gpuCaster_ || gpuGeneration_ != generation_) {
-        gpuCaster_.reset();
-        gpuCaster_ = std::make_unique<GpuRayCaster>(*volume_, gpuOptions_);
-        gpuGeneration_ = generation_;
+Renderer& LocalRenderBackend::renderer() {
+    if (renderer_ && rendererVolume_ != volume_) {
+        dropRenderer(); // a GL one with its context current: we are rendering
     }
-    return gpuCaster_->render(description);
+    if (!renderer_) {
+        const std::unique_ptr<RenderDevice> device = kind_ == RendererKind::Gl
+                                                         ? RenderDevice::borrowCurrentContext()
+                                                         : RenderDevice::open(RendererKind::Cpu);
+        RenderDevice::Opened opened = device->openRenderer(*volume_, gpuOptions_);
+        if (!opened.fallbackReason.empty()) {
+            // The CPU renderer it opened instead belongs on the CPU surface.
+            throw GlError(opened.fallbackReason);
+        }
+        renderer_ = std::move(opened.renderer);
+        rendererVolume_ = volume_;
+        rendererIsGl_ = kind_ == RendererKind::Gl;
+    }
+    return *renderer_;
+}
+
+bool LocalRenderBackend::renderJob(const FramebufferTarget* target) {
+    const Pending job = *pending_;
+    BackendFrame frame;
+    frame.interactive = job.options.interactive;
+    try {
+        RenderDescription d = job.options.interactive
+                                  ? interactiveDescription(job.still, job.options.quality)
+                                  : job.still;
+        d.volume = volume_.get();
+        Renderer& r = renderer();
+        const bool inPlace = target != nullptr && r.drawsInPlace();
+        const auto start = std::chrono::steady_clock::now();
+        if (inPlace) {
+            frame.stats = r.drawInPlace(d, *target);
+            frame.inPlace = true;
+        } else {
+            RenderResult result = r.render(d);
+            frame.image = std::move(result.image);
+            frame.stats = result.stats;
+        }
+        frame.renderMs =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                .count();
+        if (target != nullptr && !inPlace) {
+            clearFramebuffer(*target, glm::dvec3(0.0)); // the surface paints the image
+        }
+        last_ = d;
+        lastInPlace_ = inPlace;
+    } catch (const GlError& e) {
+        dropRenderer();
+        emit gpuFailed(QString::fromStdString(e.what()));
+        return false;
+    } catch (const BudgetError& e) {
+        dropRenderer();
+        emit gpuFailed(QString::fromStdString(e.what()));
+        return false;
+    } catch (const std::exception& e) {
+        pending_.reset();
+        emit frameFailed(QString::fromStdString(e.what()));
+        return false;
+    }
+    pending_.reset();
+    emit frameReady(frame);
+    return true;
 }
 
 void LocalRenderBackend::renderPending() {
@@ -56,36 +127,53 @@ void LocalRenderBackend::renderPending() {
         pending_.reset();
         return;
     }
-    const Pending job = *pending_;
-    BackendFrame frame;
-    frame.interactive = job.options.interactive;
+    renderJob(nullptr);
+}
+
+bool LocalRenderBackend::drawLast(const FramebufferTarget& target) {
+    if (!renderer_ || rendererVolume_ != volume_ || !last_ || !lastInPlace_) {
+        return false;
+    }
     try {
-        RenderDescription d = job.options.interactive
-                                  ? interactiveDescription(job.still, job.options.quality)
-                                  : job.still;
-        d.volume = volume_.get();
-        const auto start = std::chrono::steady_clock::now();
-        RenderResult result = device_ == Device::Gpu ? renderOnGpu(d) : cpuCaster().render(d);
-        frame.renderMs =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                .count();
-        frame.image = std::move(result.image);
-        frame.stats = result.stats;
+        renderer_->drawInPlace(*last_, target);
+        return true;
     } catch (const GlError& e) {
-        gpuCaster_.reset();
+        dropRenderer();
         emit gpuFailed(QString::fromStdString(e.what()));
-        return;
     } catch (const BudgetError& e) {
-        gpuCaster_.reset();
+        dropRenderer();
         emit gpuFailed(QString::fromStdString(e.what()));
-        return;
     } catch (const std::exception& e) {
-        pending_.reset();
+        last_.reset();
         emit frameFailed(QString::fromStdString(e.what()));
+    }
+    return false;
+}
+
+void LocalRenderBackend::drawPending(const FramebufferTarget& target) {
+    if (pending_ && (!volume_ || volume_->empty())) {
+        pending_.reset();
+    }
+    if (pending_ && renderJob(&target)) {
         return;
     }
-    pending_.reset();
-    emit frameReady(frame);
+    // No new frame (or it failed): the last one again, else black.
+    if (drawLast(target)) {
+        return;
+    }
+    try {
+        clearFramebuffer(target, glm::dvec3(0.0));
+    } catch (const GlError& e) {
+        dropRenderer();
+        emit gpuFailed(QString::fromStdString(e.what()));
+    }
+}
+
+ImageRGBA8 LocalRenderBackend::readLastFrame() {
+    if (!renderer_ || rendererVolume_ != volume_ || !last_) {
+        return {};
+    }
+    return renderer_->render(*last_).image;
 }
 
 } // namespace lucent

@@ -1,54 +1,65 @@
 #pragma once
 
-#include <cstdint>
 #include <memory>
 #include <optional>
 
-#include "render/GpuRayCaster.h"
 #include "render/RenderBackend.h"
+#include "render/RenderDevice.h"
 
 namespace lucent {
 
-// The ray casters of this computer behind RenderBackend: GpuRayCaster in the
-// caller's OpenGL context, or CpuRayCaster. They render in the caller's thread:
-// request() only records the newest description and emits renderWanted(), and
-// the caller (the 3D view's surface, from its paint with its context current)
-// calls renderPending(), which emits frameReady() before it returns.
+// The ray casters of this computer behind RenderBackend, opened through
+// RenderDevice: the GPU ray caster in the caller's OpenGL context
+// (RendererKind::Gl: RenderDevice::borrowCurrentContext()), or the CPU ray
+// caster. They render in the caller's thread: request() only records the
+// newest description and emits renderWanted(), and the caller (the 3D view's
+// surface, from its paint) calls drawPending() (GL: the frame drawn straight
+// into its framebuffer) or renderPending() (an image), which emit frameReady()
+// before they return.
 class LocalRenderBackend : public RenderBackend {
     Q_OBJECT
 
 public:
-    enum class Device { Gpu, Cpu };
-
     explicit LocalRenderBackend(QObject* parent = nullptr);
-    // The GPU caster must have been released (releaseGl) with its context current.
+    // A GL renderer must have been released (releaseGl) with its context current.
     ~LocalRenderBackend() override;
 
-    // Leaving Device::Gpu needs releaseGl() first (the caster's context current).
-    void setDevice(Device device) { device_ = device; }
-    Device device() const { return device_; }
+    // Gl renders in the context current when drawPending() or renderPending()
+    // is called, the same one on every call until releaseGl(). Leaving Gl
+    // needs releaseGl() first (std::logic_error otherwise).
+    void setKind(RendererKind kind);
+    RendererKind kind() const { return kind_; }
     void setGpuOptions(const GpuOptions& options) { gpuOptions_ = options; }
 
     void setVolume(std::shared_ptr<const Volume> volume) override;
     void request(const RenderDescription& still, const FrameOptions& options) override;
     bool pending() const { return pending_.has_value(); }
 
-    // Renders the newest request, if there is one. Device::Gpu needs a current
-    // OpenGL 4.3 core context, the same one on every call until releaseGl().
-    // A bad setting emits frameFailed(). When OpenGL fails (GlError, or
-    // BudgetError: not even the coarsest level fits) the GPU caster is dropped,
-    // gpuFailed() says why and the request stays pending for the next device.
+    // Renders the newest request, if there is one, and emits its frame with the
+    // image (read back from the GPU with Gl). A bad setting emits
+    // frameFailed(). When OpenGL fails (GlError, or BudgetError: not even the
+    // coarsest level fits) the GL renderer is dropped, gpuFailed() says why
+    // and the request stays pending for the next kind.
     void renderPending();
-    // Frees the GPU caster's textures and buffers: call with its context
+    // For a surface with a framebuffer (`target`, of the current context):
+    // the newest request drawn into it with no read back (frameReady() with
+    // inPlace and no image; a renderer that cannot draw in place clears it and
+    // sends the image); with none, the last frame drawn in place again (no
+    // new frame); else the rectangle cleared to black. Failures as
+    // renderPending(); never throws.
+    void drawPending(const FramebufferTarget& target);
+    // The last frame as rendered (an interactive one at its smaller size),
+    // read back on request (screenshots, tests): its description rendered
+    // again. Empty when there is none. Gl: with the context current.
+    ImageRGBA8 readLastFrame();
+
+    // Frees the GL renderer's textures and buffers: call with its context
     // current, before that context goes.
     void releaseGl();
-    bool holdsGlResources() const { return gpuCaster_ != nullptr; }
-
-    // The CPU caster of the current volume (made on first use).
-    CpuRayCaster& cpuCaster();
+    bool holdsGlResources() const { return renderer_ != nullptr && rendererIsGl_; }
 
 signals:
-    // A request is waiting: call renderPending() soon (from the paint).
+    // A request is waiting: call drawPending() or renderPending() soon (from the paint).
     void renderWanted();
     void gpuFailed(const QString& reason);
 
@@ -57,16 +68,26 @@ private:
         RenderDescription still;
         FrameOptions options;
     };
-    RenderResult renderOnGpu(const RenderDescription& description);
+    // The renderer of the current volume and kind, opened on first use.
+    // Throws GlError where GL was wanted and the renderer fell back to the CPU.
+    Renderer& renderer();
+    void dropRenderer();
+    // Renders or draws the pending request; false when it failed (signals sent).
+    bool renderJob(const FramebufferTarget* target);
+    // The last frame drawn in place, drawn again; false when there is none.
+    bool drawLast(const FramebufferTarget& target);
 
-    Device device_ = Device::Cpu;
+    RendererKind kind_ = RendererKind::Cpu;
     GpuOptions gpuOptions_;
     std::shared_ptr<const Volume> volume_;
-    std::uint64_t generation_ = 0;
-    std::unique_ptr<GpuRayCaster> gpuCaster_;
-    std::uint64_t gpuGeneration_ = 0;
-    std::unique_ptr<CpuRayCaster> cpuCaster_;
     std::optional<Pending> pending_;
+    // The renderer and the volume it renders, kept alive as long as it is.
+    std::shared_ptr<const Volume> rendererVolume_;
+    std::unique_ptr<Renderer> renderer_;
+    bool rendererIsGl_ = false;
+    // The description of the renderer's last frame, and whether it was drawn in place.
+    std::optional<RenderDescription> last_;
+    bool lastInPlace_ = false;
 };
 
 } // namespace lucent

@@ -12,8 +12,8 @@
 #include <QString>
 
 #include "core/image/Image.h"
-#include "core/raycast/CpuRayCaster.h"
 #include "core/quality/InteractiveQuality.h"
+#include "core/raycast/CpuRayCaster.h"
 #include "core/scene/RenderDescription.h"
 
 namespace lucent {
@@ -28,6 +28,9 @@ struct FrameOptions {
 
 struct BackendFrame {
     ImageRGBA8 image; // as rendered: an interactive frame is smaller than the view
+    // Drawn straight into the view's framebuffer (the local GPU ray caster):
+    // no image; LocalRenderBackend::readLastFrame() reads it back on request.
+    bool inPlace = false;
     RenderStats stats;
     bool interactive = false;
     bool current = true;   // it shows the newest request

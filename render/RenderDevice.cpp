@@ -27,6 +27,13 @@ public:
     std::string backend() const override { return caster_->backend(); }
     std::string device() const override { return context_->description(); }
     FrameDetails frameDetails() const override { return caster_->frameDetails(); }
+    // Into a framebuffer of this renderer's own context.
+    bool drawsInPlace() const override { return caster_->drawsInPlace(); }
+    RenderStats drawInPlace(const RenderDescription& description,
+                            const FramebufferTarget& target) override {
+        context_->makeCurrent();
+        return caster_->drawInPlace(description, target);
+    }
 
 private:
     std::shared_ptr<OffscreenContext> context_;
@@ -64,9 +71,9 @@ std::unique_ptr<RenderDevice> RenderDevice::open(RendererKind wanted) {
         return std::unique_ptr<RenderDevice>(
             new RenderDevice(RendererKind::Gl, std::move(context), {}));
     } catch (const GlError& e) {
-        return std::unique_ptr<RenderDevice>(new RenderDevice(
-            RendererKind::Cpu, nullptr, std::string("the GL backend is not available (") +
-                                            e.what() + ")"));
+        return std::unique_ptr<RenderDevice>(
+            new RenderDevice(RendererKind::Cpu, nullptr,
+                             std::string("the GL backend is not available (") + e.what() + ")"));
     }
 }
 

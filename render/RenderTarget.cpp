@@ -15,6 +15,8 @@ void RenderTarget::resize(int width, int height) {
     glTextureStorage2D(colour_.get(), 1, GL_RGBA32F, width, height);
     samples_ = makeTexture(GL_TEXTURE_2D);
     glTextureStorage2D(samples_.get(), 1, GL_R32UI, width, height);
+    rowSamples_ = makeTexture(GL_TEXTURE_2D);
+    glTextureStorage2D(rowSamples_.get(), 1, GL_R32UI, height, 1);
     GLuint fb = 0;
     glCreateFramebuffers(1, &fb);
     framebuffer_ = GlFramebuffer(fb);
@@ -29,17 +31,49 @@ void RenderTarget::resize(int width, int height) {
     checkGl("render target");
     width_ = width;
     height_ = height;
+    shownFramebuffer_.reset();
+    shown_.reset();
 }
 
-void RenderTarget::bindAndClear() {
+GLuint RenderTarget::shownFramebuffer() {
+    if (shownFramebuffer_.get() == 0) {
+        shown_ = makeTexture(GL_TEXTURE_2D);
+        glTextureStorage2D(shown_.get(), 1, GL_RGBA8, width_, height_);
+        glTextureParameteri(shown_.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTextureParameteri(shown_.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTextureParameteri(shown_.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(shown_.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        GLuint fb = 0;
+        glCreateFramebuffers(1, &fb);
+        shownFramebuffer_ = GlFramebuffer(fb);
+        glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0, shown_.get(), 0);
+        if (glCheckNamedFramebufferStatus(fb, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+            throw GlError("the " + std::to_string(width_) + "x" + std::to_string(height_) +
+                          " RGBA8 framebuffer is not complete on this driver");
+        }
+        checkGl("shown frame");
+    }
+    return shownFramebuffer_.get();
+}
+
+void RenderTarget::bindAndClear(bool countRows) {
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.get());
     glViewport(0, 0, width_, height_);
+    // Whatever the context's owner left set (a QOpenGLWidget's painter) that
+    // would clip or blend the clears and the rays.
+    glDisable(GL_BLEND);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_STENCIL_TEST);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     const GLfloat zero[4] = {0, 0, 0, 0};
     const GLuint none[4] = {0, 0, 0, 0};
     glClearNamedFramebufferfv(framebuffer_.get(), GL_COLOR, 0, zero);
     glClearNamedFramebufferuiv(framebuffer_.get(), GL_COLOR, 1, none);
-    glDisable(GL_BLEND);
-    glDisable(GL_DEPTH_TEST);
+    if (countRows) {
+        glClearTexImage(rowSamples_.get(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, none);
+        glBindImageTexture(0, rowSamples_.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+    }
 }
 
 void RenderTarget::read(std::vector<glm::vec4>& colour, std::size_t& samples) const {
@@ -61,6 +95,21 @@ void RenderTarget::read(std::vector<glm::vec4>& colour, std::size_t& samples) co
     for (const GLuint c : counts) {
         samples += c;
     }
+}
+
+std::size_t RenderTarget::countedSamples() const {
+    std::vector<GLuint> rows(static_cast<std::size_t>(height_));
+    // The shader's atomic adds are not coherent with the read otherwise.
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTextureImage(rowSamples_.get(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                      GLsizei(rows.size() * sizeof(GLuint)), rows.data());
+    checkGl("reading the sample counts back");
+    std::size_t samples = 0;
+    for (const GLuint r : rows) {
+        samples += r;
+    }
+    return samples;
 }
 
 } // namespace lucent

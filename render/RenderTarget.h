@@ -15,14 +15,30 @@ class RenderTarget {
 public:
     // Reallocates when the size changes.
     void resize(int width, int height);
-    void bindAndClear();
+    // Binds it for drawing and clears it. countRows: also clears the per-row
+    // sample counts and binds them to image unit 0 (the ray caster's
+    // uRowSamples), for countedSamples().
+    void bindAndClear(bool countRows);
     // Row 0 of `colour` is the image's top row (GL's is the bottom one).
     void read(std::vector<glm::vec4>& colour, std::size_t& samples) const;
+    // The samples of the last frame drawn after bindAndClear(true): one value a
+    // row read back (4 bytes a row), not the whole count texture.
+    std::size_t countedSamples() const;
+
+    // The premultiplied colour (RGBA32F), row 0 at the bottom.
+    GLuint colour() const { return colour_.get(); }
+    // A framebuffer of the target's size with one RGBA8 texture (linear
+    // filtering, clamped to its edges): the frame as shown, before it is
+    // stretched. Made on first use.
+    GLuint shownFramebuffer();
+    GLuint shown() const { return shown_.get(); }
+    int width() const { return width_; }
+    int height() const { return height_; }
 
 private:
     int width_ = 0, height_ = 0;
-    GlFramebuffer framebuffer_;
-    GlTexture colour_, samples_;
+    GlFramebuffer framebuffer_, shownFramebuffer_;
+    GlTexture colour_, samples_, rowSamples_, shown_;
 };
 
 } // namespace lucent

@@ -32,6 +32,10 @@ const bool kCellsInOneBrick = LUCENT_CELLS_IN_ONE_BRICK;
 // a shaded sample reads one texel for both.
 const bool kGradientTexture = LUCENT_GRADIENT_TEXTURE;
 const bool kGradientInPool = LUCENT_GRADIENT_IN_POOL;
+// A frame drawn in place is not read back: its samples are also summed per
+// row here (one atomic add a pixel), so that 4 bytes a row tell the count.
+const bool kRowSamples = LUCENT_ROW_SAMPLES;
+layout(binding = 0, r32ui) uniform uimage2D uRowSamples; // (row, 0)
 uniform float uEarlyTermination, uIso;
 uniform vec4 uLight; // ambient, diffuse, specular, specular power
 uniform mat3 uGradientToWorld;
@@ -322,6 +326,13 @@ vec3 levelPosition(vec3 p0) {
 
 // --- the ray --------------------------------------------------------------------
 
+void writeSamples(uint samples) {
+    outSamples = samples;
+    if (kRowSamples && samples != 0u) {
+        imageAtomicAdd(uRowSamples, ivec2(int(gl_FragCoord.y), 0), samples);
+    }
+}
+
 void main() {
     outColour = vec4(0.0);
     outSamples = 0u;
@@ -470,7 +481,7 @@ void main() {
                 enterBrick(brickOf(hit));
                 vec4 k = classify(uIso, 1);
                 outColour = vec4(kShading ? shade(k.rgb, hit, w) : k.rgb, 1.0);
-                outSamples = samples;
+                writeSamples(samples);
                 return;
             }
             prev = v;
@@ -509,7 +520,7 @@ void main() {
         }
     }
 
-    outSamples = samples;
+    writeSamples(samples);
     if (kMode == kMip || kMode == kMinIp || kMode == kAverage) {
         bool any = kMode == kAverage ? count > 0 : havePrev;
         if (any) {

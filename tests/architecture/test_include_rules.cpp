@@ -7,39 +7,12 @@
 #include <QFileInfo>
 #include <QTemporaryDir>
 
-#include <algorithm>
 
 #include "tests/architecture/IncludeRules.h"
 
 using namespace lucent::arch;
 
 namespace {
-
-// Violations the tree holds today that are being removed. Each entry must still match one in the
-// tree (allowListIsCurrent fails otherwise), so the list empties as the code moves; add nothing.
-struct Pending {
-    const char* file;
-    Rule rule;
-    const char* subject;
-};
-const Pending kPendingExceptions[] = {
-    // The 3D view clears and sets the viewport of its QOpenGLWidget with QOpenGLFunctions;
-    // that code is moving into render/.
-    {"ui/volume/VolumeSurfaces.cpp", Rule::Gl, "glClearColor()"},
-    {"ui/volume/VolumeSurfaces.cpp", Rule::Gl, "glClear()"},
-    {"ui/volume/VolumeSurfaces.cpp", Rule::Gl, "glBindFramebuffer()"},
-    {"ui/volume/VolumeSurfaces.cpp", Rule::Gl, "glViewport()"},
-};
-
-bool isPending(const Violation& v) {
-    for (const Pending& p : kPendingExceptions) {
-        if (v.file == QLatin1String(p.file) && v.rule == p.rule &&
-            v.subject == QLatin1String(p.subject)) {
-            return true;
-        }
-    }
-    return false;
-}
 
 QString listed(const QList<Violation>& violations) {
     QStringList lines;
@@ -100,15 +73,8 @@ private slots:
                                                               .arg(realTree_.filesChecked)
                                                               .arg(LUCENT_SOURCE_DIR)));
         QVERIFY2(realTree_.unreadable.isEmpty(), qPrintable(realTree_.unreadable.join(", ")));
-        QList<Violation> pending;
-        QList<Violation> broken;
-        for (const Violation& v : realTree_.violations) {
-            (isPending(v) ? pending : broken) << v;
-        }
+        const QList<Violation>& broken = realTree_.violations;
         // One message per violation: QTest cuts a single long message short.
-        for (const Violation& v : pending) {
-            qInfo().noquote() << "allowed for now (kPendingExceptions):" << v.toString();
-        }
         for (const Violation& v : broken) {
             qWarning().noquote() << v.toString();
         }
@@ -116,20 +82,6 @@ private slots:
                  qPrintable(QStringLiteral("%1 include rule violation(s) in %2 files, listed above")
                                 .arg(broken.size())
                                 .arg(realTree_.filesChecked)));
-    }
-
-    // An allow-list entry that matches nothing is done: it must go.
-    void allowListIsCurrent() {
-        for (const Pending& p : kPendingExceptions) {
-            const bool found = std::any_of(
-                realTree_.violations.begin(), realTree_.violations.end(), [&](const Violation& v) {
-                    return v.file == QLatin1String(p.file) && v.rule == p.rule &&
-                           v.subject == QLatin1String(p.subject);
-                });
-            QVERIFY2(found, qPrintable(QStringLiteral("%1 no longer has %2 (%3): remove it from "
-                                                      "kPendingExceptions")
-                                           .arg(p.file, p.subject, ruleName(p.rule))));
-        }
     }
 
     void reportsViolation_data() {

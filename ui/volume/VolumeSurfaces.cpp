@@ -1,9 +1,9 @@
 #include "ui/volume/VolumeSurfaces.h"
 
 #include <QOpenGLContext>
-#include <QOpenGLFunctions>
 #include <QPainter>
 
+#include "render/GpuRayCaster.h"
 #include "ui/volume/VolumeView.h"
 
 namespace lucent {
@@ -25,7 +25,7 @@ VolumeGlSurface::~VolumeGlSurface() {
 void VolumeGlSurface::initializeGL() {
     // A widget moved to another window gets a new context: the old one takes
     // the caster's textures and buffers with it, so they go first.
-    connect(context(), &QOpenGLContext::aboutToBeDestroyed, this, &VolumeGlSurface::releaseGl,
+    connect(context(), &QOpenGLContext::aboutToBeDestroyed, this, &VolumeGlSurface::contextGoing,
             Qt::UniqueConnection);
     const QSurfaceFormat f = context()->format();
     if (f.version() < qMakePair(4, 3) || f.profile() != QSurfaceFormat::CoreProfile) {
@@ -38,6 +38,14 @@ void VolumeGlSurface::initializeGL() {
     }
     // A new context (first show, or another window): render afresh in it.
     view_->requestRender();
+}
+
+void VolumeGlSurface::contextGoing() {
+    // The frame lives in this context's framebuffer: read it back while it can
+    // be, so that the view's lastFrame() still has it (a new context renders
+    // afresh anyway, uploading every brick again).
+    view_->lastFrame();
+    releaseGl();
 }
 
 void VolumeGlSurface::releaseGl() {
@@ -65,18 +73,42 @@ void VolumeGlSurface::reportFailure(const QString& reason) {
 }
 
 void VolumeGlSurface::paintGL() {
-    QOpenGLFunctions* gl = context()->functions();
-    gl->glClearColor(0.f, 0.f, 0.f, 1.f);
-    gl->glClear(GL_COLOR_BUFFER_BIT);
+    // The frame goes straight into this widget's framebuffer; the overlays over it.
+    const QSize pixels = size() * devicePixelRatio();
+    const FramebufferTarget target{defaultFramebufferObject(), 0, 0, pixels.width(),
+                                   pixels.height()};
     if (failed_) {
+        try {
+            clearFramebuffer(target, glm::dvec3(0.0));
+        } catch (const std::exception&) {
+            // The view is being handed over to the CPU renderer already.
+        }
         return;
     }
-    view_->renderPending();
-    // The caster leaves its own framebuffer bound; QPainter draws into ours.
-    gl->glBindFramebuffer(GL_FRAMEBUFFER, defaultFramebufferObject());
-    gl->glViewport(0, 0, width() * devicePixelRatio(), height() * devicePixelRatio());
+    view_->drawFrameInPlace(target);
     QPainter painter(this);
     view_->paintFrame(painter);
+}
+
+ImageRGBA8 VolumeGlSurface::readLastFrame() {
+    if (context() == nullptr) {
+        return {};
+    }
+    // From paintGL (a slot of renderedFrame) the context is current already.
+    const bool wasCurrent = QOpenGLContext::currentContext() == context();
+    if (!wasCurrent) {
+        makeCurrent();
+    }
+    ImageRGBA8 image;
+    try {
+        image = view_->localBackend().readLastFrame();
+    } catch (const std::exception&) {
+        // Nothing to read: the next frame says why, if OpenGL failed.
+    }
+    if (!wasCurrent) {
+        doneCurrent();
+    }
+    return image;
 }
 
 VolumeFrameSurface::VolumeFrameSurface(VolumeView* view) : QWidget(view), view_(view) {

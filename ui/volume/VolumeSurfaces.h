@@ -5,14 +5,18 @@
 #include <QOpenGLWidget>
 #include <QWidget>
 
+#include "core/image/Image.h"
+
 namespace lucent {
 
 class VolumeView;
 
 // Gives the view's LocalRenderBackend this widget's context: the backend's
-// GpuRayCaster renders in paintGL and is released with the context
-// (aboutToBeDestroyed, or this widget's destruction), with the context current.
-// A context older than 4.3 core hands the view over to the CPU renderer.
+// GPU ray caster draws each frame straight into this widget's framebuffer in
+// paintGL (no read back), the view's overlays are painted over it with
+// QPainter, and the caster is released with the context (aboutToBeDestroyed,
+// or this widget's destruction), with the context current. A context older
+// than 4.3 core hands the view over to the CPU renderer.
 class VolumeGlSurface : public QOpenGLWidget {
     Q_OBJECT
 
@@ -20,11 +24,17 @@ public:
     explicit VolumeGlSurface(VolumeView* view);
     ~VolumeGlSurface() override;
 
+    // The last frame drawn, read back in this widget's context (rendered
+    // again, as it was rendered: an interactive frame at its smaller size);
+    // empty when there is none or OpenGL fails.
+    ImageRGBA8 readLastFrame();
+
 protected:
     void initializeGL() override;
     void paintGL() override;
 
 private:
+    void contextGoing();
     void releaseGl();
     void reportFailure(const QString& reason);
 

@@ -115,14 +115,20 @@ RenderBackend& VolumeView::activeBackend() {
 void VolumeView::useSurface(Backend backend) {
     auto* layout = static_cast<QStackedLayout*>(this->layout());
     const bool wasRemote = backend_ == Backend::Remote;
+    if (frameInPlace_) {
+        // The next surface shows the frame until its own comes: read it back
+        // while the GL surface and its context are still there.
+        lastFrame();
+        frameInPlace_ = false;
+    }
     // A GL surface releases the local backend's GL resources as it goes.
     surface_.reset();
     backend_ = backend;
     if (backend == Backend::Gpu) {
-        local_->setDevice(LocalRenderBackend::Device::Gpu);
+        local_->setKind(RendererKind::Gl);
         surface_ = std::make_unique<VolumeGlSurface>(this);
     } else {
-        local_->setDevice(LocalRenderBackend::Device::Cpu);
+        local_->setKind(RendererKind::Cpu);
         surface_ = std::make_unique<VolumeFrameSurface>(this);
     }
     if (backend != Backend::Remote && wasRemote) {
@@ -194,6 +200,7 @@ void VolumeView::setVolume(std::shared_ptr<const Volume> volume) {
     remote_->setVolume(volume_);
     lastFrame_ = {};
     lastFrameCurrent_ = false;
+    frameInPlace_ = false;
     transferFunction_ = defaultTransferFunction(volume_.get());
     clip_ = ClipBox{};
     camera_ = Camera{};
@@ -317,9 +324,33 @@ void VolumeView::renderPending() {
     }
 }
 
+void VolumeView::drawFrameInPlace(const FramebufferTarget& target) {
+    local_->drawPending(target);
+}
+
+const ImageRGBA8& VolumeView::lastFrame() {
+    if (frameInPlace_ && lastFrame_.empty()) {
+        if (auto* gl = qobject_cast<VolumeGlSurface*>(surface_.get())) {
+            const ImageRGBA8 image = gl->readLastFrame();
+            const bool shownAsIs = image.empty() || (image.width == frameSize_.width() &&
+                                                     image.height == frameSize_.height());
+            lastFrame_ =
+                shownAsIs ? image : scaledTo(image, frameSize_.width(), frameSize_.height());
+        }
+    }
+    return lastFrame_;
+}
+
 void VolumeView::onFrame(const BackendFrame& frame) {
     const RenderDescription still = description();
-    lastFrame_ = frame.interactive ? scaledTo(frame.image, still.width, still.height) : frame.image;
+    frameInPlace_ = frame.inPlace;
+    frameSize_ = QSize(still.width, still.height);
+    if (frame.inPlace) {
+        lastFrame_ = {}; // in the GL surface's framebuffer; read back on request
+    } else {
+        lastFrame_ =
+            frame.interactive ? scaledTo(frame.image, still.width, still.height) : frame.image;
+    }
     lastFrameCurrent_ = frame.current;
     if (!frameError_.isEmpty()) {
         frameError_.clear();
@@ -338,15 +369,21 @@ void VolumeView::onFrameFailed(const QString& reason) {
 
 void VolumeView::paintFrame(QPainter& painter) {
     const QRectF area(QPointF(0, 0), QSizeF(painter.device()->width(), painter.device()->height()));
-    painter.fillRect(area, Qt::black);
+    // A frame drawn in place is under the painter already: only the overlays go over it.
+    const bool inPlace = frameInPlace_ && volume_ && !volume_->empty();
+    if (!inPlace) {
+        painter.fillRect(area, Qt::black);
+    }
     if (!volume_ || volume_->empty()) {
         painter.setPen(Qt::gray);
         painter.drawText(area, Qt::AlignCenter, tr("No volume"));
-    } else if (!lastFrame_.pixels.empty()) {
-        const QImage image(lastFrame_.pixels.data(), lastFrame_.width, lastFrame_.height,
-                           4 * lastFrame_.width, QImage::Format_RGBA8888);
-        painter.setRenderHint(QPainter::SmoothPixmapTransform, false);
-        painter.drawImage(area, image);
+    } else if (inPlace || !lastFrame_.pixels.empty()) {
+        if (!inPlace) {
+            const QImage image(lastFrame_.pixels.data(), lastFrame_.width, lastFrame_.height,
+                               4 * lastFrame_.width, QImage::Format_RGBA8888);
+            painter.setRenderHint(QPainter::SmoothPixmapTransform, false);
+            painter.drawImage(area, image);
+        }
         if (clipHandlesShown_) {
             paintClipBox(painter);
         }

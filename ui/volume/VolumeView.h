@@ -10,8 +10,8 @@
 #include <QSurfaceFormat>
 #include <QWidget>
 
-#include "core/raycast/CpuRayCaster.h"
 #include "core/quality/InteractiveQuality.h"
+#include "core/raycast/CpuRayCaster.h"
 #include "core/scene/RenderDescription.h"
 #include "render/LocalRenderBackend.h"
 #include "render/RemoteRenderBackend.h"
@@ -22,11 +22,11 @@ class QPainter;
 namespace lucent {
 
 // The 3D view: the volume ray cast on the GPU (GpuRayCaster in a QOpenGLWidget's
-// context) or, where OpenGL 4.3 cannot be had, on the CPU (CpuRayCaster), with a
-// one-line notice saying why; or on a lucent-server (renderOnServer), switched at
-// run time. Frames come from a RenderBackend (LocalRenderBackend or
-// RemoteRenderBackend); the view owns the camera, mode, clip box and transfer
-// function it renders with, so a switch keeps them.
+// context, each frame drawn straight into the widget's framebuffer) or, where
+// OpenGL 4.3 cannot be had, on the CPU (CpuRayCaster), with a one-line notice
+// saying why; or on a lucent-server (renderOnServer), switched at run time. Frames come from a
+// RenderBackend (LocalRenderBackend or RemoteRenderBackend); the view owns the camera, mode, clip
+// box and transfer function it renders with, so a switch keeps them.
 //
 // Mouse: left-drag rotates (kDegreesPerPixel of azimuth per pixel right, of
 // elevation per pixel down), right-drag zooms (up = closer), middle-drag pans
@@ -89,16 +89,21 @@ public:
     // the last render error; empty otherwise.
     QString notice() const { return notice_; }
     bool interacting() const { return dragButton_ != Qt::NoButton; }
-    // The last frame as shown (scaled up when it was an interactive one).
-    const ImageRGBA8& lastFrame() const { return lastFrame_; }
+    // The last frame as shown (scaled up when it was an interactive one). A
+    // frame the GPU drew in place is read back here, on the first call after
+    // it (rendered again: for screenshots and tests, not for every frame).
+    const ImageRGBA8& lastFrame();
     // Whether it shows the newest request (a server's frames may lag behind).
     bool lastFrameCurrent() const { return lastFrameCurrent_; }
     // The view's pixels as on screen.
     QImage grabImage();
 
-    // Used by the surfaces, from their paint: renders a waiting local request
-    // (the GL surface's context is current), then paints the last frame.
+    // Used by the surfaces, from their paint. The frame surface renders a
+    // waiting local request and paints the frame and the overlays; the GL
+    // surface draws the request (or the last frame again) in place into its
+    // framebuffer, its context current, and paints the overlays over it.
     void renderPending();
+    void drawFrameInPlace(const FramebufferTarget& target);
     void paintFrame(QPainter& painter);
     // Called when OpenGL fails: switches to the CPU renderer.
     void fallBackToCpu(const QString& reason);
@@ -166,8 +171,10 @@ private:
     QString backendNotice_; // why not the GPU, or the server's status
     QString frameError_;    // the last request that failed, until a frame comes
     QString glFailure_;
-    ImageRGBA8 lastFrame_;
+    ImageRGBA8 lastFrame_; // empty for a frame drawn in place until it is read back
     bool lastFrameCurrent_ = false;
+    bool frameInPlace_ = false; // the GL surface's framebuffer holds the last frame
+    QSize frameSize_;           // the view's size in pixels when it came
 
     Qt::MouseButton dragButton_ = Qt::NoButton;
     QPointF dragStart_;

@@ -19,8 +19,7 @@
 #include <cmath>
 
 #include "core/quality/QualityChoice.h"
-#include "render/GpuRayCaster.h"
-#include "render/OffscreenContext.h"
+#include "render/RenderDevice.h"
 #include "ui/volume/VolumeView.h"
 
 namespace lucent {
@@ -271,25 +270,35 @@ void VolumeViewControls::startMeasuring(const RenderDescription& description,
             }
         };
         try {
-            CpuRayCaster cpu(*volume);
+            const std::unique_ptr<Renderer> cpu =
+                RenderDevice::open(RendererKind::Cpu)->openRenderer(*volume).renderer;
             const QualityRender reference = [&](const RenderDescription& d) {
-                return cpu.render(d);
+                return cpu->render(d);
             };
             if (backend == "gl") {
-                // Its own context on this thread: the same GPU ray caster as the view's.
+                // A context of its own on this thread: the same GPU ray caster as the view's.
                 try {
-                    const std::unique_ptr<OffscreenContext> context = OffscreenContext::create();
-                    GpuRayCaster gpu(*volume);
-                    m->front = measureQuickFront(
-                        description, backend,
-                        [&](const RenderDescription& d) { return gpu.render(d); }, reference,
-                        tick);
-                    return;
+                    const std::unique_ptr<RenderDevice> device =
+                        RenderDevice::open(RendererKind::Gl);
+                    RenderDevice::Opened gl;
+                    if (device->kind() == RendererKind::Gl) {
+                        gl = device->openRenderer(*volume);
+                    }
+                    const std::string why = device->kind() == RendererKind::Gl
+                                                ? gl.fallbackReason
+                                                : device->fallbackReason();
+                    if (why.empty()) {
+                        m->front = measureQuickFront(
+                            description, backend,
+                            [&](const RenderDescription& d) { return gl.renderer->render(d); },
+                            reference, tick);
+                        return;
+                    }
+                    m->note = "measured on the CPU (" + why + ")";
                 } catch (const MeasuringCancelled&) {
                     throw;
                 } catch (const std::exception& e) {
-                    m->note =
-                        std::string("measured on the CPU (no offscreen GL: ") + e.what() + ")";
+                    m->note = std::string("measured on the CPU (GL failed: ") + e.what() + ")";
                 }
             }
             m->front = measureQuickFront(description, backend, reference, reference, tick);

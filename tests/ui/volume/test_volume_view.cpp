@@ -87,6 +87,7 @@ private slots:
     void init();
     void cleanup();
     void rendersLikeCpuReference();
+    void framesAreDrawnInPlace();
     void dragRotatesWithInteractiveQuality();
     void wheelAndRightDragZoom();
     void transferFunctionEditsRerender();
@@ -100,11 +101,15 @@ private:
     std::shared_ptr<const Volume> volume_ = makeBallVolume();
     std::unique_ptr<VolumeView> view_;
     std::vector<Frame> frames_;
+    std::vector<BackendFrame> localFrames_; // as the local backend sends them
 };
 
 void TestVolumeView::init() {
     frames_.clear();
+    localFrames_.clear();
     view_ = std::make_unique<VolumeView>();
+    QObject::connect(&view_->localBackend(), &RenderBackend::frameReady, view_.get(),
+                     [this](const BackendFrame& f) { localFrames_.push_back(f); });
     view_->resize(160, 128);
     QObject::connect(view_.get(), &VolumeView::renderedFrame, view_.get(),
                      [this](const RenderStats& s, bool interactive) {
@@ -151,6 +156,39 @@ void TestVolumeView::rendersLikeCpuReference() {
     // And the image is not trivially black: the ball is there.
     const ImageRGBA8 black = ImageRGBA8::filled(d.width, d.height, 0);
     QVERIFY(psnr(reference, black) < 30.0);
+}
+
+void TestVolumeView::framesAreDrawnInPlace() {
+    // The GPU frame goes straight into the widget's framebuffer: no image comes
+    // with it; lastFrame() reads it back on request, and it is what the screen shows.
+    Camera c = view_->camera();
+    c.azimuth = 20.0;
+    view_->setCamera(c);
+    QVERIFY(waitForFrame(false));
+    QVERIFY(!localFrames_.empty());
+    QVERIFY(localFrames_.back().inPlace);
+    QVERIFY(localFrames_.back().image.empty());
+    QVERIFY(localFrames_.back().stats.samples > 0);
+    const std::size_t framesBefore = frames_.size();
+    const ImageRGBA8 screen = fromQImage(view_->grabImage());
+    const ImageRGBA8 frame = view_->lastFrame();
+    QCOMPARE(frame.width, 160);
+    const double p = checkedPsnr(screen, frame, "in_place_screen");
+    QVERIFY2(p >= 50.0, qPrintable(QString("screen against the frame read back: %1 dB").arg(p)));
+    // The overlays are painted over the frame; a repaint for them casts no new frame.
+    view_->setClipHandlesShown(true);
+    const ImageRGBA8 withHandles = fromQImage(view_->grabImage());
+    QVERIFY(withHandles != screen);
+    // Lines and handles over the frame; the frame everywhere else.
+    std::size_t same = 0;
+    for (std::size_t n = 0; n < frame.pixels.size(); n += 4) {
+        same += std::equal(frame.pixels.begin() + std::ptrdiff_t(n),
+                           frame.pixels.begin() + std::ptrdiff_t(n + 4),
+                           withHandles.pixels.begin() + std::ptrdiff_t(n));
+    }
+    QVERIFY2(same * 10 > frame.pixelCount() * 8,
+             qPrintable(QString("%1 of %2 pixels as the frame").arg(same).arg(frame.pixelCount())));
+    QCOMPARE(frames_.size(), framesBefore);
 }
 
 void TestVolumeView::dragRotatesWithInteractiveQuality() {

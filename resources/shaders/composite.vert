@@ -1,0 +1,7 @@
+#version 430 core
+// One triangle that covers the viewport (the rectangle drawn): one fragment a
+// pixel, for composite.frag.
+void main() {
+    const vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
+    gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+}
