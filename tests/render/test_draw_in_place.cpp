@@ -10,7 +10,7 @@
 #include <stdexcept>
 
 #include "core/quality/InteractiveQuality.h"
-#include "render/GlObjects.h"
+#include "render/GlObjects_p.h"
 #include "render/RenderDevice.h"
 #include "tests/core/raycast/RaycastScenes.h"
 #include "tests/render/GlTestSupport.h"
@@ -206,7 +206,7 @@ private slots:
         still.height = height;
         still.camera.azimuth = -40.0;
         InteractiveQuality quality;
-        quality.imageDivisor = divisor;
+        quality.imageScale = 1.0 / divisor;
         const RenderDescription d = interactiveDescription(still, quality);
         QVERIFY(d.width < width);
         GpuRayCaster gpu(made_);
