@@ -3,6 +3,8 @@
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
 
+#include <map>
+#include <mutex>
 #include <string_view>
 #include <vector>
 
@@ -10,17 +12,44 @@
 
 namespace lucent {
 
+namespace {
+
+// An EGL display is one per process and eglInitialize does not count: the
+// first eglTerminate would end every other context on it. So contexts count
+// their display's users, and the last one terminates it.
+std::mutex displayUsersMutex;
+std::map<EGLDisplay, int> displayUsers;
+
+void useDisplay(EGLDisplay display) {
+    const std::lock_guard lock(displayUsersMutex);
+    ++displayUsers[display];
+}
+
+void releaseDisplay(EGLDisplay display) {
+    const std::lock_guard lock(displayUsersMutex);
+    if (--displayUsers[display] <= 0) {
+        displayUsers.erase(display);
+        eglTerminate(display);
+    }
+}
+
+} // namespace
+
 struct OffscreenContext::Egl {
     EGLDisplay display = EGL_NO_DISPLAY;
     EGLContext context = EGL_NO_CONTEXT;
     ~Egl() {
-        if (display != EGL_NO_DISPLAY) {
-            eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-            if (context != EGL_NO_CONTEXT) {
-                eglDestroyContext(display, context);
-            }
-            eglTerminate(display);
+        if (display == EGL_NO_DISPLAY) {
+            return;
         }
+        // Another context current on this thread stays current.
+        if (context != EGL_NO_CONTEXT && eglGetCurrentContext() == context) {
+            eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        }
+        if (context != EGL_NO_CONTEXT) {
+            eglDestroyContext(display, context);
+        }
+        releaseDisplay(display);
     }
 };
 
@@ -102,6 +131,7 @@ std::unique_ptr<OffscreenContext> OffscreenContext::create() {
             tried += " (a display did not initialise)";
             continue;
         }
+        useDisplay(display);
         egl->display = display;
         const char* extensions = eglQueryString(display, EGL_EXTENSIONS);
         if (!hasExtension(extensions, "EGL_KHR_surfaceless_context") ||

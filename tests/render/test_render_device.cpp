@@ -47,8 +47,7 @@ private slots:
         d.camera.azimuth = 30.0;
         d.camera.elevation = 15.0;
         d.transferFunction = loadPreset("ct-bone");
-        d.sampling.interpolation =
-            interp == "cubic" ? Interpolation::Cubic : Interpolation::Linear;
+        d.sampling.interpolation = interp == "cubic" ? Interpolation::Cubic : Interpolation::Linear;
         d.sampling.preintegrate = preintegrate;
 
         RenderDevice::Opened g = gl->openRenderer(volume_);
@@ -58,9 +57,10 @@ private slots:
         QCOMPARE(c.renderer->backend(), std::string("cpu"));
         const RenderResult gpuFrame = g.renderer->render(d);
         const RenderResult cpuFrame = c.renderer->render(d);
-        QVERIFY(gpuFrame.stats.bricksUsed > 0 && gpuFrame.stats.bricksUsed == cpuFrame.stats.bricksUsed);
-        const double p = comparedPsnr(gpuFrame.image, cpuFrame.image,
-                                      "device_" + interp.toStdString(), 40.0);
+        QVERIFY(gpuFrame.stats.bricksUsed > 0 &&
+                gpuFrame.stats.bricksUsed == cpuFrame.stats.bricksUsed);
+        const double p =
+            comparedPsnr(gpuFrame.image, cpuFrame.image, "device_" + interp.toStdString(), 40.0);
         QVERIFY2(p >= 40.0, qPrintable(QString("GL against CPU: %1 dB").arg(p)));
         QVERIFY(!g.renderer->frameDetails().empty()); // uploads, pool, gradients
     }
@@ -78,6 +78,22 @@ private slots:
         d.transferFunction = loadPreset("ct-bone");
         QCOMPARE(renderer->render(d).image.width, 64);
         QVERIFY(!renderer->device().empty());
+    }
+
+    // Two devices share the process's EGL display: ending one leaves the other working.
+    void devicesShareTheDisplay() {
+        auto first = std::make_unique<RenderDevice::Opened>(
+            RenderDevice::open(RendererKind::Gl)->openRenderer(volume_));
+        const std::unique_ptr<RenderDevice> second = RenderDevice::open(RendererKind::Gl);
+        RenderDevice::Opened other = second->openRenderer(volume_);
+        QVERIFY(other.fallbackReason.empty());
+        RenderDescription d;
+        d.volume = &volume_;
+        d.width = d.height = 48;
+        d.transferFunction = loadPreset("ct-bone");
+        const ImageRGBA8 before = other.renderer->render(d).image;
+        first.reset(); // its context, and with it (once) the display
+        QVERIFY(other.renderer->render(d).image == before);
     }
 
     void kindsByName() {
