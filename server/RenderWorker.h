@@ -18,7 +18,7 @@
 namespace lucent {
 class RenderDevice;
 enum class RendererKind;
-}
+} // namespace lucent
 
 namespace lucent::remote {
 
@@ -70,7 +70,7 @@ private:
     LoadedSeries& loaded(const std::shared_ptr<const SeriesEntry>& entry);
 
     RendererKind backend_;
-    std::unique_ptr<RenderDevice> device_; // made on the render thread by start()
+    std::unique_ptr<RenderDevice> device_;            // made on the render thread by start()
     std::list<std::unique_ptr<LoadedSeries>> loaded_; // most recently used first
 };
 

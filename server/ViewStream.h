@@ -20,9 +20,9 @@
 
 #include "core/io/SeriesEntry.h"
 #include "core/scene/RenderDescription.h"
-#include "server/RenderWorker.h"
 #include "protocol/AdaptiveQuality.h"
 #include "protocol/ProtocolMessages.h"
+#include "server/RenderWorker.h"
 
 namespace lucent::remote {
 

@@ -86,8 +86,7 @@ int runBench(const QStringList& args) {
         bricks.push_back(s.toInt(&ok));
         listsOk = listsOk && ok && bricks.back() > 0;
     }
-    if (!okSize || !okF || frames < 1 || !listsOk ||
-        (backend != "cpu" && backend != "gl")) {
+    if (!okSize || !okF || frames < 1 || !listsOk || (backend != "cpu" && backend != "gl")) {
         err << "lucent-cli bench: bad --size, --frames, --steps, --bricks or --backend\n";
         return kUsage;
     }

@@ -95,8 +95,9 @@ RenderDescription describe(const QCommandLineParser& p, const std::vector<SetOpt
     if (p.isSet("tf")) {
         d.transferFunction = readTransferFunction(p.value("tf").toStdString());
     } else {
-        d.transferFunction = loadPreset(p.isSet("preset") ? p.value("preset").toStdString()
-                                                          : defaultPresetName(modality.toStdString(), d.mode));
+        d.transferFunction =
+            loadPreset(p.isSet("preset") ? p.value("preset").toStdString()
+                                         : defaultPresetName(modality.toStdString(), d.mode));
     }
     for (const SetOption& o : options) {
         applyRenderOption(d, *o.option, o.text);

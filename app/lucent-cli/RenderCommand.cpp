@@ -54,9 +54,9 @@ RenderDescription describe(const QCommandLineParser& p, const Volume& volume) {
     if (p.isSet("tf")) {
         d.transferFunction = readTransferFunction(p.value("tf").toStdString());
     } else {
-        d.transferFunction = loadPreset(p.isSet("preset")
-                                            ? p.value("preset").toStdString()
-                                            : defaultPresetName(volume.modality, d.mode));
+        d.transferFunction =
+            loadPreset(p.isSet("preset") ? p.value("preset").toStdString()
+                                         : defaultPresetName(volume.modality, d.mode));
     }
     applyRenderFlags(p, d);
     return d;

@@ -42,8 +42,8 @@ void applyRenderFlags(const QCommandLineParser& parser, RenderDescription& descr
         if (o.cliFlag.empty() || !parser.isSet(text(o.cliFlag))) {
             continue;
         }
-        const std::string value =
-            o.cliSets.empty() ? parser.value(text(o.cliFlag)).toStdString() : std::string(o.cliSets);
+        const std::string value = o.cliSets.empty() ? parser.value(text(o.cliFlag)).toStdString()
+                                                    : std::string(o.cliSets);
         try {
             applyRenderOption(description, o, value);
         } catch (const std::invalid_argument& e) {

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <cstdlib>
 #include <map>
-#include <thread>
 #include <optional>
 #include <stdexcept>
 #include <string_view>
+#include <thread>
 #include <tuple>
 
 #include "core/raycast/BSplinePrefilter.h"
@@ -102,8 +102,7 @@ CpuRayCaster::CpuRayCaster(const Volume& volume)
 CpuRayCaster::~CpuRayCaster() = default;
 
 std::string CpuRayCaster::device() const {
-    return "cpu: " + std::to_string(std::max(1u, std::thread::hardware_concurrency())) +
-           " threads";
+    return "cpu: " + std::to_string(std::max(1u, std::thread::hardware_concurrency())) + " threads";
 }
 
 RenderResult CpuRayCaster::render(const RenderDescription& desc) {

@@ -68,16 +68,18 @@ std::vector<RenderOption> makeTable() {
     using D = RenderDescription;
     using sv = std::string_view;
     std::vector<RenderOption> t;
-    t.push_back({.name = "size",
-                 .words = "image size",
-                 .kind = OptionKind::Size,
-                 .min = 1,
-                 .max = kMaxImageSide,
-                 .cliFlag = "size",
-                 .valueName = "WxH",
-                 .help = "Image size in pixels.",
-                 .read = [](const D& d) { return std::to_string(d.width) + "x" + std::to_string(d.height); },
-                 .write = [](D& d, sv v) { std::tie(d.width, d.height) = parseImageSize(v); }});
+    t.push_back(
+        {.name = "size",
+         .words = "image size",
+         .kind = OptionKind::Size,
+         .min = 1,
+         .max = kMaxImageSide,
+         .cliFlag = "size",
+         .valueName = "WxH",
+         .help = "Image size in pixels.",
+         .read =
+             [](const D& d) { return std::to_string(d.width) + "x" + std::to_string(d.height); },
+         .write = [](D& d, sv v) { std::tie(d.width, d.height) = parseImageSize(v); }});
     t.push_back({.name = "mode",
                  .words = "mode",
                  .kind = OptionKind::Choice,
@@ -89,13 +91,14 @@ std::vector<RenderOption> makeTable() {
                  .help = "Direct volume rendering, maximum or minimum intensity projection, "
                          "average, or isosurface.",
                  .read = [](const D& d) { return std::string(renderModeName(d.mode)); },
-                 .write = [](D& d, sv v) {
-                     d.mode = fromName<RenderMode>(v, {{"dvr", RenderMode::Dvr},
-                                                       {"mip", RenderMode::Mip},
-                                                       {"minip", RenderMode::MinIp},
-                                                       {"avg", RenderMode::Average},
-                                                       {"iso", RenderMode::Isosurface}});
-                 }});
+                 .write =
+                     [](D& d, sv v) {
+                         d.mode = fromName<RenderMode>(v, {{"dvr", RenderMode::Dvr},
+                                                           {"mip", RenderMode::Mip},
+                                                           {"minip", RenderMode::MinIp},
+                                                           {"avg", RenderMode::Average},
+                                                           {"iso", RenderMode::Isosurface}});
+                     }});
     t.push_back({.name = "iso",
                  .words = "iso value",
                  .kind = OptionKind::Number,
@@ -124,8 +127,7 @@ std::vector<RenderOption> makeTable() {
     azimuth.read = [](const D& d) { return number(d.camera.azimuth); };
     azimuth.write = [](D& d, sv v) { d.camera.azimuth = parseNumber(v); };
     t.push_back(azimuth);
-    RenderOption elevation =
-        angle("elevation", "Turn about the left-right axis, degrees.");
+    RenderOption elevation = angle("elevation", "Turn about the left-right axis, degrees.");
     elevation.read = [](const D& d) { return number(d.camera.elevation); };
     elevation.write = [](D& d, sv v) { d.camera.elevation = parseNumber(v); };
     t.push_back(elevation);
@@ -190,41 +192,43 @@ std::vector<RenderOption> makeTable() {
                  .help = "Sampling step in voxels of the smallest spacing.",
                  .read = [](const D& d) { return number(d.sampling.step); },
                  .write = [](D& d, sv v) { d.sampling.step = parseNumber(v); }});
-    t.push_back({.name = "interp",
-                 .words = "interpolation",
-                 .kind = OptionKind::Choice,
-                 .choices = {"nearest", "linear", "cubic"},
-                 .cliFlag = "interp",
-                 .valueName = "NAME",
-                 .wireMessage = kWireSampling,
-                 .wireKey = "interp",
-                 .help = "Reconstruction filter: nearest, trilinear, or tricubic B-spline on "
-                         "prefiltered coefficients.",
-                 .read = [](const D& d) {
-                     return std::string(interpolationName(d.sampling.interpolation));
-                 },
-                 .write = [](D& d, sv v) {
-                     d.sampling.interpolation =
-                         fromName<Interpolation>(v, {{"nearest", Interpolation::Nearest},
-                                                     {"linear", Interpolation::Linear},
-                                                     {"cubic", Interpolation::Cubic}});
-                 }});
-    t.push_back({.name = "classification",
-                 .words = "classification",
-                 .kind = OptionKind::Choice,
-                 .choices = {"post", "pre"},
-                 .cliFlag = "preclassify",
-                 .cliSets = "pre",
-                 .wireMessage = kWireSampling,
-                 .wireKey = "classification",
-                 .help = "Classify after interpolation (post) or the voxels before it (pre).",
-                 .read = [](const D& d) {
-                     return std::string(classificationName(d.sampling.classification));
-                 },
-                 .write = [](D& d, sv v) {
-                     d.sampling.classification = v == "pre" ? Classification::Pre
-                                                            : Classification::Post;
-                 }});
+    t.push_back(
+        {.name = "interp",
+         .words = "interpolation",
+         .kind = OptionKind::Choice,
+         .choices = {"nearest", "linear", "cubic"},
+         .cliFlag = "interp",
+         .valueName = "NAME",
+         .wireMessage = kWireSampling,
+         .wireKey = "interp",
+         .help = "Reconstruction filter: nearest, trilinear, or tricubic B-spline on "
+                 "prefiltered coefficients.",
+         .read =
+             [](const D& d) { return std::string(interpolationName(d.sampling.interpolation)); },
+         .write =
+             [](D& d, sv v) {
+                 d.sampling.interpolation =
+                     fromName<Interpolation>(v, {{"nearest", Interpolation::Nearest},
+                                                 {"linear", Interpolation::Linear},
+                                                 {"cubic", Interpolation::Cubic}});
+             }});
+    t.push_back(
+        {.name = "classification",
+         .words = "classification",
+         .kind = OptionKind::Choice,
+         .choices = {"post", "pre"},
+         .cliFlag = "preclassify",
+         .cliSets = "pre",
+         .wireMessage = kWireSampling,
+         .wireKey = "classification",
+         .help = "Classify after interpolation (post) or the voxels before it (pre).",
+         .read =
+             [](const D& d) { return std::string(classificationName(d.sampling.classification)); },
+         .write =
+             [](D& d, sv v) {
+                 d.sampling.classification =
+                     v == "pre" ? Classification::Pre : Classification::Post;
+             }});
     t.push_back({.name = "preintegrate",
                  .words = "pre-integration",
                  .kind = OptionKind::Switch,
@@ -255,20 +259,22 @@ std::vector<RenderOption> makeTable() {
                  .help = "Skip bricks that are empty under the transfer function.",
                  .read = [](const D& d) { return boolText(d.sampling.emptySpaceLeaping); },
                  .write = [](D& d, sv v) { d.sampling.emptySpaceLeaping = isTrue(v); }});
-    t.push_back({.name = "precision",
-                 .words = "precision",
-                 .kind = OptionKind::Choice,
-                 .choices = {"float", "double"},
-                 .cliFlag = "precision",
-                 .valueName = "NAME",
-                 .wireMessage = kWireSampling,
-                 .wireKey = "precision",
-                 .help = "CPU arithmetic: float (fast, tabulated transfer function) or double "
-                         "(the reference).",
-                 .read = [](const D& d) { return std::string(precisionName(d.sampling.precision)); },
-                 .write = [](D& d, sv v) {
-                     d.sampling.precision = v == "double" ? Precision::Double : Precision::Float;
-                 }});
+    t.push_back(
+        {.name = "precision",
+         .words = "precision",
+         .kind = OptionKind::Choice,
+         .choices = {"float", "double"},
+         .cliFlag = "precision",
+         .valueName = "NAME",
+         .wireMessage = kWireSampling,
+         .wireKey = "precision",
+         .help = "CPU arithmetic: float (fast, tabulated transfer function) or double "
+                 "(the reference).",
+         .read = [](const D& d) { return std::string(precisionName(d.sampling.precision)); },
+         .write =
+             [](D& d, sv v) {
+                 d.sampling.precision = v == "double" ? Precision::Double : Precision::Float;
+             }});
     t.push_back({.name = "early-termination",
                  .words = "early termination",
                  .kind = OptionKind::Number,
@@ -302,17 +308,18 @@ const std::vector<RenderOption>& table() {
 
 std::string rangeText(const RenderOption& o) {
     const auto bound = [](double v) {
-        return v >= kHuge ? std::string("inf") : v <= -kHuge ? std::string("-inf")
-                                             : v == kTiny   ? std::string("0 (exclusive)")
-                                                            : number(v);
+        return v >= kHuge    ? std::string("inf")
+               : v <= -kHuge ? std::string("-inf")
+               : v == kTiny  ? std::string("0 (exclusive)")
+                             : number(v);
     };
     return bound(o.min) + " to " + bound(o.max);
 }
 
 void checkValue(const RenderOption& o, double v) {
     if (!std::isfinite(v) || v < o.min || v > o.max) {
-        throw std::invalid_argument(std::string(o.words) + " " + number(v) +
-                                    " is out of range (" + rangeText(o) + ")");
+        throw std::invalid_argument(std::string(o.words) + " " + number(v) + " is out of range (" +
+                                    rangeText(o) + ")");
     }
     if (o.kind == OptionKind::Integer && v != std::floor(v)) {
         throw std::invalid_argument(std::string(o.words) + " " + number(v) +
@@ -344,13 +351,11 @@ std::pair<int, int> parseImageSize(std::string_view text) {
     };
     if (x == std::string_view::npos || !whole(text.substr(0, x), w) ||
         !whole(text.substr(x + 1), h)) {
-        throw std::invalid_argument("image size '" + std::string(text) +
-                                    "' is not WIDTHxHEIGHT");
+        throw std::invalid_argument("image size '" + std::string(text) + "' is not WIDTHxHEIGHT");
     }
     if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide) {
-        throw std::invalid_argument("image size " + std::string(text) +
-                                    " is out of range (1 to " + std::to_string(kMaxImageSide) +
-                                    " per side)");
+        throw std::invalid_argument("image size " + std::string(text) + " is out of range (1 to " +
+                                    std::to_string(kMaxImageSide) + " per side)");
     }
     return {w, h};
 }
@@ -425,10 +430,9 @@ std::string renderOptionsMarkdown() {
             cli += o.cliSets.empty() ? " " + std::string(o.valueName) + "`"
                                      : "` (sets " + std::string(o.cliSets) + ")";
         }
-        const std::string wire =
-            o.wireMessage.empty()
-                ? ""
-                : "`" + std::string(o.wireMessage) + "." + std::string(o.wireKey) + "`";
+        const std::string wire = o.wireMessage.empty() ? ""
+                                                       : "`" + std::string(o.wireMessage) + "." +
+                                                             std::string(o.wireKey) + "`";
         std::string kind, range;
         switch (o.kind) {
         case OptionKind::Number:

@@ -35,8 +35,8 @@ struct RenderOption {
     OptionKind kind = OptionKind::Number;
     double min = 0.0, max = 0.0; // Number, Integer: inclusive
     std::vector<std::string_view> choices;
-    std::string_view cliFlag;  // without dashes; "" : not on the command line
-    std::string_view cliSets;  // a flag that takes no value sets this one ("" : takes a value)
+    std::string_view cliFlag;   // without dashes; "" : not on the command line
+    std::string_view cliSets;   // a flag that takes no value sets this one ("" : takes a value)
     std::string_view valueName; // the CLI's placeholder, "VOXELS"
     std::string_view wireMessage;
     std::string_view wireKey;

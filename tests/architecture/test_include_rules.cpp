@@ -7,7 +7,6 @@
 #include <QFileInfo>
 #include <QTemporaryDir>
 
-
 #include "tests/architecture/IncludeRules.h"
 
 using namespace lucent::arch;
@@ -145,7 +144,8 @@ private slots:
                                                       << "#pragma once\n#include <epoxy/gl.h>\n"
                                                       << QStringList{"third-party:2"};
         QTest::newRow("render includes a private header of core/dicom")
-            << "render/Bad.cpp" << "// tags\n#include \"core/dicom/Tags_p.h\"\n"
+            << "render/Bad.cpp"
+            << "// tags\n#include \"core/dicom/Tags_p.h\"\n"
             << QStringList{"layers:2"};
         QTest::newRow("ui calls glClear")
             << "ui/mpr/Bad.cpp"

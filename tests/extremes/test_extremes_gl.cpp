@@ -117,7 +117,8 @@ private slots:
         d.transferFunction.opacity[1].opacity = 1.5;
         QVERIFY(refuses(d, "opacity[1]"));
         d = describe(v, rampTf(true), 16);
-        QVERIFY(badPixels(gpu.renderWithGpuStats(d).frame.premultiplied, d.transferFunction).isEmpty());
+        QVERIFY(
+            badPixels(gpu.renderWithGpuStats(d).frame.premultiplied, d.transferFunction).isEmpty());
     }
 };
 

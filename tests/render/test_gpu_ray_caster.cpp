@@ -4,8 +4,8 @@
 #include <QTest>
 
 #include "core/scene/ViewFrame.h"
-#include "tests/render/GlTestSupport.h"
 #include "tests/core/raycast/RaycastScenes.h"
+#include "tests/render/GlTestSupport.h"
 
 using namespace lucent;
 using namespace lucent::test;
@@ -177,7 +177,8 @@ private slots:
             RenderDescription d = describe(v, madeTf(), 96);
             d.camera.azimuth = 25.0;
             d.sampling.interpolation = interp;
-            const GpuRenderResult a = cached.renderWithGpuStats(d), b = computed.renderWithGpuStats(d);
+            const GpuRenderResult a = cached.renderWithGpuStats(d),
+                                  b = computed.renderWithGpuStats(d);
             QVERIFY(a.gpu.gradientsCached);
             QVERIFY(!b.gpu.gradientsCached);
             const double p =
@@ -194,8 +195,8 @@ private slots:
         RenderDescription d = describe(v, madeTf(), 96);
         d.clip.lo = {10.5, 0, 5};
         d.clip.hi = {50, 40.25, 100};
-        const double p =
-            comparedPsnr(gpu.renderWithGpuStats(d).frame.image, cpu.render(reference(d)).image, "clip", 40.0);
+        const double p = comparedPsnr(gpu.renderWithGpuStats(d).frame.image,
+                                      cpu.render(reference(d)).image, "clip", 40.0);
         QVERIFY2(p >= 40.0, qPrintable(QString("psnr %1").arg(p)));
     }
 
@@ -223,8 +224,8 @@ private slots:
         QVERIFY(gpu.renderWithGpuStats(still).frame.image == first);
         for (const auto& [d, name] :
              {std::pair{still, "preint-step-0.5"}, {drag, "preint-step-1"}}) {
-            const double p =
-                comparedPsnr(gpu.renderWithGpuStats(d).frame.image, cpu.render(reference(d)).image, name, 40.0);
+            const double p = comparedPsnr(gpu.renderWithGpuStats(d).frame.image,
+                                          cpu.render(reference(d)).image, name, 40.0);
             QVERIFY2(p >= 40.0, qPrintable(QString("%1: psnr %2").arg(name).arg(p)));
         }
     }

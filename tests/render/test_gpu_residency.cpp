@@ -6,8 +6,8 @@
 #include "core/volume/BrickResidency.h"
 #include "render/GlError.h"
 #include "render/GlObjects_p.h"
-#include "tests/render/GlTestSupport.h"
 #include "tests/core/raycast/RaycastScenes.h"
+#include "tests/render/GlTestSupport.h"
 
 using namespace lucent;
 using namespace lucent::test;

@@ -8,8 +8,8 @@
 #include "RemoteTestFixture.h"
 #include "core/image/ImageMetrics.h"
 #include "core/io/Catalog.h"
-#include "core/raycast/CpuRayCaster.h"
 #include "core/quality/InteractiveQuality.h"
+#include "core/raycast/CpuRayCaster.h"
 #include "protocol/AdaptiveQuality.h"
 
 using namespace lucent;

@@ -15,16 +15,16 @@
 #include <QStatusBar>
 #include <QVBoxLayout>
 
-#include "ui/mpr/MprCursor.h"
-#include "ui/pacs/PacsBrowser.h"
 #include "core/pacs/PacsService.h"
-#include "ui/volume/RenderServerSettings.h"
 #include "ui/app/ScreenshotExport.h"
-#include "ui/mpr/SliceView.h"
-#include "ui/study/StudyBrowser.h"
-#include "ui/transfer/TransferFunctionEditor.h"
 #include "ui/app/ViewLayout.h"
+#include "ui/mpr/MprCursor.h"
+#include "ui/mpr/SliceView.h"
+#include "ui/pacs/PacsBrowser.h"
+#include "ui/study/StudyBrowser.h"
 #include "ui/study/VolumeLoader.h"
+#include "ui/transfer/TransferFunctionEditor.h"
+#include "ui/volume/RenderServerSettings.h"
 #include "ui/volume/VolumeView.h"
 #include "ui/volume/VolumeViewControls.h"
 

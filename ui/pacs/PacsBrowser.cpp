@@ -10,9 +10,9 @@
 #include <QTabWidget>
 #include <QVBoxLayout>
 
+#include "core/pacs/PacsService.h"
 #include "ui/pacs/PacsNodeSettings.h"
 #include "ui/pacs/PacsQueryPanel.h"
-#include "core/pacs/PacsService.h"
 #include "ui/pacs/RetrievalProgress.h"
 #include "ui/pacs/StoreBrowser.h"
 

@@ -10,8 +10,8 @@
 #include <QStandardPaths>
 #include <QVBoxLayout>
 
-#include "ui/transfer/TransferFunctionCanvas.h"
 #include "core/tf/VolumeHistogram.h"
+#include "ui/transfer/TransferFunctionCanvas.h"
 
 namespace lucent {
 

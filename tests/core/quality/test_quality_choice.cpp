@@ -10,9 +10,9 @@
 #include <limits>
 
 #include "core/io/Catalog.h"
-#include "core/raycast/CpuRayCaster.h"
 #include "core/quality/MeasuredFront.h"
 #include "core/quality/QualityChoice.h"
+#include "core/raycast/CpuRayCaster.h"
 #include "tests/core/raycast/RaycastScenes.h"
 
 using namespace lucent;

@@ -1,8 +1,8 @@
 // What a scene would cost brute force, against what the renderer took.
 #include <QTest>
 
-#include "core/raycast/CpuRayCaster.h"
 #include "core/quality/SceneCost.h"
+#include "core/raycast/CpuRayCaster.h"
 #include "tests/core/raycast/RaycastScenes.h"
 
 using namespace lucent;

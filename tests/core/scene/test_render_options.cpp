@@ -56,9 +56,9 @@ private slots:
             }
             if (!o.wireKey.empty()) {
                 QVERIFY(!o.wireMessage.empty());
-                QVERIFY2(wire.insert(std::string(o.wireMessage) + "." + std::string(o.wireKey))
-                             .second,
-                         o.wireKey.data());
+                QVERIFY2(
+                    wire.insert(std::string(o.wireMessage) + "." + std::string(o.wireKey)).second,
+                    o.wireKey.data());
             }
             QVERIFY(!o.help.empty() && o.read && o.write);
             QCOMPARE(findRenderOption(o.name), &o);
@@ -75,10 +75,10 @@ private slots:
             QCOMPARE(renderOptionValue(d, o), value);
             for (const RenderOption& other : renderOptions()) {
                 if (&other != &o && other.name != o.name) {
-                    QVERIFY2(renderOptionValue(d, other) == renderOptionDefault(other),
-                             qPrintable(QString("%1 changed %2")
-                                            .arg(o.name.data())
-                                            .arg(other.name.data())));
+                    QVERIFY2(
+                        renderOptionValue(d, other) == renderOptionDefault(other),
+                        qPrintable(
+                            QString("%1 changed %2").arg(o.name.data()).arg(other.name.data())));
                 }
             }
         }

@@ -19,9 +19,9 @@
 
 #include "core/formats/MetaImage.h"
 #include "ui/app/MainWindow.h"
+#include "ui/app/ViewLayout.h"
 #include "ui/mpr/SliceView.h"
 #include "ui/study/StudyBrowser.h"
-#include "ui/app/ViewLayout.h"
 #include "ui/volume/VolumeView.h"
 
 using namespace lucent;

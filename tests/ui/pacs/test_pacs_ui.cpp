@@ -19,13 +19,13 @@
 #include <filesystem>
 #include <memory>
 
+#include "core/pacs/PacsService.h"
 #include "core/store/StudyStore.h"
 #include "tests/support/OrthancServer.h"
 #include "tests/support/SyntheticDicom.h"
 #include "ui/pacs/PacsBrowser.h"
 #include "ui/pacs/PacsNodeSettings.h"
 #include "ui/pacs/PacsQueryPanel.h"
-#include "core/pacs/PacsService.h"
 #include "ui/pacs/RetrievalProgress.h"
 #include "ui/pacs/StoreBrowser.h"
 

@@ -9,9 +9,9 @@
 #include <filesystem>
 #include <memory>
 
+#include "core/tf/VolumeHistogram.h"
 #include "ui/transfer/TransferFunctionCanvas.h"
 #include "ui/transfer/TransferFunctionEditor.h"
-#include "core/tf/VolumeHistogram.h"
 
 using namespace lucent;
 
