@@ -21,6 +21,9 @@ void gl_delete::vertexArray(GLuint name) {
 void gl_delete::program(GLuint name) {
     glDeleteProgram(name);
 }
+void gl_delete::buffer(GLuint name) {
+    glDeleteBuffers(1, &name);
+}
 
 GlTexture makeTexture(GLenum target) {
     GLuint name = 0;

@@ -45,11 +45,13 @@ void texture(GLuint name);
 void framebuffer(GLuint name);
 void vertexArray(GLuint name);
 void program(GLuint name);
+void buffer(GLuint name);
 } // namespace gl_delete
 
 using GlTexture = GlName<gl_delete::texture>;
 using GlFramebuffer = GlName<gl_delete::framebuffer>;
 using GlVertexArray = GlName<gl_delete::vertexArray>;
+using GlBuffer = GlName<gl_delete::buffer>;
 
 GlTexture makeTexture(GLenum target);
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -203,6 +204,11 @@ const GpuFrameStats& GpuRayCaster::lastFrame() const {
 
 FrameDetails GpuRayCaster::frameDetails() const {
     const GpuFrameStats& g = state_->last;
+    const auto fixed = [](double v) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.1f", v);
+        return std::string(text);
+    };
     const auto mib = [](std::size_t bytes) {
         char text[32];
         std::snprintf(text, sizeof text, "%.1f", double(bytes) / 1048576.0);
@@ -215,15 +221,26 @@ FrameDetails GpuRayCaster::frameDetails() const {
             {"budget_mib", std::to_string(g.budgetBytes >> 20)},
             {"gradients", g.gradientsCached ? "cached" : "computed"},
             {"resident_mib", mib(g.residentBytes)},
-            {"pool_mib", mib(g.poolBytes)}};
+            {"pool_mib", mib(g.poolBytes)},
+            {"cast_ms", fixed(g.castMs)},
+            {"read_ms", fixed(g.readMs)},
+            {"convert_ms", fixed(g.convertMs)}};
 }
 
 GpuRenderResult GpuRayCaster::renderWithGpuStats(const RenderDescription& desc) {
     State& s = *state_;
+    using Clock = std::chrono::steady_clock;
+    const auto ms = [](Clock::time_point a, Clock::time_point b) {
+        return std::chrono::duration<double, std::milli>(b - a).count();
+    };
+    const Clock::time_point t0 = Clock::now();
     GpuRenderResult out = cast(desc, false);
+    glFinish(); // the read back waits for the cast anyway; this splits the two
+    const Clock::time_point t1 = Clock::now();
     RenderResult& r = out.frame;
     s.target.read(r.premultiplied, r.stats.samples);
     s.inTargetStats = r.stats;
+    const Clock::time_point t2 = Clock::now();
     r.image = ImageRGBA8::filled(desc.width, desc.height, 0);
     // Rows in parallel: at 1024x1024 a serial loop is a visible share of a GPU frame.
 #pragma omp parallel for schedule(static)
@@ -238,6 +255,10 @@ GpuRenderResult GpuRayCaster::renderWithGpuStats(const RenderDescription& desc) 
             px[3] = 255;
         }
     }
+    out.gpu.castMs = ms(t0, t1);
+    out.gpu.readMs = ms(t1, t2);
+    out.gpu.convertMs = ms(t2, Clock::now());
+    s.last = out.gpu;
     return out;
 }
 

@@ -37,6 +37,11 @@ struct GpuFrameStats {
     bool gradientsCached = false;
     std::string budgetSource; // where the budget came from
     std::string lodReason;    // why a coarser level, when one was used
+    // Where a read-back frame's time went (render(), not drawInPlace()): the
+    // set-up and ray cast until the GPU finished, the read back, the conversion.
+    double castMs = 0.0;
+    double readMs = 0.0;
+    double convertMs = 0.0;
 };
 
 struct GpuRenderResult {

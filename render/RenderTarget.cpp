@@ -76,25 +76,47 @@ void RenderTarget::bindAndClear(bool countRows) {
     }
 }
 
-void RenderTarget::read(std::vector<glm::vec4>& colour, std::size_t& samples) const {
+void RenderTarget::read(std::vector<glm::vec4>& colour, std::size_t& samples) {
     const std::size_t n = std::size_t(width_) * std::size_t(height_);
-    std::vector<glm::vec4> flipped(n);
-    std::vector<GLuint> counts(n);
+    const std::size_t colourBytes = n * sizeof(glm::vec4);
+    const std::size_t bytes = colourBytes + n * sizeof(GLuint);
+    if (readBufferBytes_ < bytes || readBuffer_.get() == 0) {
+        GLuint name = 0;
+        glCreateBuffers(1, &name);
+        readBuffer_ = GlBuffer(name);
+        glNamedBufferStorage(name, GLsizeiptr(bytes), nullptr, GL_MAP_READ_BIT);
+        readBufferBytes_ = bytes;
+    }
+    // Through a pack buffer, the driver copies on the GPU's side and the
+    // CPU reads mapped memory once: several times faster than reading into
+    // client memory on NVIDIA (measured: most of a 1024x1024 frame).
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, readBuffer_.get());
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glGetTextureImage(colour_.get(), 0, GL_RGBA, GL_FLOAT, GLsizei(n * sizeof(glm::vec4)),
-                      flipped.data());
+    glGetTextureImage(colour_.get(), 0, GL_RGBA, GL_FLOAT, GLsizei(colourBytes), nullptr);
     glGetTextureImage(samples_.get(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
-                      GLsizei(n * sizeof(GLuint)), counts.data());
-    checkGl("reading the image back");
+                      GLsizei(n * sizeof(GLuint)), reinterpret_cast<void*>(colourBytes));
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    const void* mapped =
+        glMapNamedBufferRange(readBuffer_.get(), 0, GLsizeiptr(bytes), GL_MAP_READ_BIT);
+    if (mapped == nullptr) {
+        checkGl("mapping the read back");
+        throw GlError("the driver did not map the frame's read back");
+    }
+    const auto* rows = static_cast<const glm::vec4*>(mapped);
+    const auto* counts =
+        reinterpret_cast<const GLuint*>(static_cast<const char*>(mapped) + colourBytes);
     colour.resize(n);
-    for (int y = 0; y < height_; ++y) {
-        std::copy_n(flipped.begin() + std::ptrdiff_t(std::size_t(height_ - 1 - y) * width_), width_,
-                    colour.begin() + std::ptrdiff_t(std::size_t(y) * width_));
-    }
     samples = 0;
-    for (const GLuint c : counts) {
-        samples += c;
+#pragma omp parallel for schedule(static) reduction(+ : samples)
+    for (int y = 0; y < height_; ++y) {
+        const std::size_t from = std::size_t(height_ - 1 - y) * std::size_t(width_);
+        std::copy_n(rows + from, width_, colour.begin() + std::ptrdiff_t(std::size_t(y) * width_));
+        for (int x = 0; x < width_; ++x) {
+            samples += counts[from + std::size_t(x)];
+        }
     }
+    glUnmapNamedBuffer(readBuffer_.get());
+    checkGl("reading the image back");
 }
 
 std::size_t RenderTarget::countedSamples() const {

@@ -20,7 +20,7 @@ public:
     // uRowSamples), for countedSamples().
     void bindAndClear(bool countRows);
     // Row 0 of `colour` is the image's top row (GL's is the bottom one).
-    void read(std::vector<glm::vec4>& colour, std::size_t& samples) const;
+    void read(std::vector<glm::vec4>& colour, std::size_t& samples);
     // The samples of the last frame drawn after bindAndClear(true): one value a
     // row read back (4 bytes a row), not the whole count texture.
     std::size_t countedSamples() const;
@@ -39,6 +39,10 @@ private:
     int width_ = 0, height_ = 0;
     GlFramebuffer framebuffer_, shownFramebuffer_;
     GlTexture colour_, samples_, rowSamples_, shown_;
+    // Where read() has the driver copy the frame (a pixel pack buffer: the
+    // driver's fast path), grown as needed and kept between frames.
+    GlBuffer readBuffer_;
+    std::size_t readBufferBytes_ = 0;
 };
 
 } // namespace lucent

@@ -202,10 +202,16 @@ int runRender(const QStringList& args) {
                 }
                 first = std::move(r);
                 details = renderer.frameDetails();
-            } else if (n + 1 == repeat && !details.empty()) {
+            } else if (n + 1 == repeat) {
+                // The first frame's figures, its times from the last frame (no uploads).
                 for (const auto& [key, value] : renderer.frameDetails()) {
                     if (key == "uploads") {
                         details.emplace_back("uploads_after_first", value);
+                    }
+                    for (auto& [firstKey, firstValue] : details) {
+                        if (firstKey == key && key.ends_with("_ms")) {
+                            firstValue = value;
+                        }
                     }
                 }
             }
