@@ -9,6 +9,7 @@
 #include <algorithm>
 
 #include "CliCommand.h"
+#include "DistributedRender.h"
 #include "QualityOption.h"
 #include "RemoteStillFrame.h"
 #include "RenderFlags.h"
@@ -172,6 +173,8 @@ int runRender(const QStringList& args) {
          "LEVEL"},
         {"stats", "Print timing and sampling figures."},
         {"repeat", "Render N frames turning 5 degrees each; render_ms is their median.", "N"},
+        {"distributed", "Under mpirun: every rank renders its part of the volume, IceT "
+                        "composites, rank 0 writes OUT.png (docs/distributed.md)."},
     });
     addRenderFlags(parser);
     parser.addHelpOption();
@@ -187,6 +190,9 @@ int runRender(const QStringList& args) {
     if (parser.positionalArguments().size() != 1 || !parser.isSet("output")) {
         err << "lucent-cli render: expected PATH and -o OUT.png\n";
         return kUsage;
+    }
+    if (parser.isSet("distributed")) {
+        return runDistributedRender(parser);
     }
     const QString backend = parser.value("backend");
     if (backend.startsWith("ws://") || backend.startsWith("wss://")) {

@@ -21,7 +21,8 @@ BrickTable BrickTable::of(const BrickGrid& grid) {
 }
 
 VolumePartition::VolumePartition(const BrickTable& bricks, glm::dvec3 spacing, int parts,
-                                 const std::function<bool(double lo, double hi)>& isVisible)
+                                 const std::function<bool(double lo, double hi)>& isVisible,
+                                 int preferredAxis)
     : dims_(bricks.dims), brickSize_(bricks.brickSize) {
     const std::size_t count = std::size_t(bricks.perAxis.x) * bricks.perAxis.y * bricks.perAxis.z;
     if (bricks.range.size() != count || bricks.brickSize < 1) {
@@ -46,12 +47,13 @@ VolumePartition::VolumePartition(const BrickTable& bricks, glm::dvec3 spacing, i
     }
     boxes_.resize(std::size_t(parts));
     weights_.assign(std::size_t(parts), 0.0);
-    build(bricks, spacing, glm::ivec3(0), bricks.perAxis, parts, weight);
+    build(bricks, spacing, glm::ivec3(0), bricks.perAxis, parts, weight, preferredAxis);
 }
 
 // Bricks [lo, hi) (brick indices) into `parts` parts; returns the node.
 int VolumePartition::build(const BrickTable& bricks, glm::dvec3 spacing, glm::ivec3 lo,
-                           glm::ivec3 hi, int parts, const std::vector<double>& brickWeight) {
+                           glm::ivec3 hi, int parts, const std::vector<double>& brickWeight,
+                           int preferredAxis) {
     const int self = int(nodes_.size());
     nodes_.emplace_back();
     auto weightOf = [&](glm::ivec3 a, glm::ivec3 b) {
@@ -97,6 +99,8 @@ int VolumePartition::build(const BrickTable& bricks, glm::dvec3 spacing, glm::iv
     // all axes; on a tie the longer axis (compact boxes composite cheaper).
     int axis = -1, cut = 0;
     double best = std::numeric_limits<double>::infinity();
+    double bestPreferred = best;
+    int cutPreferred = 0;
     for (int a : axes) {
         // Each half needs at least as many bricks as parts, and a width: a cut
         // at the last voxel would leave a box of no thickness.
@@ -117,7 +121,15 @@ int VolumePartition::build(const BrickTable& bricks, glm::dvec3 spacing, glm::iv
                 axis = a;
                 cut = c;
             }
+            if (a == preferredAxis && heavier < bestPreferred * (1.0 - 1e-9)) {
+                bestPreferred = heavier;
+                cutPreferred = c;
+            }
         }
+    }
+    if (std::isfinite(bestPreferred) && bestPreferred <= kPreferredSlack * best) {
+        axis = preferredAxis;
+        cut = cutPreferred;
     }
     if (axis < 0) {
         throw std::invalid_argument("no cut of bricks " + std::to_string(lo.x) + ".." +
@@ -129,8 +141,8 @@ int VolumePartition::build(const BrickTable& bricks, glm::dvec3 spacing, glm::iv
     glm::ivec3 mid = hi, midLo = lo;
     mid[axis] = cut;
     midLo[axis] = cut;
-    const int lower = build(bricks, spacing, lo, mid, lowerParts, brickWeight);
-    const int upper = build(bricks, spacing, midLo, hi, upperParts, brickWeight);
+    const int lower = build(bricks, spacing, lo, mid, lowerParts, brickWeight, preferredAxis);
+    const int upper = build(bricks, spacing, midLo, hi, upperParts, brickWeight, preferredAxis);
     Node& node = nodes_[std::size_t(self)];
     node.axis = axis;
     node.plane = cut * bricks.brickSize;

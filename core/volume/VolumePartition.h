@@ -35,8 +35,13 @@ public:
     // weight. isVisible(lo, hi): whether a brick of that value range shows.
     // Throws std::invalid_argument when parts < 1 or the volume has fewer
     // bricks than parts (naming both counts).
+    // preferredAxis (0, 1, 2; -1 for none): cut across it whenever such a cut
+    // balances within kPreferredSlack of the best one. Parts read from DICOM
+    // prefer k: a rank then reads only the slices of its slab.
     VolumePartition(const BrickTable& bricks, glm::dvec3 spacing, int parts,
-                    const std::function<bool(double lo, double hi)>& isVisible);
+                    const std::function<bool(double lo, double hi)>& isVisible,
+                    int preferredAxis = -1);
+    static constexpr double kPreferredSlack = 1.15;
 
     int parts() const { return int(boxes_.size()); }
     // The box part p draws (VolumePart.h: [lo, hi), closed at dims - 1).
@@ -58,7 +63,7 @@ private:
         int part = -1;              // leaves: the part
     };
     int build(const BrickTable& bricks, glm::dvec3 spacing, glm::ivec3 lo, glm::ivec3 hi, int parts,
-              const std::vector<double>& brickWeight);
+              const std::vector<double>& brickWeight, int preferredAxis);
     void order(int node, const glm::dvec3& eye, std::vector<int>& out) const;
 
     glm::ivec3 dims_{0};

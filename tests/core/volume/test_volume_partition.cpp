@@ -172,6 +172,21 @@ private slots:
         }
     }
 
+    void aPreferredAxisIsCutWhenItBalances() {
+        // A volume long in x: unpreferred, the cuts go across x; preferring k
+        // (DICOM slabs), across k, as long as k has bricks enough.
+        const BrickTable t = table({256, 128, 128}, 16, [](glm::ivec3) { return true; });
+        const VolumePartition free(t, glm::dvec3(1.0), 4, aboveHalf);
+        const VolumePartition slabs(t, glm::dvec3(1.0), 4, aboveHalf, 2);
+        for (int n = 0; n < 4; ++n) {
+            QCOMPARE(slabs.box(n).lo.x, 0);
+            QCOMPARE(slabs.box(n).hi.x, 255);
+            QCOMPARE(slabs.box(n).lo.y, 0);
+            QCOMPARE(slabs.box(n).hi.y, 127);
+        }
+        QVERIFY(free.box(0).hi.x < 255 || free.box(1).hi.x < 255);
+    }
+
     void moreRanksThanBricksIsAClearError() {
         const BrickTable t = table({40, 20, 20}, 16, [](glm::ivec3) { return true; });
         // 3 x 2 x 2 = 12 bricks.
