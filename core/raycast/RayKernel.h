@@ -309,6 +309,8 @@ RayOutput RayKernel<Real, Field>::cast(const glm::dvec3& o, const glm::dvec3& d,
             return out;
         }
         const double v = s_.mode == RenderMode::Average ? sum / double(count) : double(extreme);
+        out.projection = s_.mode == RenderMode::Average ? glm::dvec2(sum, double(count))
+                                                        : glm::dvec2(double(extreme), 1.0);
         const Rgba c = classifyValue(v, true);
         // Projections show the transfer function's colour and opacity of the projected value.
         const double a = double(c.a);

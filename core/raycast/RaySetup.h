@@ -82,6 +82,9 @@ template <class Real> struct RaySetup {
 struct RayOutput {
     glm::dvec4 rgba{0.0}; // premultiplied colour, alpha
     std::size_t samples = 0;
+    // MIP and MinIP: the projected value and 1; average: the sum of the
+    // samples and their count; (0, 0) where the ray took no sample.
+    glm::dvec2 projection{0.0};
 };
 
 // The samples a ray takes: t0 + n * dt for n in [nFirst, nLast], t0 where it

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/raycast/CpuRayCaster.h"
+#include "core/raycast/PartProjection.h"
 #include "core/scene/ViewFrame.h"
 #include "render/distributed/IceTCompositor.h"
 #include "render/distributed/RankAgreement.h"
@@ -52,6 +53,47 @@ std::string DistributedRenderer::device() const {
     return std::to_string(comm_.size()) + " ranks, " + caster_->device() + " each";
 }
 
+// DVR and iso (opaque hits): ordered blending. MIP and MinIP: IceT's depth
+// test with the value as depth (the winning rank's colour is the colour of the
+// winning value). Average: the ranks' sums and counts added up on rank 0.
+std::vector<glm::vec4> DistributedRenderer::compositeParts(const RenderDescription& d,
+                                                           const RenderResult& mine,
+                                                           const std::vector<int>& order) {
+    switch (d.mode) {
+    case RenderMode::Dvr:
+    case RenderMode::Isosurface:
+        return icet_->blend(d.width, d.height, mine.premultiplied, order);
+    case RenderMode::Mip:
+    case RenderMode::MinIp: {
+        const auto [lo, hi] = part_.where.valueRange;
+        std::vector<float> depth(mine.projection.size());
+        for (std::size_t i = 0; i < depth.size(); ++i) {
+            depth[i] = projectionDepth(d.mode, mine.projection[i], lo, hi);
+        }
+        return icet_->closest(d.width, d.height, mine.premultiplied, depth);
+    }
+    case RenderMode::Average:
+        break;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<float> sums(mine.projection.size() * 2);
+    for (std::size_t i = 0; i < mine.projection.size(); ++i) {
+        sums[2 * i] = mine.projection[i].x;
+        sums[2 * i + 1] = mine.projection[i].y;
+    }
+    comm_.sumTo(sums, 0);
+    averageMs_ =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (comm_.rank() != 0) {
+        return {};
+    }
+    std::vector<glm::vec4> out(mine.projection.size());
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        out[i] = averageColour(d.transferFunction, {sums[2 * i], sums[2 * i + 1]});
+    }
+    return out;
+}
+
 RenderResult DistributedRenderer::render(const RenderDescription& description) {
     RenderDescription d = description;
     d.volume = &part_.voxels;
@@ -60,10 +102,6 @@ RenderResult DistributedRenderer::render(const RenderDescription& description) {
     double renderMs = 0.0;
     onEveryRank(comm_, "rendering its part", [&] {
         const auto start = std::chrono::steady_clock::now();
-        if (d.mode != RenderMode::Dvr && d.mode != RenderMode::Isosurface) {
-            throw std::invalid_argument(std::string("mode ") + renderModeName(d.mode) +
-                                        " is not composited across ranks yet (dvr and iso are)");
-        }
         mine = caster_->render(d);
         renderMs =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
@@ -75,8 +113,7 @@ RenderResult DistributedRenderer::render(const RenderDescription& description) {
     const glm::dvec3 eye = whole.toIndex(makeViewFrame(whole, d.camera, d.width, d.height).eye);
     const std::vector<int> order = part_.partition.frontToBack(eye);
     std::vector<glm::vec4> composite;
-    onEveryRank(comm_, "compositing",
-                [&] { composite = icet_->blend(d.width, d.height, mine.premultiplied, order); });
+    onEveryRank(comm_, "compositing", [&] { composite = compositeParts(d, mine, order); });
 
     // Figures of every rank.
     // Samples and bricks summed over the ranks (their part grids, halos included).
@@ -96,7 +133,7 @@ RenderResult DistributedRenderer::render(const RenderDescription& description) {
     const double sent = comm_.allMax(icet_->last().bytesSent);
     details_ = {
         {"ranks", std::to_string(comm_.size())},
-        {"composite_ms", fixed(icet_->last().totalMs)},
+        {"composite_ms", fixed(d.mode == RenderMode::Average ? averageMs_ : icet_->last().totalMs)},
         {"icet_composite_ms", fixed(icet_->last().compositeMs)},
         {"render_ms_max", fixed(*std::max_element(times.begin(), times.end()))},
         {"render_ms_min", fixed(*std::min_element(times.begin(), times.end()))},

@@ -7,6 +7,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/scene/Renderer.h"
 #include "render/distributed/Communicator.h"
@@ -39,11 +40,15 @@ public:
     const LoadedPart& part() const { return part_; }
 
 private:
+    std::vector<glm::vec4> compositeParts(const RenderDescription& d, const RenderResult& mine,
+                                          const std::vector<int>& order);
+
     const Communicator& comm_;
     LoadedPart part_;
     std::unique_ptr<Renderer> caster_;
     std::unique_ptr<IceTCompositor> icet_;
     FrameDetails details_;
+    double averageMs_ = 0.0;
 };
 
 } // namespace lucent

@@ -102,6 +102,15 @@ private slots:
             << 3 << QStringList{"--elevation", "-90", "--preintegrate", "--brick", "32"};
         QTest::newRow("4 right unshaded")
             << 4 << QStringList{"--azimuth", "270", "--no-shading", "--brick", "32"};
+        QTest::newRow("2 mip oblique")
+            << 2 << QStringList{"--mode", "mip", "--azimuth", "30", "--brick", "32"};
+        QTest::newRow("3 mip top")
+            << 3 << QStringList{"--mode", "mip", "--elevation", "90", "--brick", "16"};
+        QTest::newRow("4 minip left")
+            << 4 << QStringList{"--mode", "minip", "--azimuth", "90", "--brick", "32"};
+        QTest::newRow("3 average oblique")
+            << 3 << QStringList{"--mode",      "avg", "--azimuth", "215",
+                                "--elevation", "-40", "--brick",   "16"};
         QTest::newRow("3 iso oblique")
             << 3 << QStringList{"--mode", "iso",         "--iso", "300",     "--azimuth",
                                 "215",    "--elevation", "-40",   "--brick", "16"};

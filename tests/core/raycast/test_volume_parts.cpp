@@ -12,6 +12,7 @@
 #include "core/raycast/BrickVisibility.h"
 #include "core/raycast/CpuRayCaster.h"
 #include "core/raycast/PartHalo.h"
+#include "core/raycast/PartProjection.h"
 #include "core/scene/ViewFrame.h"
 #include "core/tf/TransferFunction.h"
 #include "core/volume/VolumePartition.h"
@@ -65,14 +66,32 @@ Composite renderInParts(const Parts& parts, RenderDescription d) {
     Composite c;
     c.premultiplied.assign(std::size_t(d.width) * d.height, glm::vec4(0.0f));
     c.partAlpha.assign(parts.volumes.size(), 0.0f);
+    const bool projecting =
+        d.mode == RenderMode::Mip || d.mode == RenderMode::MinIp || d.mode == RenderMode::Average;
+    const auto [lo, hi] = parts.where[0].valueRange;
+    std::vector<float> depth(c.premultiplied.size(), 1.0f);
+    std::vector<glm::vec2> sums(c.premultiplied.size(), glm::vec2(0.0f));
     for (int n : parts.partition.frontToBack(eye)) {
         CpuRayCaster caster(parts.volumes[std::size_t(n)], parts.where[std::size_t(n)]);
         d.volume = &parts.volumes[std::size_t(n)];
         const RenderResult r = caster.render(d);
         c.samples += r.stats.samples;
         for (std::size_t i = 0; i < c.premultiplied.size(); ++i) {
-            c.premultiplied[i] += (1.0f - c.premultiplied[i].a) * r.premultiplied[i];
             c.partAlpha[std::size_t(n)] += r.premultiplied[i].a;
+            if (!projecting) {
+                c.premultiplied[i] += (1.0f - c.premultiplied[i].a) * r.premultiplied[i];
+            } else if (d.mode == RenderMode::Average) {
+                sums[i] += r.projection[i];
+            } else if (const float z = projectionDepth(d.mode, r.projection[i], lo, hi);
+                       z < depth[i]) {
+                depth[i] = z;
+                c.premultiplied[i] = r.premultiplied[i];
+            }
+        }
+    }
+    if (d.mode == RenderMode::Average) {
+        for (std::size_t i = 0; i < sums.size(); ++i) {
+            c.premultiplied[i] = averageColour(d.transferFunction, sums[i]);
         }
     }
     c.image = ImageRGBA8::filled(d.width, d.height, 255);
@@ -87,7 +106,7 @@ Composite renderInParts(const Parts& parts, RenderDescription d) {
     return c;
 }
 
-enum class Scene { Linear, Cubic, Shaded, Preintegrated, Iso, Nearest };
+enum class Scene { Linear, Cubic, Shaded, Preintegrated, Iso, Nearest, Mip, MinIp, Average };
 
 RenderDescription sceneOf(const Volume& v, Scene scene) {
     RenderDescription d = describe(v, rampTf(scene == Scene::Shaded || scene == Scene::Iso), 48);
@@ -107,6 +126,18 @@ RenderDescription sceneOf(const Volume& v, Scene scene) {
     case Scene::Nearest:
         d.sampling.interpolation = Interpolation::Nearest;
         d.sampling.step = 0.7;
+        break;
+    case Scene::Mip:
+        d.mode = RenderMode::Mip;
+        break;
+    case Scene::MinIp:
+        d.mode = RenderMode::MinIp;
+        d.transferFunction = flatTf(0.8);
+        d.transferFunction.colour = {{0.0, {0.0, 0.0, 0.0}}, {200.0, {1.0, 1.0, 1.0}}};
+        break;
+    case Scene::Average:
+        d.mode = RenderMode::Average;
+        d.transferFunction.opacity = {{0.0, 0.0}, {60.0, 1.0}};
         break;
     case Scene::Linear:
     case Scene::Shaded:
@@ -129,6 +160,12 @@ const char* sceneName(Scene s) {
         return "iso";
     case Scene::Nearest:
         return "nearest";
+    case Scene::Mip:
+        return "mip";
+    case Scene::MinIp:
+        return "minip";
+    case Scene::Average:
+        return "average";
     }
     return "?";
 }
@@ -144,7 +181,7 @@ private slots:
     void partsEqualTheWhole_data() {
         QTest::addColumn<int>("scene");
         for (Scene s : {Scene::Linear, Scene::Cubic, Scene::Shaded, Scene::Preintegrated,
-                        Scene::Iso, Scene::Nearest}) {
+                        Scene::Iso, Scene::Nearest, Scene::Mip, Scene::MinIp, Scene::Average}) {
             QTest::newRow(sceneName(s)) << int(s);
         }
     }
