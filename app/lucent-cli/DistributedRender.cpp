@@ -130,8 +130,8 @@ int runDistributedRender(const QCommandLineParser& parser) {
             frames.push_back(double(timer.nsecsElapsed()) / 1e6);
             if (n == 0) {
                 first = std::move(r);
-                details = renderer.frameDetails();
             }
+            details = renderer.frameDetails(); // the last frame's: steady state
             desc.camera.azimuth += 5.0;
         }
         if (root) {
@@ -149,8 +149,7 @@ int runDistributedRender(const QCommandLineParser& parser) {
             out << " render_ms=" << QString::number(median(frames), 'f', 1)
                 << " samples=" << s.samples << " bricks_total=" << s.bricksTotal
                 << " bricks_used=" << s.bricksUsed << " lod=0"
-                << " frames=" << repeat
-                << " backend=" << QString::fromStdString(renderer.backend())
+                << " frames=" << repeat << " backend=" << QString::fromStdString(renderer.backend())
                 << " distributed=1 rank0_slab_reading=" << (read.slabs ? 1 : 0)
                 << " rank0_files_read=" << read.files.size();
             for (const auto& [key, value] : details) {

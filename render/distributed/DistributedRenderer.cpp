@@ -112,6 +112,12 @@ RenderResult DistributedRenderer::render(const RenderDescription& description) {
     const VolumeGeometry& whole = part_.where.whole;
     const glm::dvec3 eye = whole.toIndex(makeViewFrame(whole, d.camera, d.width, d.height).eye);
     const std::vector<int> order = part_.partition.frontToBack(eye);
+    // Ranks that finish early wait here, so that composite_ms is the compositing alone.
+    const auto waitStart = std::chrono::steady_clock::now();
+    comm_.barrier();
+    const double waitMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - waitStart)
+            .count();
     std::vector<glm::vec4> composite;
     onEveryRank(comm_, "compositing", [&] { composite = compositeParts(d, mine, order); });
 
@@ -135,6 +141,7 @@ RenderResult DistributedRenderer::render(const RenderDescription& description) {
         {"ranks", std::to_string(comm_.size())},
         {"composite_ms", fixed(d.mode == RenderMode::Average ? averageMs_ : icet_->last().totalMs)},
         {"icet_composite_ms", fixed(icet_->last().compositeMs)},
+        {"rank0_wait_ms", fixed(waitMs)},
         {"render_ms_max", fixed(*std::max_element(times.begin(), times.end()))},
         {"render_ms_min", fixed(*std::min_element(times.begin(), times.end()))},
         {"rank_voxels_max", fixed(voxels, 0)},

@@ -5,6 +5,8 @@
 #include <IceT.h>
 #include <IceTMPI.h>
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <stdexcept>
 #include <string>
@@ -101,6 +103,33 @@ void prepare(int width, int height, IceTEnum mode, int& w0, int& h0, IceTEnum& m
     checkIceT("setting the tile and formats");
 }
 
+// The rectangle (x, y, width, height; rows in buffer order) holding every
+// pixel that `used` says is drawn: IceT reads and compresses nothing outside
+// it. One pixel for an image with none.
+template <class Used> std::array<IceTInt, 4> validViewport(int width, int height, Used used) {
+    int x0 = width, x1 = -1, y0 = height, y1 = -1;
+    for (int y = 0; y < height; ++y) {
+        const std::size_t row = std::size_t(y) * std::size_t(width);
+        int first = -1, last = -1;
+        for (int x = 0; x < width; ++x) {
+            if (used(row + std::size_t(x))) {
+                first = first < 0 ? x : first;
+                last = x;
+            }
+        }
+        if (first >= 0) {
+            x0 = std::min(x0, first);
+            x1 = std::max(x1, last);
+            y0 = std::min(y0, y);
+            y1 = y;
+        }
+    }
+    if (x1 < 0) {
+        return {0, 0, 1, 1};
+    }
+    return {x0, y0, x1 - x0 + 1, y1 - y0 + 1};
+}
+
 const IceTDouble kIdentity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
 const IceTFloat kTransparent[4] = {0, 0, 0, 0};
 
@@ -115,12 +144,18 @@ std::vector<glm::vec4> IceTCompositor::blend(int width, int height, std::span<co
                                     std::to_string(frontToBack.size()) + " ranks for " +
                                     std::to_string(state_->comm->size()));
     }
+    if (state_->comm->size() == 1) {
+        last_ = {};
+        return {rgba.begin(), rgba.end()}; // nothing to composite
+    }
     icetSetContext(state_->context);
     prepare(width, height, ICET_COMPOSITE_MODE_BLEND, state_->width, state_->height, state_->mode);
     const std::vector<IceTInt> order(frontToBack.begin(), frontToBack.end());
     icetCompositeOrder(order.data());
+    const auto valid =
+        validViewport(width, height, [&](std::size_t i) { return rgba[i].a > 0.0f; });
     const IceTImage image =
-        icetCompositeImage(rgba.data(), nullptr, nullptr, kIdentity, kIdentity, kTransparent);
+        icetCompositeImage(rgba.data(), nullptr, valid.data(), kIdentity, kIdentity, kTransparent);
     checkIceT("icetCompositeImage (blend)");
     std::vector<glm::vec4> out;
     if (state_->comm->rank() == 0 && !icetImageIsNull(image)) {
@@ -145,6 +180,13 @@ std::vector<glm::vec4> IceTCompositor::closest(int width, int height,
     const auto start = std::chrono::steady_clock::now();
     checkImage(width, height, rgba.size());
     checkImage(width, height, depth.size());
+    if (state_->comm->size() == 1) {
+        last_ = {};
+        if (depthOut != nullptr) {
+            depthOut->assign(depth.begin(), depth.end());
+        }
+        return {rgba.begin(), rgba.end()}; // nothing to composite
+    }
     icetSetContext(state_->context);
     prepare(width, height, ICET_COMPOSITE_MODE_Z_BUFFER, state_->width, state_->height,
             state_->mode);
@@ -154,8 +196,9 @@ std::vector<glm::vec4> IceTCompositor::closest(int width, int height,
     } else {
         icetEnable(ICET_COMPOSITE_ONE_BUFFER);
     }
-    const IceTImage image =
-        icetCompositeImage(rgba.data(), depth.data(), nullptr, kIdentity, kIdentity, kTransparent);
+    const auto valid = validViewport(width, height, [&](std::size_t i) { return depth[i] < 1.0f; });
+    const IceTImage image = icetCompositeImage(rgba.data(), depth.data(), valid.data(), kIdentity,
+                                               kIdentity, kTransparent);
     checkIceT("icetCompositeImage (depth)");
     std::vector<glm::vec4> out;
     if (state_->comm->rank() == 0 && !icetImageIsNull(image)) {
