@@ -83,15 +83,27 @@ std::string RenderDevice::description() const {
 
 RenderDevice::Opened RenderDevice::openRenderer(const Volume& volume,
                                                 const GpuOptions& options) const {
+    return openWith([&] { return std::make_unique<GpuRayCaster>(volume, options); },
+                    [&] { return std::make_unique<CpuRayCaster>(volume); });
+}
+
+RenderDevice::Opened RenderDevice::openPartRenderer(const Volume& part, const VolumePart& where,
+                                                    const GpuOptions& options) const {
+    return openWith([&] { return std::make_unique<GpuRayCaster>(part, where, options); },
+                    [&] { return std::make_unique<CpuRayCaster>(part, where); });
+}
+
+RenderDevice::Opened
+RenderDevice::openWith(const std::function<std::unique_ptr<GpuRayCaster>()>& gpu,
+                       const std::function<std::unique_ptr<Renderer>()>& cpu) const {
     Opened opened;
     if (kind_ == RendererKind::Gl) {
         try {
             if (context_) {
                 context_->makeCurrent();
-                opened.renderer = std::make_unique<OwnContextRenderer>(
-                    context_, std::make_unique<GpuRayCaster>(volume, options));
+                opened.renderer = std::make_unique<OwnContextRenderer>(context_, gpu());
             } else {
-                opened.renderer = std::make_unique<GpuRayCaster>(volume, options);
+                opened.renderer = gpu();
             }
             return opened;
         } catch (const GlError& e) {
@@ -99,7 +111,7 @@ RenderDevice::Opened RenderDevice::openRenderer(const Volume& volume,
                 std::string("the GPU ray caster is not available (") + e.what() + ")";
         }
     }
-    opened.renderer = std::make_unique<CpuRayCaster>(volume);
+    opened.renderer = cpu();
     return opened;
 }
 

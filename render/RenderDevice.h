@@ -4,6 +4,7 @@
 // back to the CPU. The CLI, the server's render thread, the 3D view and its
 // quality measurement all open their renderers here.
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -50,8 +51,14 @@ public:
     // its own context keep that context and make it current when they work, so
     // they may outlive the device.
     Opened openRenderer(const Volume& volume, const GpuOptions& options = {}) const;
+    // A renderer of one part of a volume (a rank of a distributed render:
+    // core/volume/VolumePart.h); `part` must outlive it.
+    Opened openPartRenderer(const Volume& part, const VolumePart& where,
+                            const GpuOptions& options = {}) const;
 
 private:
+    Opened openWith(const std::function<std::unique_ptr<GpuRayCaster>()>& gpu,
+                    const std::function<std::unique_ptr<Renderer>()>& cpu) const;
     RenderDevice(RendererKind kind, std::shared_ptr<OffscreenContext> context,
                  std::string fallbackReason);
 

@@ -38,9 +38,13 @@ const char* refused(const QCommandLineParser& p) {
     if (p.value("backend").startsWith("ws")) {
         return "--distributed renders here, not on a render server (--backend ws://)";
     }
-    if (p.value("backend") != "cpu") {
-        return "--distributed renders on the CPU of every rank (--backend cpu); GL ranks are not "
-               "built yet";
+    if (p.value("backend") != "cpu" && p.value("backend") != "gl") {
+        return "--distributed renders with --backend cpu or gl on every rank";
+    }
+    if (p.value("backend") == "gl" && p.isSet("mode") && p.value("mode") != "dvr" &&
+        p.value("mode") != "iso") {
+        return "GL ranks composite --mode dvr and iso; mip, minip and avg composite from the "
+               "ranks' values, which --backend cpu gives";
     }
     if (p.isSet("quality")) {
         return "--quality measures one process's front; give --step and --interp with "
@@ -119,7 +123,13 @@ int runDistributedRender(const QCommandLineParser& parser) {
     }
 
     try {
-        DistributedRenderer renderer(comm, loadPart(comm, *entry, desc, desc.sampling.brickSize));
+        const RendererKind kind = parseRendererKind(parser.value("backend").toStdString());
+        DistributedRenderer renderer(comm, loadPart(comm, *entry, desc, desc.sampling.brickSize),
+                                     kind);
+        if (kind == RendererKind::Gl && renderer.backend() != "gl" && root) {
+            err << "lucent-cli render: the GL backend is not available on every rank; those "
+                   "ranks render on the CPU\n";
+        }
         const double loadMs = double(timer.nsecsElapsed()) / 1e6;
         std::vector<double> frames;
         RenderResult first;

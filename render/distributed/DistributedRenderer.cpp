@@ -6,7 +6,6 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/raycast/CpuRayCaster.h"
 #include "core/raycast/PartProjection.h"
 #include "core/scene/ViewFrame.h"
 #include "render/distributed/IceTCompositor.h"
@@ -39,12 +38,19 @@ std::string fixed(double v, int digits = 1) {
 
 } // namespace
 
-DistributedRenderer::DistributedRenderer(const Communicator& comm, LoadedPart part)
+DistributedRenderer::DistributedRenderer(const Communicator& comm, LoadedPart part,
+                                         RendererKind kind)
     : comm_(comm), part_(std::move(part)) {
     onEveryRank(comm_, "opening its renderer", [&] {
-        caster_ = std::make_unique<CpuRayCaster>(part_.voxels, part_.where);
+        device_ = RenderDevice::open(kind);
+        RenderDevice::Opened opened = device_->openPartRenderer(part_.voxels, part_.where);
+        caster_ = std::move(opened.renderer);
+        fallback_ =
+            !device_->fallbackReason().empty() ? device_->fallbackReason() : opened.fallbackReason;
         icet_ = std::make_unique<IceTCompositor>(comm_);
     });
+    const double gl = comm_.allMin(caster_->backend() == "gl" ? 1.0 : 0.0);
+    backend_ = gl > 0.0 ? "gl" : "cpu";
 }
 
 DistributedRenderer::~DistributedRenderer() = default;
@@ -152,6 +158,7 @@ RenderResult DistributedRenderer::render(const RenderDescription& description) {
         {"rank_slab_reading_min", fixed(slabs, 0)},
         {"icet_bytes_sent_max", fixed(sent, 0)},
         {"icet_strategy", icet_->strategyName()},
+        {"rank_backend_gl_min", backend_ == "gl" ? "1" : "0"},
     };
 
     RenderResult out;

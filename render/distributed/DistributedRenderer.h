@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/scene/Renderer.h"
+#include "render/RenderDevice.h"
 #include "render/distributed/Communicator.h"
 #include "render/distributed/PartLoader.h"
 
@@ -19,8 +20,11 @@ class IceTCompositor;
 
 class DistributedRenderer : public Renderer {
 public:
-    // `comm` must outlive the renderer. Collective.
-    DistributedRenderer(const Communicator& comm, LoadedPart part);
+    // `comm` must outlive the renderer. Collective. Each rank renders on the
+    // CPU, or with GL where `kind` asks for it and the rank can make a
+    // context (else on its CPU, and frameDetails() says so).
+    DistributedRenderer(const Communicator& comm, LoadedPart part,
+                        RendererKind kind = RendererKind::Cpu);
     ~DistributedRenderer() override;
     DistributedRenderer(const DistributedRenderer&) = delete;
     DistributedRenderer& operator=(const DistributedRenderer&) = delete;
@@ -30,8 +34,8 @@ public:
     // it; std::invalid_argument for a description out of range (on every
     // rank alike).
     RenderResult render(const RenderDescription& description) override;
-    // The ranks' backend: "cpu".
-    std::string backend() const override { return "cpu"; }
+    // The ranks' backend: "gl" where every rank renders with GL, else "cpu".
+    std::string backend() const override { return backend_; }
     std::string device() const override;
     // ranks, composite_ms, render_ms_max, render_ms_min, rank_voxels_max,
     // rank_resident_mib_max, icet_bytes_sent_max and the strategy.
@@ -45,7 +49,10 @@ private:
 
     const Communicator& comm_;
     LoadedPart part_;
+    std::unique_ptr<RenderDevice> device_;
     std::unique_ptr<Renderer> caster_;
+    std::string backend_ = "cpu";
+    std::string fallback_; // why this rank renders on the CPU where GL was asked
     std::unique_ptr<IceTCompositor> icet_;
     FrameDetails details_;
     double averageMs_ = 0.0;

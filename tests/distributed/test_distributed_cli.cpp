@@ -111,6 +111,11 @@ private slots:
         QTest::newRow("3 average oblique")
             << 3 << QStringList{"--mode",      "avg", "--azimuth", "215",
                                 "--elevation", "-40", "--brick",   "16"};
+        // GL ranks (llvmpipe here), against the single-process GL image.
+        QTest::newRow("2 gl oblique")
+            << 2 << QStringList{"--backend", "gl", "--azimuth", "40", "--elevation", "20"};
+        QTest::newRow("3 gl iso top") << 3 << QStringList{"--backend",   "gl", "--mode",  "iso",
+                                                          "--elevation", "90", "--brick", "16"};
         QTest::newRow("3 iso oblique")
             << 3 << QStringList{"--mode", "iso",         "--iso", "300",     "--azimuth",
                                 "215",    "--elevation", "-40",   "--brick", "16"};
@@ -139,6 +144,13 @@ private slots:
         const double voxels = statOf(r.out, "rank_voxels_max");
         QVERIFY2(voxels > 0.0 && voxels <= statOf(r.out, "rank_voxels_bound_max"),
                  qPrintable(r.out));
+    }
+
+    void glRanksRefuseProjectionsUpFront() {
+        const CliRun r = runMpi(2, {"render", kSmallCt, "-o", path("glmip.png"), "--size", "32x32",
+                                    "--distributed", "--backend", "gl", "--mode", "mip"});
+        QCOMPARE(r.exitCode, 2);
+        QVERIFY2(r.err.contains("GL ranks composite"), qPrintable(r.err));
     }
 
     void moreRanksThanBricksIsAClearError() {

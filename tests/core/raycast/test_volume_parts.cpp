@@ -17,6 +17,7 @@
 #include "core/tf/TransferFunction.h"
 #include "core/volume/VolumePartition.h"
 #include "tests/core/raycast/RaycastScenes.h"
+#include "tests/core/raycast/VolumeParts.h"
 
 using namespace lucent;
 using namespace lucent::test;
@@ -32,78 +33,8 @@ const View kViews[] = {{"front", 0, 0},     {"left", 90, 0},       {"back", 180,
                        {"right", 270, 0},   {"top", 0, 90},        {"bottom", 0, -90},
                        {"oblique", 35, 25}, {"oblique2", 215, -40}};
 
-struct Parts {
-    VolumePartition partition;
-    std::vector<Volume> volumes;
-    std::vector<VolumePart> where;
-};
-
-Parts split(const Volume& whole, int count, const RenderDescription& d, int brickSize) {
-    const BrickGrid grid(whole, brickSize, 1);
-    const auto range = whole.valueRange();
-    const auto visible = valueVisibility(d, range.first, range.second, 0);
-    Parts p{
-        VolumePartition(BrickTable::of(grid), whole.geometry().spacing, count, visible), {}, {}};
-    const int halo = partHalo(d.sampling.interpolation, d.sampling.step);
-    for (int n = 0; n < count; ++n) {
-        const auto [first, last] = partVoxels(p.partition.box(n), whole.dims(), halo);
-        p.volumes.push_back(cutPart(whole, first, last));
-        p.where.push_back({whole.geometry(), first, p.partition.box(n), range});
-    }
-    return p;
-}
-
-struct Composite {
-    ImageRGBA8 image;
-    std::vector<glm::vec4> premultiplied;
-    std::size_t samples = 0;
-    std::vector<float> partAlpha; // summed alpha of each part's image
-};
-
-Composite renderInParts(const Parts& parts, RenderDescription d) {
-    const VolumeGeometry& g = parts.where[0].whole;
-    const glm::dvec3 eye = g.toIndex(makeViewFrame(g, d.camera, d.width, d.height).eye);
-    Composite c;
-    c.premultiplied.assign(std::size_t(d.width) * d.height, glm::vec4(0.0f));
-    c.partAlpha.assign(parts.volumes.size(), 0.0f);
-    const bool projecting =
-        d.mode == RenderMode::Mip || d.mode == RenderMode::MinIp || d.mode == RenderMode::Average;
-    const auto [lo, hi] = parts.where[0].valueRange;
-    std::vector<float> depth(c.premultiplied.size(), 1.0f);
-    std::vector<glm::vec2> sums(c.premultiplied.size(), glm::vec2(0.0f));
-    for (int n : parts.partition.frontToBack(eye)) {
-        CpuRayCaster caster(parts.volumes[std::size_t(n)], parts.where[std::size_t(n)]);
-        d.volume = &parts.volumes[std::size_t(n)];
-        const RenderResult r = caster.render(d);
-        c.samples += r.stats.samples;
-        for (std::size_t i = 0; i < c.premultiplied.size(); ++i) {
-            c.partAlpha[std::size_t(n)] += r.premultiplied[i].a;
-            if (!projecting) {
-                c.premultiplied[i] += (1.0f - c.premultiplied[i].a) * r.premultiplied[i];
-            } else if (d.mode == RenderMode::Average) {
-                sums[i] += r.projection[i];
-            } else if (const float z = projectionDepth(d.mode, r.projection[i], lo, hi);
-                       z < depth[i]) {
-                depth[i] = z;
-                c.premultiplied[i] = r.premultiplied[i];
-            }
-        }
-    }
-    if (d.mode == RenderMode::Average) {
-        for (std::size_t i = 0; i < sums.size(); ++i) {
-            c.premultiplied[i] = averageColour(d.transferFunction, sums[i]);
-        }
-    }
-    c.image = ImageRGBA8::filled(d.width, d.height, 255);
-    for (std::size_t i = 0; i < c.premultiplied.size(); ++i) {
-        const glm::dvec3 rgb =
-            glm::dvec3(c.premultiplied[i]) + (1.0 - double(c.premultiplied[i].a)) * d.background;
-        for (int ch = 0; ch < 3; ++ch) {
-            c.image.pixels[i * 4 + std::size_t(ch)] =
-                std::uint8_t(std::clamp(rgb[ch], 0.0, 1.0) * 255.0 + 0.5);
-        }
-    }
-    return c;
+std::unique_ptr<Renderer> openCpu(const Volume& part, const VolumePart& where) {
+    return std::make_unique<CpuRayCaster>(part, where);
 }
 
 enum class Scene { Linear, Cubic, Shaded, Preintegrated, Iso, Nearest, Mip, MinIp, Average };
@@ -200,7 +131,7 @@ private slots:
             for (std::size_t v = 0; v < std::size(kViews); ++v) {
                 d.camera.azimuth = kViews[v].azimuth;
                 d.camera.elevation = kViews[v].elevation;
-                const Composite c = renderInParts(p, d);
+                const Composite c = renderInParts(p, d, openCpu);
                 const double db = psnr(references[v].image, c.image);
                 const float worst = maxDifference(references[v].premultiplied, c.premultiplied);
                 QVERIFY2(db >= 50.0,
@@ -232,7 +163,7 @@ private slots:
                 d.camera.elevation = view.elevation;
                 d.volume = &volume_;
                 const RenderResult reference = whole.render(d);
-                const Composite c = renderInParts(p, d);
+                const Composite c = renderInParts(p, d, openCpu);
                 QVERIFY2(c.samples == reference.stats.samples,
                          qPrintable(QString("%1 parts, %2: %3 samples in parts, %4 whole")
                                         .arg(parts)
@@ -266,7 +197,7 @@ private slots:
             d.camera.elevation = view.elevation;
             d.volume = &volume_;
             const RenderResult reference = whole.render(d);
-            const Composite c = renderInParts(p, d);
+            const Composite c = renderInParts(p, d, openCpu);
             QCOMPARE(c.partAlpha[2], 0.0f);
             QVERIFY(c.partAlpha[0] + c.partAlpha[1] > 0.0f);
             QVERIFY2(psnr(reference.image, c.image) >= 50.0, view.name);
@@ -293,7 +224,7 @@ private slots:
                     d.camera.elevation = view.elevation;
                     d.volume = &ct;
                     const RenderResult reference = whole.render(d);
-                    const Composite c = renderInParts(p, d);
+                    const Composite c = renderInParts(p, d, openCpu);
                     const double db = psnr(reference.image, c.image);
                     QVERIFY2(db >= 50.0, qPrintable(QString("%1 parts%2, %3: %4 dB")
                                                         .arg(parts)
