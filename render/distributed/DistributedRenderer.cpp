@@ -140,6 +140,8 @@ RenderResult DistributedRenderer::render(const RenderDescription& description) {
                  glm::dvec3(whole.dims));
     const double voxelBound = comm_.allMax(bound.x * bound.y * bound.z);
     const double filesRead = comm_.allMax(double(part_.read.files.size()));
+    const double bytesRead = comm_.allMax(part_.read.bytes);
+    const double partBytesRead = comm_.allMax(part_.read.partBytes);
     const double slabs = comm_.allMin(part_.read.slabs ? 1.0 : 0.0);
     const double resident = comm_.allMax(residentMib());
     const double sent = comm_.allMax(icet_->last().bytesSent);
@@ -155,6 +157,8 @@ RenderResult DistributedRenderer::render(const RenderDescription& description) {
         {"volume_voxels", std::to_string(whole.voxelCount())},
         {"rank_resident_mib_max", fixed(resident)},
         {"rank_files_read_max", fixed(filesRead, 0)},
+        {"rank_bytes_read_max", fixed(bytesRead, 0)},
+        {"rank_part_bytes_read_max", fixed(partBytesRead, 0)},
         {"rank_slab_reading_min", fixed(slabs, 0)},
         {"icet_bytes_sent_max", fixed(sent, 0)},
         {"icet_strategy", icet_->strategyName()},

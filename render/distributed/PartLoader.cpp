@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "core/dicom/SeriesLoader.h"
+#include "core/formats/MetaImage.h"
 #include "core/io/Catalog.h"
 #include "core/raycast/BrickVisibility.h"
 #include "core/raycast/PartHalo.h"
@@ -78,7 +79,30 @@ LoadedPart loadPart(const Communicator& comm, const SeriesEntry& entry,
     const SeriesEntry& e = entry;
     const glm::ivec3 dims = e.geometry.dims;
     const int halo = partHalo(description.sampling.interpolation, description.sampling.step);
-    read.slabs = e.format == SourceFormat::Dicom && !e.resampled && int(e.slices.size()) == dims.z;
+    // DICOM slices, or the byte ranges of an uncompressed MetaImage's slices.
+    const bool dicomSlabs =
+        e.format == SourceFormat::Dicom && !e.resampled && int(e.slices.size()) == dims.z;
+    bool rawSlabs = false;
+    onEveryRank(comm, "reading the header of " + path, [&] {
+        rawSlabs = e.format == SourceFormat::MetaImage && metaImageHasSliceRanges(e.file);
+    });
+    read.slabs = dicomSlabs || rawSlabs;
+    // Slices [k0, k1) alone, as a volume whose index 0 is slice k0.
+    const auto readSlices = [&](int k0, int k1) {
+        Volume slab;
+        if (rawSlabs) {
+            read.files.push_back(e.file);
+            slab = readMetaImageSlices(e.file, k0, k1);
+        } else {
+            const SeriesEntry slabEntry = sliceRange(e, k0, k1);
+            for (const SliceRef& s : slabEntry.slices) {
+                read.files.push_back(s.file);
+            }
+            slab = loadDicomSeries(slabEntry, {});
+        }
+        read.bytes += double(slab.byteCount());
+        return slab;
+    };
 
     // Pass 1: the bricks' value ranges, and the volume's.
     BrickTable table;
@@ -93,6 +117,7 @@ LoadedPart loadPart(const Communicator& comm, const SeriesEntry& entry,
     onEveryRank(comm, "reading " + path + " for the split", [&] {
         if (!read.slabs) {
             whole = loadSeries(e);
+            read.bytes += double(whole->byteCount());
             const BrickGrid grid(*whole, brickSize, 1);
             table = BrickTable::of(grid);
             std::tie(lo, hi) = whole->valueRange();
@@ -110,11 +135,7 @@ LoadedPart loadPart(const Communicator& comm, const SeriesEntry& entry,
         }
         const int k0 = std::max(0, z0 * brickSize - 1);
         const int k1 = std::min(dims.z, z1 * brickSize + 1);
-        const SeriesEntry slabEntry = sliceRange(e, k0, k1);
-        const Volume slab = loadDicomSeries(slabEntry, {});
-        for (const SliceRef& s : slabEntry.slices) {
-            read.files.push_back(s.file);
-        }
+        const Volume slab = readSlices(k0, k1);
         mine = brickRanges(slab, k0, dims, brickSize, table.perAxis, z0, z1);
         std::tie(lo, hi) = slab.valueRange();
     });
@@ -152,11 +173,8 @@ LoadedPart loadPart(const Communicator& comm, const SeriesEntry& entry,
             read.lastSlice = last.z;
             return;
         }
-        const SeriesEntry slabEntry = sliceRange(e, first.z, last.z);
-        const Volume slab = loadDicomSeries(slabEntry, {});
-        for (const SliceRef& s : slabEntry.slices) {
-            read.files.push_back(s.file);
-        }
+        const Volume slab = readSlices(first.z, last.z);
+        read.partBytes = double(slab.byteCount());
         read.firstSlice = first.z;
         read.lastSlice = last.z;
         voxels = cutPart(slab, {first.x, first.y, 0}, {last.x, last.y, last.z - first.z});

@@ -7,9 +7,10 @@
 // rows and computes its bricks' value ranges; the ranges are shared, and the
 // bricks are split among the ranks (VolumePartition: balanced by the bricks the
 // description makes visible). Then each rank reads its part's box plus the
-// halo the description's filters need. DICOM series that need resampling
-// (tilted or uneven stacks) and other formats are read whole on every rank and
-// cut (rank_slab_reading=0 in the figures).
+// halo the description's filters need: DICOM files of its slab, or the byte
+// range of its slices in an uncompressed MetaImage. DICOM series that need
+// resampling (tilted or uneven stacks), compressed MetaImages and other formats
+// are read whole on every rank and cut (rank_slab_reading_min=0 in the figures).
 
 #include <string>
 #include <vector>
@@ -25,6 +26,8 @@ struct PartReadStats {
     bool slabs = false;                // read slice by slice (false: whole, then cut)
     std::vector<std::string> files;    // the files this rank read, in either pass
     int firstSlice = 0, lastSlice = 0; // the second pass's slices [first, last)
+    double bytes = 0.0;                // voxel bytes read, both passes
+    double partBytes = 0.0;            // of them, the second pass's (the part and its halo)
     double readMs = 0.0;
 };
 

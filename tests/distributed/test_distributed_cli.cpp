@@ -153,6 +153,33 @@ private slots:
         QVERIFY2(r.err.contains("GL ranks composite"), qPrintable(r.err));
     }
 
+    // A MetaImage (the 140-slice CT converted): each rank reads the byte
+    // range of its slab's slices, not the whole file.
+    void aRankReadsOnlyItsByteRange() {
+        if (!QFileInfo::exists(kLargerCt)) {
+            QSKIP("the 140-slice Philips CT is not in ../shared/data");
+        }
+        const CliRun convert = runCli({"convert", kLargerCt, path("ct.mhd")});
+        QVERIFY2(convert.exitCode == 0, qPrintable(convert.err));
+        const QStringList flags = {"--size", "64x64", "--elevation", "90", "--brick", "16"};
+        const CliRun local =
+            runCli(QStringList{"render", path("ct.mhd"), "-o", path("mhd_local.png")} + flags);
+        QVERIFY2(local.exitCode == 0, qPrintable(local.err));
+        const CliRun r = runMpi(3, QStringList{"render", path("ct.mhd"), "-o", path("mhd.png"),
+                                               "--distributed", "--stats"} +
+                                       flags);
+        QVERIFY2(r.exitCode == 0, qPrintable(r.err));
+        QCOMPARE(statOf(r.out, "rank_slab_reading_min"), 1.0);
+        const double whole = statOf(r.out, "volume_voxels") * 2.0; // int16
+        const double part = statOf(r.out, "rank_part_bytes_read_max");
+        QVERIFY2(
+            part > 0.0 && part < 0.6 * whole,
+            qPrintable(QString("a rank read %1 of %2 bytes for its part").arg(part).arg(whole)));
+        const double db = psnr(readPng(path("mhd_local.png").toStdString()),
+                               readPng(path("mhd.png").toStdString()));
+        QVERIFY2(db >= 50.0, qPrintable(QString("%1 dB").arg(db)));
+    }
+
     void moreRanksThanBricksIsAClearError() {
         QElapsedTimer timer;
         timer.start();
