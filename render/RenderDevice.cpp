@@ -55,12 +55,12 @@ RenderDevice::RenderDevice(RendererKind kind, std::shared_ptr<OffscreenContext> 
 
 RenderDevice::~RenderDevice() = default;
 
-std::unique_ptr<RenderDevice> RenderDevice::open(RendererKind wanted) {
+std::unique_ptr<RenderDevice> RenderDevice::open(RendererKind wanted, int eglDevice) {
     if (wanted == RendererKind::Cpu) {
         return std::unique_ptr<RenderDevice>(new RenderDevice(RendererKind::Cpu, nullptr, {}));
     }
     try {
-        std::shared_ptr<OffscreenContext> context = OffscreenContext::create();
+        std::shared_ptr<OffscreenContext> context = OffscreenContext::create(eglDevice);
         return std::unique_ptr<RenderDevice>(
             new RenderDevice(RendererKind::Gl, std::move(context), {}));
     } catch (const GlError& e) {

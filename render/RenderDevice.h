@@ -27,7 +27,8 @@ public:
     // Gl: an OpenGL 4.3 core context made with EGL, current on this thread
     // (headless: surfaceless on Mesa, the device platform on NVIDIA). Where
     // none can be had, the CPU, and fallbackReason() says why.
-    static std::unique_ptr<RenderDevice> open(RendererKind wanted);
+    // eglDevice >= 0 prefers that EGL device (OffscreenContext::create).
+    static std::unique_ptr<RenderDevice> open(RendererKind wanted, int eglDevice = -1);
     // Gl in the context current on this thread (a QOpenGLWidget's, in its
     // paint). The caller keeps that context alive and current whenever one of
     // this device's renderers renders or is destroyed.

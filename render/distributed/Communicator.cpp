@@ -50,6 +50,11 @@ Communicator Communicator::world() {
 Communicator::Communicator(std::unique_ptr<Handle> handle) : handle_(std::move(handle)) {
     check(MPI_Comm_rank(handle_->comm, &rank_), "MPI_Comm_rank");
     check(MPI_Comm_size(handle_->comm, &size_), "MPI_Comm_size");
+    MPI_Comm node = MPI_COMM_NULL;
+    check(MPI_Comm_split_type(handle_->comm, MPI_COMM_TYPE_SHARED, rank_, MPI_INFO_NULL, &node),
+          "MPI_Comm_split_type");
+    MPI_Comm_rank(node, &localRank_);
+    MPI_Comm_free(&node);
 }
 
 Communicator::~Communicator() = default;

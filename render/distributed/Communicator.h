@@ -25,6 +25,9 @@ public:
 
     int rank() const { return rank_; }
     int size() const { return size_; }
+    // The rank among the ranks on this node (shared memory): which GPU a rank
+    // takes on a node with several.
+    int localRank() const { return localRank_; }
 
     // root's bytes to every rank (the size first).
     void broadcast(std::vector<std::byte>& bytes, int root) const;
@@ -58,6 +61,7 @@ private:
     std::unique_ptr<Handle> handle_;
     int rank_ = 0;
     int size_ = 1;
+    int localRank_ = 0;
 };
 
 } // namespace lucent

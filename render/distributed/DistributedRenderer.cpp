@@ -42,7 +42,8 @@ DistributedRenderer::DistributedRenderer(const Communicator& comm, LoadedPart pa
                                          RendererKind kind)
     : comm_(comm), part_(std::move(part)) {
     onEveryRank(comm_, "opening its renderer", [&] {
-        device_ = RenderDevice::open(kind);
+        // GL ranks on a node with several GPUs each take their own, by local rank.
+        device_ = RenderDevice::open(kind, comm_.localRank());
         RenderDevice::Opened opened = device_->openPartRenderer(part_.voxels, part_.where);
         caster_ = std::move(opened.renderer);
         fallback_ =

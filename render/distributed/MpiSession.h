@@ -17,10 +17,6 @@ public:
     // This process's rank in MPI_COMM_WORLD and the number of processes.
     int rank() const { return rank_; }
     int size() const { return size_; }
-    // The rank among the processes on this node (Open MPI's
-    // OMPI_COMM_WORLD_LOCAL_RANK, or a split by shared memory): which GPU a
-    // rank takes on a node with several.
-    int localRank() const { return localRank_; }
 
     // Whether MPI is initialised and not yet finalised in this process.
     static bool active();
@@ -28,7 +24,6 @@ public:
 private:
     int rank_ = 0;
     int size_ = 1;
-    int localRank_ = 0;
 };
 
 } // namespace lucent

@@ -99,6 +99,16 @@ private slots:
         }
     }
 
+    // GL ranks ask for the EGL device of their local rank; any index gives a
+    // context (modulo the devices there are, or the next display that works).
+    void aContextForEveryDeviceIndex() {
+        for (int device : {0, 1, 2, 3, 17}) {
+            const auto context = OffscreenContext::create(device);
+            QVERIFY(!context->description().empty());
+        }
+        context_->makeCurrent();
+    }
+
     void projectionsAreRefusedClearly() {
         RenderDescription d = describe(volume_, rampTf(false), 16);
         d.mode = RenderMode::Mip;
