@@ -99,6 +99,36 @@ private slots:
         }
     }
 
+    // A clip box that leaves one part nothing to draw: that part's image is
+    // empty and the composite still equals the whole.
+    void aClipBoxEmptiesOnePart() {
+        RenderDescription d = describe(volume_, rampTf(true), 48);
+        d.sampling.brickSize = 16;
+        const Parts p = split(volume_, 3, d, 8);
+        const PartBox box = p.partition.box(2);
+        for (int a = 0; a < 3; ++a) {
+            if (box.lo[a] > 0) {
+                d.clip.hi[a] = double(box.lo[a]) - 0.5;
+                break;
+            }
+            if (box.hi[a] < volume_.dims()[a] - 1) {
+                d.clip.lo[a] = double(box.hi[a]) + 0.5;
+                break;
+            }
+        }
+        GpuRayCaster whole(volume_);
+        for (const View& view : kViews) {
+            d.camera.azimuth = view.azimuth;
+            d.camera.elevation = view.elevation;
+            d.volume = &volume_;
+            const RenderResult reference = whole.render(d);
+            const Composite c = renderInParts(p, d, openGpu);
+            QCOMPARE(c.partAlpha[2], 0.0f);
+            QVERIFY(c.partAlpha[0] + c.partAlpha[1] > 0.0f);
+            QVERIFY2(psnr(reference.image, c.image) >= 50.0, view.name);
+        }
+    }
+
     // GL ranks ask for the EGL device of their local rank; any index gives a
     // context (modulo the devices there are, or the next display that works).
     void aContextForEveryDeviceIndex() {
