@@ -18,6 +18,8 @@ packages=(
   invesalius-examples
   # the test PACS: Orthanc with DICOMweb, started by the pacs tests on loopback
   orthanc orthanc-dicomweb
+  # the distributed renderer: Open MPI, and IceT (shipped in Debian only inside ParaView 5.11)
+  libopenmpi-dev openmpi-bin paraview-dev
   # the web test: headless Chromium driven through chromedriver; openssl makes the TLS test's certificate
   chromium chromium-driver openssl
 )

@@ -95,6 +95,48 @@ bool sameCast(const RenderDescription& a, const RenderDescription& b) {
 
 } // namespace
 
+namespace {
+
+// What a part of a volume changes in a render (nothing for a whole volume):
+// the description in the part's indices, the whole volume's box that anchors
+// the lattice, the open faces, the description's clip box.
+struct PartFrame {
+    RenderDescription local;
+    glm::dvec3 boxLo{0.0}, boxHi{0.0};
+    glm::ivec3 openHi{0};
+    glm::dvec3 sceneClipLo{0.0}, sceneClipHi{0.0};
+    bool empty = false; // the clip box leaves the part nothing
+};
+
+PartFrame partFrame(const std::optional<VolumePart>& part, const Volume& volume,
+                    const RenderDescription& asked) {
+    PartFrame f{asked};
+    f.boxHi = glm::dvec3(volume.dims() - 1);
+    if (!part) {
+        return f;
+    }
+    if (asked.mode != RenderMode::Dvr && asked.mode != RenderMode::Isosurface) {
+        throw std::invalid_argument(std::string("a GL rank composites dvr and iso, not ") +
+                                    renderModeName(asked.mode) + " (use --backend cpu)");
+    }
+    const glm::dvec3 offset(part->offset), wholeHi(part->whole.dims - 1);
+    f.boxLo = -offset;
+    f.boxHi = wholeHi - offset;
+    f.sceneClipLo = glm::max(asked.clip.lo, glm::dvec3(0.0)) - offset;
+    f.sceneClipHi = glm::min(asked.clip.hi, wholeHi) - offset;
+    f.local.clip.lo = glm::max(f.sceneClipLo, glm::dvec3(part->owned.lo) - offset);
+    f.local.clip.hi = glm::min(f.sceneClipHi, glm::dvec3(part->owned.hi) - offset);
+    f.local.background = glm::dvec3(0.0);
+    f.local.volume = &volume;
+    for (int a = 0; a < 3; ++a) {
+        f.openHi[a] = part->sharedHi(a) && asked.clip.hi[a] >= double(part->owned.hi[a]) ? 1 : 0;
+    }
+    f.empty = glm::any(glm::lessThan(f.local.clip.hi, f.local.clip.lo));
+    return f;
+}
+
+} // namespace
+
 struct GpuRayCaster::State {
     const Volume& volume;
     GpuOptions options;
@@ -105,6 +147,7 @@ struct GpuRayCaster::State {
     std::map<int, std::unique_ptr<Volume>> splines; // B-spline coefficients per level
     std::map<std::tuple<int, bool, int>, std::unique_ptr<BrickGrid>> grids; // (brick, cubic, level)
     double valueLo = 0.0, valueHi = 1.0;
+    std::optional<VolumePart> part; // a part of a volume drawn alone (VolumePart.h)
 
     std::map<std::string, std::unique_ptr<ShaderProgram>> programs; // by their #defines
     std::array<std::unique_ptr<ShaderProgram>, 2> composite; // drawInPlace's: composite, stretch
@@ -182,6 +225,13 @@ GpuRayCaster::GpuRayCaster(const Volume& volume, GpuOptions options) {
     glCreateVertexArrays(1, &vao);
     s.vao = GlVertexArray(vao);
     checkGl("GPU ray caster setup");
+}
+
+GpuRayCaster::GpuRayCaster(const Volume& part, const VolumePart& where, GpuOptions options)
+    : GpuRayCaster(part, options) {
+    state_->part = where;
+    state_->valueLo = where.valueRange.first;
+    state_->valueHi = where.valueRange.second;
 }
 
 GpuRayCaster::~GpuRayCaster() = default;
@@ -344,9 +394,19 @@ void clearFramebuffer(const FramebufferTarget& target, const glm::dvec3& colour)
     checkGl("clearing the framebuffer");
 }
 
-GpuRenderResult GpuRayCaster::cast(const RenderDescription& desc, bool countRows) {
-    desc.validate();
+GpuRenderResult GpuRayCaster::cast(const RenderDescription& asked, bool countRows) {
+    asked.validate();
     State& s = *state_;
+    // A part draws its owned box (in its own indices) over transparent black.
+    const PartFrame part = partFrame(s.part, s.volume, asked);
+    const RenderDescription& desc = part.local;
+    if (part.empty) {
+        // Nothing to cast: the target holds transparent black for the read back.
+        s.target.resize(desc.width, desc.height);
+        s.target.bindAndClear(countRows);
+        s.inTarget.reset();
+        return GpuRenderResult{};
+    }
     if (desc.volume != nullptr && desc.volume != &s.volume) {
         throw std::invalid_argument("render description names another volume than this caster's");
     }
@@ -391,7 +451,8 @@ GpuRenderResult GpuRayCaster::cast(const RenderDescription& desc, bool countRows
 
     // The finest level whose bricks in view fit the slots the budget holds.
     const VolumeGeometry& g = s.volume.geometry();
-    const ViewFrame frame = makeViewFrame(g, desc.camera, desc.width, desc.height);
+    const ViewFrame frame =
+        makeViewFrame(s.part ? s.part->whole : g, desc.camera, desc.width, desc.height);
     const BoxTest inView = [&](const glm::dvec3& lo, const glm::dvec3& hi) {
         return boxInView(g, frame, lo, hi);
     };
@@ -532,7 +593,7 @@ GpuRenderResult GpuRayCaster::cast(const RenderDescription& desc, bool countRows
                             g.direction[2] * g.spacing.z);
     const double dt =
         sampling.step * std::min({g.spacing.x, g.spacing.y, g.spacing.z}) * levelFactor;
-    const glm::dvec3 boxLo(0.0), boxHi(g.dims - 1);
+    const glm::dvec3 boxLo = part.boxLo, boxHi = part.boxHi;
     const double tableCell = (tHi - tLo) / double(kTableSize - 1);
     const auto [visLo, visHi] = visibleValueRange(desc.transferFunction, tableCell);
     const auto flag = [](bool b) { return b ? "true" : "false"; };
@@ -571,6 +632,10 @@ GpuRenderResult GpuRayCaster::cast(const RenderDescription& desc, bool countRows
     p.set("uBoxHi", boxHi);
     p.set("uClipLo", glm::max(desc.clip.lo, boxLo));
     p.set("uClipHi", glm::min(desc.clip.hi, boxHi));
+    p.set("uPart", s.part ? 1 : 0);
+    p.set("uOpenHi", part.openHi);
+    p.set("uSceneClipLo", part.sceneClipLo);
+    p.set("uSceneClipHi", part.sceneClipHi);
     const Shading& light = desc.transferFunction.shading;
     p.set("uEarlyTermination", float(sampling.earlyTermination));
     p.set("uIso", float(desc.isoValue));

@@ -8,6 +8,7 @@
 
 #include "core/scene/RenderDescription.h"
 #include "core/scene/Renderer.h"
+#include "core/volume/VolumePart.h"
 
 namespace lucent {
 
@@ -58,6 +59,11 @@ class GpuRayCaster : public Renderer {
 public:
     // Throws GlError when the context is missing or too old or the shaders fail.
     explicit GpuRayCaster(const Volume& volume, GpuOptions options = {});
+    // A caster of one part of a volume (a rank of a distributed render), as
+    // CpuRayCaster(part, where): its owned box on the whole volume's lattice
+    // and view, over transparent black. DVR and iso only (std::invalid_argument
+    // for the projections, which composite from values).
+    GpuRayCaster(const Volume& part, const VolumePart& where, GpuOptions options = {});
     ~GpuRayCaster() override;
     GpuRayCaster(const GpuRayCaster&) = delete;
     GpuRayCaster& operator=(const GpuRayCaster&) = delete;

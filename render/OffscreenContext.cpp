@@ -70,11 +70,21 @@ bool hasExtension(const char* list, std::string_view name) {
     return false;
 }
 
-// The displays worth trying, best first: surfaceless Mesa, then each EGL device
-// (headless NVIDIA), then the default display.
-std::vector<EGLDisplay> candidateDisplays() {
+// The displays worth trying, best first: the preferred EGL device (when one
+// is asked for), surfaceless Mesa, then each EGL device (headless NVIDIA),
+// then the default display.
+std::vector<EGLDisplay> candidateDisplays(int preferred) {
     std::vector<EGLDisplay> out;
     const char* clientExtensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    if (preferred >= 0 && hasExtension(clientExtensions, "EGL_EXT_platform_device") &&
+        hasExtension(clientExtensions, "EGL_EXT_device_enumeration")) {
+        EGLDeviceEXT devices[8];
+        EGLint count = 0;
+        if (eglQueryDevicesEXT(8, devices, &count) == EGL_TRUE && count > 0) {
+            out.push_back(eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT,
+                                                   devices[preferred % count], nullptr));
+        }
+    }
     if (hasExtension(clientExtensions, "EGL_MESA_platform_surfaceless")) {
         out.push_back(
             eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr));
@@ -119,9 +129,9 @@ EGLContext createCoreContext(EGLDisplay display) {
 OffscreenContext::OffscreenContext(std::unique_ptr<Egl> egl) : egl_(std::move(egl)) {}
 OffscreenContext::~OffscreenContext() = default;
 
-std::unique_ptr<OffscreenContext> OffscreenContext::create() {
+std::unique_ptr<OffscreenContext> OffscreenContext::create(int device) {
     std::string tried;
-    for (const EGLDisplay display : candidateDisplays()) {
+    for (const EGLDisplay display : candidateDisplays(device)) {
         if (display == EGL_NO_DISPLAY) {
             continue;
         }

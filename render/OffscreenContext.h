@@ -13,7 +13,10 @@ class OffscreenContext {
 public:
     // Creates the context and makes it current on this thread. Throws GlError
     // saying what is missing (no EGL display, no desktop GL, GL older than 4.3).
-    static std::unique_ptr<OffscreenContext> create();
+    // device >= 0: the EGL device of that index (modulo the devices there are)
+    // is tried first, so that the ranks of a distributed render on a node with
+    // several GPUs each take their own (by local rank).
+    static std::unique_ptr<OffscreenContext> create(int device = -1);
     ~OffscreenContext();
     OffscreenContext(const OffscreenContext&) = delete;
     OffscreenContext& operator=(const OffscreenContext&) = delete;

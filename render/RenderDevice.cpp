@@ -62,12 +62,12 @@ RenderDevice::RenderDevice(RendererKind kind, std::shared_ptr<OffscreenContext> 
 
 RenderDevice::~RenderDevice() = default;
 
-std::unique_ptr<RenderDevice> RenderDevice::open(RendererKind wanted) {
+std::unique_ptr<RenderDevice> RenderDevice::open(RendererKind wanted, int eglDevice) {
     if (wanted == RendererKind::Cpu) {
         return std::unique_ptr<RenderDevice>(new RenderDevice(RendererKind::Cpu, nullptr, {}));
     }
     try {
-        std::shared_ptr<OffscreenContext> context = OffscreenContext::create();
+        std::shared_ptr<OffscreenContext> context = OffscreenContext::create(eglDevice);
         return std::unique_ptr<RenderDevice>(
             new RenderDevice(RendererKind::Gl, std::move(context), {}));
     } catch (const GlError& e) {
@@ -90,15 +90,27 @@ std::string RenderDevice::description() const {
 
 RenderDevice::Opened RenderDevice::openRenderer(const Volume& volume,
                                                 const GpuOptions& options) const {
+    return openWith([&] { return std::make_unique<GpuRayCaster>(volume, options); },
+                    [&] { return std::make_unique<CpuRayCaster>(volume); });
+}
+
+RenderDevice::Opened RenderDevice::openPartRenderer(const Volume& part, const VolumePart& where,
+                                                    const GpuOptions& options) const {
+    return openWith([&] { return std::make_unique<GpuRayCaster>(part, where, options); },
+                    [&] { return std::make_unique<CpuRayCaster>(part, where); });
+}
+
+RenderDevice::Opened
+RenderDevice::openWith(const std::function<std::unique_ptr<GpuRayCaster>()>& gpu,
+                       const std::function<std::unique_ptr<Renderer>()>& cpu) const {
     Opened opened;
     if (kind_ == RendererKind::Gl) {
         try {
             if (context_) {
                 context_->makeCurrent();
-                opened.renderer = std::make_unique<OwnContextRenderer>(
-                    context_, std::make_unique<GpuRayCaster>(volume, options));
+                opened.renderer = std::make_unique<OwnContextRenderer>(context_, gpu());
             } else {
-                opened.renderer = std::make_unique<GpuRayCaster>(volume, options);
+                opened.renderer = gpu();
             }
             return opened;
         } catch (const GlError& e) {
@@ -106,7 +118,7 @@ RenderDevice::Opened RenderDevice::openRenderer(const Volume& volume,
                 std::string("the GPU ray caster is not available (") + e.what() + ")";
         }
     }
-    opened.renderer = std::make_unique<CpuRayCaster>(volume);
+    opened.renderer = cpu();
     return opened;
 }
 

@@ -4,6 +4,7 @@
 // back to the CPU. The CLI, the server's render thread, the 3D view and its
 // quality measurement all open their renderers here.
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -26,7 +27,8 @@ public:
     // Gl: an OpenGL 4.3 core context made with EGL, current on this thread
     // (headless: surfaceless on Mesa, the device platform on NVIDIA). Where
     // none can be had, the CPU, and fallbackReason() says why.
-    static std::unique_ptr<RenderDevice> open(RendererKind wanted);
+    // eglDevice >= 0 prefers that EGL device (OffscreenContext::create).
+    static std::unique_ptr<RenderDevice> open(RendererKind wanted, int eglDevice = -1);
     // Gl in the context current on this thread (a QOpenGLWidget's, in its
     // paint). The caller keeps that context alive and current whenever one of
     // this device's renderers renders or is destroyed.
@@ -50,8 +52,14 @@ public:
     // its own context keep that context and make it current when they work, so
     // they may outlive the device.
     Opened openRenderer(const Volume& volume, const GpuOptions& options = {}) const;
+    // A renderer of one part of a volume (a rank of a distributed render:
+    // core/volume/VolumePart.h); `part` must outlive it.
+    Opened openPartRenderer(const Volume& part, const VolumePart& where,
+                            const GpuOptions& options = {}) const;
 
 private:
+    Opened openWith(const std::function<std::unique_ptr<GpuRayCaster>()>& gpu,
+                    const std::function<std::unique_ptr<Renderer>()>& cpu) const;
     RenderDevice(RendererKind kind, std::shared_ptr<OffscreenContext> context,
                  std::string fallbackReason);
 

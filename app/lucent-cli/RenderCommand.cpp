@@ -9,6 +9,7 @@
 #include <algorithm>
 
 #include "CliCommand.h"
+#include "DistributedRender.h"
 #include "QualityOption.h"
 #include "RemoteRender.h"
 #include "RenderFlags.h"
@@ -90,6 +91,8 @@ int runRender(const QStringList& args) {
          "LEVEL"},
         {"stats", "Print timing and sampling figures."},
         {"repeat", "Render N frames turning 5 degrees each; render_ms is their median.", "N"},
+        {"distributed", "Under mpirun: every rank renders its part of the volume, IceT "
+                        "composites, rank 0 writes OUT.png (docs/distributed.md)."},
     });
     addRenderFlags(parser);
     parser.addHelpOption();
@@ -105,6 +108,9 @@ int runRender(const QStringList& args) {
     if (parser.positionalArguments().size() != 1 || !parser.isSet("output")) {
         err << "lucent-cli render: expected PATH and -o OUT.png\n";
         return kUsage;
+    }
+    if (parser.isSet("distributed")) {
+        return runDistributedRender(parser);
     }
     const QString backend = parser.value("backend");
     if (backend.startsWith("ws://") || backend.startsWith("wss://")) {

@@ -248,9 +248,23 @@ VolumeFileHeader readMetaImageHeader(const fs::path& mhd) {
     return interpret(parseHeader(mhd)).header;
 }
 
-Volume readMetaImage(const fs::path& mhd) {
-    const MetaHeader h = parseHeader(mhd);
-    Layout layout = interpret(h);
+namespace {
+
+// Where a MetaImage's voxels are: the data file, open at their first byte.
+struct DataFile {
+    MetaHeader h;
+    Layout layout;
+    fs::path path;
+    std::uint64_t start = 0;
+    std::uint64_t available = 0;
+    std::ifstream in;
+};
+
+void openData(const fs::path& mhd, DataFile& f) {
+    f.h = parseHeader(mhd);
+    f.layout = interpret(f.h);
+    const MetaHeader& h = f.h;
+    const Layout& layout = f.layout;
     const std::string& dataName = *h.find({"ElementDataFile"});
     const bool local = iequals(dataName, "LOCAL");
     if (iequals(dataName, "LIST") || dataName.find('%') != std::string::npos) {
@@ -282,11 +296,62 @@ Volume readMetaImage(const fs::path& mhd) {
                         std::to_string(expected) + " bytes of voxel data, found " +
                         std::to_string(available));
     }
-    std::ifstream in(dataPath, std::ios::binary);
-    in.seekg(static_cast<std::streamoff>(start));
-    if (!in) {
+    f.in.open(dataPath, std::ios::binary);
+    f.in.seekg(static_cast<std::streamoff>(start));
+    if (!f.in) {
         throw LoadError(h.file + ": cannot open data file " + dataPath.string());
     }
+    f.path = dataPath;
+    f.start = start;
+    f.available = available;
+}
+
+} // namespace
+
+bool metaImageHasSliceRanges(const fs::path& mhd) {
+    return !interpret(parseHeader(mhd)).compressed;
+}
+
+Volume readMetaImageSlices(const fs::path& mhd, int k0, int k1) {
+    DataFile f;
+    openData(mhd, f);
+    const VolumeGeometry& g = f.layout.header.geometry;
+    if (f.layout.compressed) {
+        throw LoadError(f.h.file + ": compressed voxels have no byte range per slice");
+    }
+    if (k0 < 0 || k1 > g.dims.z || k0 >= k1) {
+        throw LoadError(f.h.file + ": slices " + std::to_string(k0) + " .. " +
+                        std::to_string(k1 - 1) + " are not within its " +
+                        std::to_string(g.dims.z));
+    }
+    const std::uint64_t sliceBytes =
+        std::uint64_t(g.dims.x) * std::uint64_t(g.dims.y) * formats::rawTypeSize(f.layout.rawType);
+    f.in.seekg(static_cast<std::streamoff>(f.start + sliceBytes * std::uint64_t(k0)));
+    VolumeGeometry slab = g;
+    slab.dims.z = k1 - k0;
+    slab.origin = g.toPatient(glm::dvec3(0.0, 0.0, double(k0)));
+    Volume volume = formats::allocateVolume(slab, f.layout.header.voxelType, f.h.file);
+    const std::string label = f.h.file + " (data file " + f.path.filename().string() + ")";
+    formats::readVoxels(
+        [&](std::span<std::byte> b) {
+            f.in.read(reinterpret_cast<char*>(b.data()), static_cast<std::streamsize>(b.size()));
+            return static_cast<std::size_t>(f.in.gcount());
+        },
+        f.layout.rawType, f.layout.bigEndian, {}, volume, label);
+    volume.modality = f.layout.header.modality;
+    volume.description = f.layout.header.description;
+    volume.warnings = f.layout.header.warnings;
+    return volume;
+}
+
+Volume readMetaImage(const fs::path& mhd) {
+    DataFile f;
+    openData(mhd, f);
+    const MetaHeader& h = f.h;
+    const Layout& layout = f.layout;
+    std::ifstream& in = f.in;
+    const std::uint64_t available = f.available;
+    const fs::path& dataPath = f.path;
     Volume volume =
         formats::allocateVolume(layout.header.geometry, layout.header.voxelType, h.file);
     const std::string label = h.file + " (data file " + dataPath.filename().string() + ")";

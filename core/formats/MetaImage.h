@@ -15,6 +15,12 @@ namespace lucent {
 // HeaderSize and LOCAL data are honoured. Throws LoadError naming the file.
 VolumeFileHeader readMetaImageHeader(const std::filesystem::path& mhd);
 Volume readMetaImage(const std::filesystem::path& mhd);
+// Slices [k0, k1) of an uncompressed MetaImage, read from their byte range of
+// the data file alone (a rank of a distributed render reads only its slab);
+// the geometry's origin moves to slice k0. Throws LoadError naming the file,
+// for compressed data too (no byte range per slice: metaImageHasSliceRanges).
+Volume readMetaImageSlices(const std::filesystem::path& mhd, int k0, int k1);
+bool metaImageHasSliceRanges(const std::filesystem::path& mhd);
 
 // Writes mhd and, beside it, <stem>.raw (i fastest, little endian), each under a
 // temporary name first, so that a failed write leaves no partial file. Throws

@@ -60,11 +60,13 @@ inline PixelRect pixelsOfBox(const VolumeGeometry& g, const ViewFrame& frame, gl
 
 // kernel: anything with RayOutput cast(origin, direction, unit direction), or
 // with castPacket over up to kPacket neighbouring rays. Pixels outside
-// pixelsOfBox(clip box) get the background without a ray.
+// pixelsOfBox(clip box) get the background without a ray. `projection`, when
+// given (sized like the image), receives each ray's RayOutput::projection.
 template <class Kernel>
 void castImage(const Kernel& kernel, const VolumeGeometry& g, const ViewFrame& frame,
                const RenderDescription& desc, ImageRGBA8& image,
-               std::vector<glm::vec4>& premultiplied, std::size_t& samples) {
+               std::vector<glm::vec4>& premultiplied, std::size_t& samples,
+               std::vector<glm::vec2>* projection = nullptr) {
     const glm::dmat3 toIndexLinear = glm::inverse(glm::dmat3(
         g.direction[0] * g.spacing.x, g.direction[1] * g.spacing.y, g.direction[2] * g.spacing.z));
     const glm::dvec3 origin = g.toIndex(frame.eye);
@@ -128,6 +130,10 @@ void castImage(const Kernel& kernel, const VolumeGeometry& g, const ViewFrame& f
                     const int x = pixel[c].x, y = pixel[c].y;
                     total += r[c].samples;
                     premultiplied[std::size_t(y) * desc.width + x] = glm::vec4(r[c].rgba);
+                    if (projection != nullptr) {
+                        (*projection)[std::size_t(y) * desc.width + x] =
+                            glm::vec2(r[c].projection);
+                    }
                     const glm::dvec3 rgb =
                         glm::dvec3(r[c].rgba) + (1.0 - r[c].rgba.a) * desc.background;
                     std::uint8_t* px = image.at(x, y);

@@ -99,6 +99,11 @@ CpuRayCaster::CpuRayCaster(const Volume& volume)
     cache_->range = volume.valueRange();
 }
 
+CpuRayCaster::CpuRayCaster(const Volume& part, const VolumePart& where)
+    : volume_(part), part_(where), cache_(std::make_unique<Cache>()) {
+    cache_->range = where.valueRange;
+}
+
 CpuRayCaster::~CpuRayCaster() = default;
 
 std::string CpuRayCaster::device() const {
@@ -171,6 +176,22 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
         s.boxHi = glm::dvec3(g.dims - 1);
         s.clipLo = glm::max(desc.clip.lo, s.boxLo);
         s.clipHi = glm::min(desc.clip.hi, s.boxHi);
+        if (part_) {
+            // In the part's indices: the whole box anchors the lattice; the
+            // part draws its owned box within the clip box.
+            const glm::dvec3 offset(part_->offset);
+            const glm::dvec3 wholeHi(part_->whole.dims - 1);
+            s.part = true;
+            s.boxLo = -offset;
+            s.boxHi = wholeHi - offset;
+            s.sceneClipLo = glm::max(desc.clip.lo, glm::dvec3(0.0)) - offset;
+            s.sceneClipHi = glm::min(desc.clip.hi, wholeHi) - offset;
+            s.clipLo = glm::max(s.sceneClipLo, glm::dvec3(part_->owned.lo) - offset);
+            s.clipHi = glm::min(s.sceneClipHi, glm::dvec3(part_->owned.hi) - offset);
+            for (int a = 0; a < 3; ++a) {
+                s.openHi[a] = part_->sharedHi(a) && desc.clip.hi[a] >= double(part_->owned.hi[a]);
+            }
+        }
     };
     fill(sd);
     fill(sf);
@@ -301,12 +322,28 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
     RenderResult result;
     result.image = ImageRGBA8::filled(desc.width, desc.height, 0);
     result.premultiplied.assign(std::size_t(desc.width) * desc.height, glm::vec4(0.0f));
+    // A part draws its box in its own indices, over transparent black, seen as
+    // the whole volume is.
+    RenderDescription local = desc;
+    if (part_) {
+        local.clip = ClipBox{sf.clipLo, sf.clipHi};
+        local.background = glm::dvec3(0.0);
+    }
     result.stats.bricksTotal = grid.count();
-    result.stats.bricksUsed = visibleBricks(grid, visible, desc.clip).size();
-    const ViewFrame frame = makeViewFrame(g, desc.camera, desc.width, desc.height);
+    result.stats.bricksUsed = visibleBricks(grid, visible, local.clip).size();
+    const ViewFrame frame =
+        makeViewFrame(part_ ? part_->whole : g, desc.camera, desc.width, desc.height);
 
+    // A part's projections are composited from their values (and counts).
+    const bool projecting = part_ && (desc.mode == RenderMode::Mip ||
+                                      desc.mode == RenderMode::MinIp ||
+                                      desc.mode == RenderMode::Average);
+    if (projecting) {
+        result.projection.assign(result.premultiplied.size(), glm::vec2(0.0f));
+    }
     auto cast = [&](const auto& kernel) {
-        castImage(kernel, g, frame, desc, result.image, result.premultiplied, result.stats.samples);
+        castImage(kernel, g, frame, local, result.image, result.premultiplied,
+                  result.stats.samples, projecting ? &result.projection : nullptr);
     };
     auto run = [&](const auto& setup, auto tag) {
         using Real = decltype(tag);
@@ -349,6 +386,11 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
             return;
         }
     };
+    // A part whose box the clip box leaves out draws nothing.
+    if (part_ && glm::any(glm::lessThan(sf.clipHi, sf.clipLo))) {
+        result.stats.bricksUsed = 0;
+        return result;
+    }
     if (exact) {
         run(sd, double{});
     } else {

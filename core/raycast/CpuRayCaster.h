@@ -1,11 +1,13 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/scene/RenderDescription.h"
 #include "core/scene/Renderer.h"
+#include "core/volume/VolumePart.h"
 
 namespace lucent {
 
@@ -17,6 +19,12 @@ namespace lucent {
 class CpuRayCaster : public Renderer {
 public:
     explicit CpuRayCaster(const Volume& volume);
+    // A caster of one part of a volume (a rank of a distributed render): it
+    // draws only the part's owned box, on the whole volume's sample lattice and
+    // view, premultiplied over transparent black, so that the parts' images
+    // composited front to back give the whole volume's. `part` holds the
+    // part's voxels with a halo (core/volume/VolumePart.h).
+    CpuRayCaster(const Volume& part, const VolumePart& where);
     ~CpuRayCaster() override;
     CpuRayCaster(const CpuRayCaster&) = delete;
     CpuRayCaster& operator=(const CpuRayCaster&) = delete;
@@ -30,6 +38,7 @@ public:
 private:
     struct Cache;
     const Volume& volume_;
+    std::optional<VolumePart> part_;
     std::unique_ptr<Cache> cache_;
 };
 

@@ -120,6 +120,17 @@ LUCENT_AVX2 inline void startRays(const RaySetup<float>& s, const glm::dvec3& o,
             _mm_store_ps(&rays.stride[a][4 * h], _mm256_cvtpd_ps(stride));
         }
     }
+    // A part of a volume (RaySetup::part) has open faces: its spans come from
+    // the scalar raySpan, which knows them (the same t0, so the same lattice).
+    if (s.part) {
+        for (int r = 0; r < count; ++r) {
+            RaySpan span;
+            const bool hit = raySpan(s, o, d[r], span) && span.nFirst <= span.nLast;
+            rays.first[r] = hit ? int(span.nFirst) : 0;
+            rays.last[r] = hit ? int(span.nLast) : -1;
+            rays.active = hit ? (rays.active | (1 << r)) : (rays.active & ~(1 << r));
+        }
+    }
 }
 
 // FastDvrKernel::boxExit for eight lanes, cells lo .. hi of a level of cells

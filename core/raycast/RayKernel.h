@@ -150,7 +150,10 @@ RayOutput RayKernel<Real, Field>::cast(const glm::dvec3& o, const glm::dvec3& d,
         return out;
     }
     const double t0 = span.t0, dt = s_.dt;
-    const long nFirst = span.nFirst, nLast = span.nLast;
+    const bool continuity = s_.preintegrate || s_.mode == RenderMode::Isosurface;
+    const long nFirst =
+        continuity && previousSampleShared(s_, o, d, span) ? span.nFirst - 1 : span.nFirst;
+    const long nLast = span.nLast;
 
     Real accR = 0, accG = 0, accB = 0, accA = 0;
     Real extreme = s_.mode == RenderMode::MinIp ? std::numeric_limits<Real>::max()
@@ -161,7 +164,6 @@ RayOutput RayKernel<Real, Field>::cast(const glm::dvec3& o, const glm::dvec3& d,
     Real prev = 0;
     double tPrev = 0.0;
     int checkedCell = -1;
-    const bool continuity = s_.preintegrate || s_.mode == RenderMode::Isosurface;
     auto position = [&](double t) { return Vec3<Real>(o + d * t); };
     // Lattice samples: one formula for every path, so leaping never moves a sample.
     const Vec3<Real> entry(o + d * t0), stride(d * dt);
@@ -307,6 +309,8 @@ RayOutput RayKernel<Real, Field>::cast(const glm::dvec3& o, const glm::dvec3& d,
             return out;
         }
         const double v = s_.mode == RenderMode::Average ? sum / double(count) : double(extreme);
+        out.projection = s_.mode == RenderMode::Average ? glm::dvec2(sum, double(count))
+                                                        : glm::dvec2(double(extreme), 1.0);
         const Rgba c = classifyValue(v, true);
         // Projections show the transfer function's colour and opacity of the projected value.
         const double a = double(c.a);

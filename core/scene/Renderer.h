@@ -27,6 +27,10 @@ struct RenderStats {
 struct RenderResult {
     ImageRGBA8 image;                     // opaque: composited over the background
     std::vector<glm::vec4> premultiplied; // per pixel, before the background (row-major)
+    // A part of a volume (a rank of a distributed render) in MIP, MinIP or
+    // average: per pixel the projected value and 1, or the sum of the samples
+    // and their count; (0, 0) where the ray took no sample. Empty otherwise.
+    std::vector<glm::vec2> projection;
     RenderStats stats;
 };
 

@@ -333,6 +333,66 @@ void writeSamples(uint samples) {
     }
 }
 
+// A part of a volume drawn alone (core/volume/VolumePart.h): its box's shared
+// hi faces are open, and the description's clip box bounds the lead-in sample.
+uniform int uPart;
+uniform ivec3 uOpenHi;
+uniform dvec3 uSceneClipLo, uSceneClipHi;
+
+// raySpanIn (core/raycast/RaySetup.h): the box anchors the lattice; the clip
+// box is closed but on the hi faces openHi names.
+bool raySpanIn(dvec3 o, dvec3 d, dvec3 clipLo, dvec3 clipHi, ivec3 openHi, out double t0,
+               out int nFirst, out int nLast) {
+    t0 = -1.0e300LF;
+    double t1 = 1.0e300LF, c0 = t0, c1 = t1;
+    bool c0Open = false, c1Open = false;
+    nFirst = 0;
+    nLast = -1;
+    for (int a = 0; a < 3; ++a) {
+        if (abs(d[a]) < 1e-15) {
+            if (o[a] < uBoxLo[a] || o[a] > uBoxHi[a] || o[a] < clipLo[a] || o[a] > clipHi[a] ||
+                (openHi[a] != 0 && o[a] >= clipHi[a])) {
+                return false;
+            }
+            continue;
+        }
+        double ta = (uBoxLo[a] - o[a]) / d[a], tb = (uBoxHi[a] - o[a]) / d[a];
+        t0 = max(t0, min(ta, tb));
+        t1 = min(t1, max(ta, tb));
+        double ca = (clipLo[a] - o[a]) / d[a], cb = (clipHi[a] - o[a]) / d[a];
+        double enter = min(ca, cb), leave = max(ca, cb);
+        bool enterOpen = openHi[a] != 0 && d[a] < 0.0, leaveOpen = openHi[a] != 0 && d[a] > 0.0;
+        if (enter > c0) {
+            c0 = enter;
+            c0Open = enterOpen;
+        } else if (enter == c0) {
+            c0Open = c0Open || enterOpen;
+        }
+        if (leave < c1) {
+            c1 = leave;
+            c1Open = leaveOpen;
+        } else if (leave == c1) {
+            c1Open = c1Open || leaveOpen;
+        }
+    }
+    t0 = max(t0, 0.0);
+    double tEnd = min(t1, c1);
+    if (t1 < t0 || tEnd < max(t0, c0)) {
+        return false;
+    }
+    if (c0Open && c0 >= t0) {
+        nFirst = int(floor((c0 - t0) / uDt + 1e-9)) + 1;
+    } else {
+        nFirst = c0 > t0 ? int(ceil((c0 - t0) / uDt - 1e-9)) : 0;
+    }
+    if (c1Open && c1 <= t1) {
+        nLast = int(ceil((c1 - t0) / uDt - 1e-9)) - 1;
+    } else {
+        nLast = int(floor((tEnd - t0) / uDt + 1e-9));
+    }
+    return true;
+}
+
 void main() {
     outColour = vec4(0.0);
     outSamples = 0u;
@@ -346,28 +406,21 @@ void main() {
     vec3 w = vec3(wd);
 
     // raySpan (core/raycast/RaySetup.h), in double as on the CPU.
-    double t0 = -1.0e300LF, t1 = 1.0e300LF, c0 = t0, c1 = t1;
-    for (int a = 0; a < 3; ++a) {
-        if (abs(d[a]) < 1e-15) {
-            if (o[a] < uBoxLo[a] || o[a] > uBoxHi[a] || o[a] < uClipLo[a] || o[a] > uClipHi[a]) {
-                return;
-            }
-            continue;
-        }
-        double ta = (uBoxLo[a] - o[a]) / d[a], tb = (uBoxHi[a] - o[a]) / d[a];
-        t0 = max(t0, min(ta, tb));
-        t1 = min(t1, max(ta, tb));
-        double ca = (uClipLo[a] - o[a]) / d[a], cb = (uClipHi[a] - o[a]) / d[a];
-        c0 = max(c0, min(ca, cb));
-        c1 = min(c1, max(ca, cb));
-    }
-    t0 = max(t0, 0.0);
-    double tEnd = min(t1, c1);
-    if (t1 < t0 || tEnd < max(t0, c0)) {
+    double t0;
+    int nFirst, nLast;
+    if (!raySpanIn(o, d, uClipLo, uClipHi, uOpenHi, t0, nFirst, nLast)) {
         return;
     }
-    int nFirst = c0 > t0 ? int(ceil((c0 - t0) / uDt - 1e-9)) : 0;
-    int nLast = int(floor((tEnd - t0) / uDt + 1e-9));
+    // A part of a volume: crossings and segments across a shared face start
+    // one sample early (previousSampleShared in RaySetup.h).
+    if (uPart != 0 && (kPreintegrate || kMode == kIso) && nFirst <= nLast) {
+        double sceneT0;
+        int sceneFirst, sceneLast;
+        if (raySpanIn(o, d, uSceneClipLo, uSceneClipHi, ivec3(0), sceneT0, sceneFirst, sceneLast) &&
+            nFirst - 1 >= sceneFirst) {
+            nFirst -= 1;
+        }
+    }
 
     vec3 entry = vec3(o + d * t0), stride = vec3(d * uDt);
     gEntry = levelPosition(entry);

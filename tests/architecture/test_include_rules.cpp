@@ -147,6 +147,12 @@ private slots:
             << "render/Bad.cpp"
             << "// tags\n#include \"core/dicom/Tags_p.h\"\n"
             << QStringList{"layers:2"};
+        QTest::newRow("render header includes mpi") << "render/distributed/Bad.h"
+                                                    << "#pragma once\n#include <mpi.h>\n"
+                                                    << QStringList{"third-party:2"};
+        QTest::newRow("render header includes IceT") << "render/distributed/Bad.h"
+                                                     << "#pragma once\n#include <IceT.h>\n"
+                                                     << QStringList{"third-party:2"};
         QTest::newRow("ui calls glClear")
             << "ui/mpr/Bad.cpp"
             << "void clear(QOpenGLFunctions* gl) {\n    gl->glClear(GL_COLOR_BUFFER_BIT);\n}\n"

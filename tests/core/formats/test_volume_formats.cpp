@@ -31,6 +31,7 @@ private slots:
     void metaImageRoundTrip_data();
     void metaImageRoundTrip();
     void metaImageBigEndianAndDirection();
+    void metaImageSlices();
     void metaImageCompressed();
     void metaImageUCharLocal();
     void metaImageWriteFailureLeavesNothing();
@@ -44,6 +45,29 @@ private slots:
     void inVesaliusMissingKey();
     void inVesaliusDemo();
 };
+
+// A slab of slices read from its byte range equals the same slices of the whole.
+void TestVolumeFormats::metaImageSlices() {
+    QTemporaryDir dir;
+    const fs::path mhd = dirOf(dir) / "volume.mhd";
+    const VolumeGeometry g = obliqueGeometry();
+    const Volume v = patternVolume<std::int16_t>(g);
+    writeMetaImage(v, mhd);
+    QVERIFY(metaImageHasSliceRanges(mhd));
+    const int k0 = 1, k1 = g.dims.z - 1;
+    const Volume slab = readMetaImageSlices(mhd, k0, k1);
+    QCOMPARE(slab.dims(), glm::ivec3(g.dims.x, g.dims.y, k1 - k0));
+    QVERIFY(glm::length(slab.geometry().origin - g.toPatient({0.0, 0.0, double(k0)})) < 1e-9);
+    for (int k = k0; k < k1; ++k) {
+        for (int j = 0; j < g.dims.y; ++j) {
+            for (int i = 0; i < g.dims.x; ++i) {
+                QCOMPARE(slab.value(i, j, k - k0), v.value(i, j, k));
+            }
+        }
+    }
+    QVERIFY_THROWS_EXCEPTION(LoadError, readMetaImageSlices(mhd, 0, g.dims.z + 1));
+    QVERIFY_THROWS_EXCEPTION(LoadError, readMetaImageSlices(mhd, 2, 2));
+}
 
 void TestVolumeFormats::metaImageRoundTrip_data() {
     QTest::addColumn<int>("type");

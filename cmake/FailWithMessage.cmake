@@ -1,0 +1,2 @@
+# cmake -DMESSAGE=... -P FailWithMessage.cmake: a test that fails, saying why.
+message(FATAL_ERROR "${MESSAGE}")

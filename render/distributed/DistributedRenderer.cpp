@@ -1,0 +1,190 @@
+#include "render/distributed/DistributedRenderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "core/raycast/PartProjection.h"
+#include "core/scene/ViewFrame.h"
+#include "render/distributed/IceTCompositor.h"
+#include "render/distributed/RankAgreement.h"
+
+namespace lucent {
+
+namespace {
+
+// This process's resident memory in MiB (Linux: VmRSS), 0 where unknown.
+double residentMib() {
+    std::ifstream status("/proc/self/status");
+    std::string line;
+    while (std::getline(status, line)) {
+        if (line.rfind("VmRSS:", 0) == 0) {
+            std::istringstream in(line.substr(6));
+            double kib = 0.0;
+            in >> kib;
+            return kib / 1024.0;
+        }
+    }
+    return 0.0;
+}
+
+std::string fixed(double v, int digits = 1) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.*f", digits, v);
+    return text;
+}
+
+} // namespace
+
+DistributedRenderer::DistributedRenderer(const Communicator& comm, LoadedPart part,
+                                         RendererKind kind)
+    : comm_(comm), part_(std::move(part)) {
+    onEveryRank(comm_, "opening its renderer", [&] {
+        // GL ranks on a node with several GPUs each take their own, by local rank.
+        device_ = RenderDevice::open(kind, comm_.localRank());
+        RenderDevice::Opened opened = device_->openPartRenderer(part_.voxels, part_.where);
+        caster_ = std::move(opened.renderer);
+        fallback_ =
+            !device_->fallbackReason().empty() ? device_->fallbackReason() : opened.fallbackReason;
+        icet_ = std::make_unique<IceTCompositor>(comm_);
+    });
+    const double gl = comm_.allMin(caster_->backend() == "gl" ? 1.0 : 0.0);
+    backend_ = gl > 0.0 ? "gl" : "cpu";
+}
+
+DistributedRenderer::~DistributedRenderer() = default;
+
+std::string DistributedRenderer::device() const {
+    return std::to_string(comm_.size()) + " ranks, " + caster_->device() + " each";
+}
+
+// DVR and iso (opaque hits): ordered blending. MIP and MinIP: IceT's depth
+// test with the value as depth (the winning rank's colour is the colour of the
+// winning value). Average: the ranks' sums and counts added up on rank 0.
+std::vector<glm::vec4> DistributedRenderer::compositeParts(const RenderDescription& d,
+                                                           const RenderResult& mine,
+                                                           const std::vector<int>& order) {
+    switch (d.mode) {
+    case RenderMode::Dvr:
+    case RenderMode::Isosurface:
+        return icet_->blend(d.width, d.height, mine.premultiplied, order);
+    case RenderMode::Mip:
+    case RenderMode::MinIp: {
+        const auto [lo, hi] = part_.where.valueRange;
+        std::vector<float> depth(mine.projection.size());
+        for (std::size_t i = 0; i < depth.size(); ++i) {
+            depth[i] = projectionDepth(d.mode, mine.projection[i], lo, hi);
+        }
+        return icet_->closest(d.width, d.height, mine.premultiplied, depth);
+    }
+    case RenderMode::Average:
+        break;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<float> sums(mine.projection.size() * 2);
+    for (std::size_t i = 0; i < mine.projection.size(); ++i) {
+        sums[2 * i] = mine.projection[i].x;
+        sums[2 * i + 1] = mine.projection[i].y;
+    }
+    comm_.sumTo(sums, 0);
+    averageMs_ =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (comm_.rank() != 0) {
+        return {};
+    }
+    std::vector<glm::vec4> out(mine.projection.size());
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        out[i] = averageColour(d.transferFunction, {sums[2 * i], sums[2 * i + 1]});
+    }
+    return out;
+}
+
+RenderResult DistributedRenderer::render(const RenderDescription& description) {
+    RenderDescription d = description;
+    d.volume = &part_.voxels;
+    d.validate(); // the same answer on every rank: the same description
+    RenderResult mine;
+    double renderMs = 0.0;
+    onEveryRank(comm_, "rendering its part", [&] {
+        const auto start = std::chrono::steady_clock::now();
+        mine = caster_->render(d);
+        renderMs =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                .count();
+    });
+
+    // Visibility order from this frame's eye: the k-d tree traversed from it.
+    const VolumeGeometry& whole = part_.where.whole;
+    const glm::dvec3 eye = whole.toIndex(makeViewFrame(whole, d.camera, d.width, d.height).eye);
+    const std::vector<int> order = part_.partition.frontToBack(eye);
+    // Ranks that finish early wait here, so that composite_ms is the compositing alone.
+    const auto waitStart = std::chrono::steady_clock::now();
+    comm_.barrier();
+    const double waitMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - waitStart)
+            .count();
+    std::vector<glm::vec4> composite;
+    onEveryRank(comm_, "compositing", [&] { composite = compositeParts(d, mine, order); });
+
+    // Figures of every rank.
+    // Samples and bricks summed over the ranks (their part grids, halos included).
+    double sums[3] = {double(mine.stats.samples), double(mine.stats.bricksTotal),
+                      double(mine.stats.bricksUsed)};
+    comm_.allSum(sums);
+    const std::vector<double> times = comm_.allGather(renderMs);
+    const double voxels = comm_.allMax(double(part_.voxels.geometry().voxelCount()));
+    // What a rank may hold: its box grown by the halo on every side (clamped).
+    const glm::dvec3 bound =
+        glm::min(glm::dvec3(part_.where.owned.hi - part_.where.owned.lo + 1 + 2 * part_.halo),
+                 glm::dvec3(whole.dims));
+    const double voxelBound = comm_.allMax(bound.x * bound.y * bound.z);
+    const double filesRead = comm_.allMax(double(part_.read.files.size()));
+    const double bytesRead = comm_.allMax(part_.read.bytes);
+    const double partBytesRead = comm_.allMax(part_.read.partBytes);
+    const double slabs = comm_.allMin(part_.read.slabs ? 1.0 : 0.0);
+    const double resident = comm_.allMax(residentMib());
+    const double sent = comm_.allMax(icet_->last().bytesSent);
+    details_ = {
+        {"ranks", std::to_string(comm_.size())},
+        {"composite_ms", fixed(d.mode == RenderMode::Average ? averageMs_ : icet_->last().totalMs)},
+        {"icet_composite_ms", fixed(icet_->last().compositeMs)},
+        {"rank0_wait_ms", fixed(waitMs)},
+        {"render_ms_max", fixed(*std::max_element(times.begin(), times.end()))},
+        {"render_ms_min", fixed(*std::min_element(times.begin(), times.end()))},
+        {"rank_voxels_max", fixed(voxels, 0)},
+        {"rank_voxels_bound_max", fixed(voxelBound, 0)},
+        {"volume_voxels", std::to_string(whole.voxelCount())},
+        {"rank_resident_mib_max", fixed(resident)},
+        {"rank_files_read_max", fixed(filesRead, 0)},
+        {"rank_bytes_read_max", fixed(bytesRead, 0)},
+        {"rank_part_bytes_read_max", fixed(partBytesRead, 0)},
+        {"rank_slab_reading_min", fixed(slabs, 0)},
+        {"icet_bytes_sent_max", fixed(sent, 0)},
+        {"icet_strategy", icet_->strategyName()},
+        {"rank_backend_gl_min", backend_ == "gl" ? "1" : "0"},
+    };
+
+    RenderResult out;
+    out.stats = mine.stats;
+    out.stats.samples = std::size_t(sums[0]);
+    out.stats.bricksTotal = std::size_t(sums[1]);
+    out.stats.bricksUsed = std::size_t(sums[2]);
+    if (comm_.rank() != 0) {
+        return out;
+    }
+    out.premultiplied = std::move(composite);
+    out.image = ImageRGBA8::filled(d.width, d.height, 255);
+    for (std::size_t i = 0; i < out.premultiplied.size(); ++i) {
+        const glm::vec4 p = out.premultiplied[i];
+        const glm::dvec3 rgb = glm::dvec3(p) + (1.0 - double(p.a)) * d.background;
+        for (int c = 0; c < 3; ++c) {
+            out.image.pixels[i * 4 + std::size_t(c)] =
+                std::uint8_t(std::clamp(rgb[c], 0.0, 1.0) * 255.0 + 0.5);
+        }
+    }
+    return out;
+}
+
+} // namespace lucent

@@ -1,0 +1,153 @@
+// The GPU ray caster's part mode: a volume drawn in parts (each part a
+// GpuRayCaster over its box plus halo), composited front to back, equals the
+// GPU ray caster's image of the whole volume; the parts take each sample once.
+#include <QTest>
+
+#include "core/image/ImageMetrics.h"
+#include "render/GpuRayCaster.h"
+#include "render/OffscreenContext.h"
+#include "tests/core/raycast/RaycastScenes.h"
+#include "tests/core/raycast/VolumeParts.h"
+
+using namespace lucent;
+using namespace lucent::test;
+
+namespace {
+
+std::unique_ptr<Renderer> openGpu(const Volume& part, const VolumePart& where) {
+    return std::make_unique<GpuRayCaster>(part, where);
+}
+
+struct View {
+    const char* name;
+    double azimuth, elevation;
+};
+const View kViews[] = {{"front", 0, 0},     {"left", 90, 0},       {"back", 180, 0},
+                       {"right", 270, 0},   {"top", 0, 90},        {"bottom", 0, -90},
+                       {"oblique", 35, 25}, {"oblique2", 215, -40}};
+
+} // namespace
+
+class TestGpuVolumeParts : public QObject {
+    Q_OBJECT
+
+    std::unique_ptr<OffscreenContext> context_;
+    Volume volume_ = facesAndBlobs(VoxelType::Int16);
+
+private slots:
+    void initTestCase() { context_ = OffscreenContext::create(); }
+
+    void partsEqualTheWhole_data() {
+        QTest::addColumn<int>("scene");
+        QTest::newRow("linear shaded") << 0;
+        QTest::newRow("cubic shaded") << 1;
+        QTest::newRow("preintegrated") << 2;
+        QTest::newRow("iso") << 3;
+    }
+    void partsEqualTheWhole() {
+        QFETCH(int, scene);
+        RenderDescription d = describe(volume_, rampTf(true), 48);
+        d.background = glm::dvec3(0.1, 0.2, 0.3);
+        d.sampling.brickSize = 16;
+        if (scene == 1) {
+            d.sampling.interpolation = Interpolation::Cubic;
+        } else if (scene == 2) {
+            d.sampling.preintegrate = true;
+        } else if (scene == 3) {
+            d.mode = RenderMode::Isosurface;
+            d.isoValue = 100.0;
+        }
+        GpuRayCaster whole(volume_);
+        for (int parts : {2, 3, 4}) {
+            const Parts p = split(volume_, parts, d, 8);
+            for (const View& view : kViews) {
+                d.camera.azimuth = view.azimuth;
+                d.camera.elevation = view.elevation;
+                d.volume = &volume_;
+                const RenderResult reference = whole.render(d);
+                const Composite c = renderInParts(p, d, openGpu);
+                const double db = psnr(reference.image, c.image);
+                QVERIFY2(
+                    db >= 50.0,
+                    qPrintable(QString("%1 parts, %2: %3 dB").arg(parts).arg(view.name).arg(db)));
+            }
+        }
+    }
+
+    void everySampleIsTakenOnce() {
+        RenderDescription d = describe(volume_, flatTf(0.01), 49);
+        d.sampling.earlyTermination = 1.0;
+        d.sampling.emptySpaceLeaping = false;
+        d.sampling.step = 0.5;
+        d.sampling.brickSize = 16;
+        GpuRayCaster whole(volume_);
+        for (int parts : {2, 3, 4}) {
+            const Parts p = split(volume_, parts, d, 8);
+            for (const View& view : kViews) {
+                d.camera.azimuth = view.azimuth;
+                d.camera.elevation = view.elevation;
+                d.volume = &volume_;
+                const RenderResult reference = whole.render(d);
+                const Composite c = renderInParts(p, d, openGpu);
+                QVERIFY2(c.samples == reference.stats.samples,
+                         qPrintable(QString("%1 parts, %2: %3 samples in parts, %4 whole")
+                                        .arg(parts)
+                                        .arg(view.name)
+                                        .arg(c.samples)
+                                        .arg(reference.stats.samples)));
+            }
+        }
+    }
+
+    // A clip box that leaves one part nothing to draw: that part's image is
+    // empty and the composite still equals the whole.
+    void aClipBoxEmptiesOnePart() {
+        RenderDescription d = describe(volume_, rampTf(true), 48);
+        d.sampling.brickSize = 16;
+        const Parts p = split(volume_, 3, d, 8);
+        const PartBox box = p.partition.box(2);
+        for (int a = 0; a < 3; ++a) {
+            if (box.lo[a] > 0) {
+                d.clip.hi[a] = double(box.lo[a]) - 0.5;
+                break;
+            }
+            if (box.hi[a] < volume_.dims()[a] - 1) {
+                d.clip.lo[a] = double(box.hi[a]) + 0.5;
+                break;
+            }
+        }
+        GpuRayCaster whole(volume_);
+        for (const View& view : kViews) {
+            d.camera.azimuth = view.azimuth;
+            d.camera.elevation = view.elevation;
+            d.volume = &volume_;
+            const RenderResult reference = whole.render(d);
+            const Composite c = renderInParts(p, d, openGpu);
+            QCOMPARE(c.partAlpha[2], 0.0f);
+            QVERIFY(c.partAlpha[0] + c.partAlpha[1] > 0.0f);
+            QVERIFY2(psnr(reference.image, c.image) >= 50.0, view.name);
+        }
+    }
+
+    // GL ranks ask for the EGL device of their local rank; any index gives a
+    // context (modulo the devices there are, or the next display that works).
+    void aContextForEveryDeviceIndex() {
+        for (int device : {0, 1, 2, 3, 17}) {
+            const auto context = OffscreenContext::create(device);
+            QVERIFY(!context->description().empty());
+        }
+        context_->makeCurrent();
+    }
+
+    void projectionsAreRefusedClearly() {
+        RenderDescription d = describe(volume_, rampTf(false), 16);
+        d.mode = RenderMode::Mip;
+        const Parts p = split(volume_, 2, d, 8);
+        GpuRayCaster part(p.volumes[0], p.where[0]);
+        d.volume = &p.volumes[0];
+        QVERIFY_THROWS_EXCEPTION(std::invalid_argument, part.render(d));
+    }
+};
+
+QTEST_GUILESS_MAIN(TestGpuVolumeParts)
+#include "test_gpu_volume_parts.moc"
