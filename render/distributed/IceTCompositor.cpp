@@ -163,13 +163,7 @@ std::vector<glm::vec4> IceTCompositor::blend(int width, int height, std::span<co
         icetImageCopyColorf(image, &out[0].x, ICET_IMAGE_COLOR_RGBA_FLOAT);
         checkIceT("copying the composite");
     }
-    icetGetDoublev(ICET_COMPOSITE_TIME, &last_.compositeMs);
-    last_.compositeMs *= 1000.0;
-    IceTInt sent = 0;
-    icetGetIntegerv(ICET_BYTES_SENT, &sent);
-    last_.bytesSent = double(sent);
-    last_.totalMs =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    recordFigures(start);
     return out;
 }
 
@@ -210,6 +204,11 @@ std::vector<glm::vec4> IceTCompositor::closest(int width, int height,
         }
         checkIceT("copying the composite");
     }
+    recordFigures(start);
+    return out;
+}
+
+void IceTCompositor::recordFigures(std::chrono::steady_clock::time_point start) {
     icetGetDoublev(ICET_COMPOSITE_TIME, &last_.compositeMs);
     last_.compositeMs *= 1000.0;
     IceTInt sent = 0;
@@ -217,7 +216,6 @@ std::vector<glm::vec4> IceTCompositor::closest(int width, int height,
     last_.bytesSent = double(sent);
     last_.totalMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    return out;
 }
 
 } // namespace lucent

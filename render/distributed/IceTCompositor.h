@@ -8,6 +8,7 @@
 // Images are w x h pixels, row-major, premultiplied RGBA in float, over
 // transparent black (the background is added once, after compositing).
 
+#include <chrono>
 #include <cstddef>
 #include <memory>
 #include <span>
@@ -50,6 +51,8 @@ public:
     const char* strategyName() const;
 
 private:
+    // IceT's figures of the composite just done, and the time since start.
+    void recordFigures(std::chrono::steady_clock::time_point start);
     struct State;
     std::unique_ptr<State> state_;
     CompositeFigures last_;

@@ -24,18 +24,11 @@ const QString kLargerCt = LUCENT_TEST_DATA_DIR "/dcm_qa_ct/Philips_S21570/S2020"
 
 // mpirun -n N lucent-cli ARGS, oversubscribed (more ranks than cores), as root too.
 CliRun runMpi(int ranks, const QStringList& args, int timeoutMs = 120000) {
-    QProcess p;
-    QStringList all = {"-n", QString::number(ranks), "--oversubscribe", "--allow-run-as-root",
-                       QString(LUCENT_BIN_DIR) + "/lucent-cli"};
-    all += args;
-    p.start(LUCENT_MPIEXEC, all);
-    if (!p.waitForFinished(timeoutMs)) {
-        p.kill();
-        p.waitForFinished();
-    }
-    return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1,
-            QString::fromUtf8(p.readAllStandardOutput()),
-            QString::fromUtf8(p.readAllStandardError())};
+    const QStringList all =
+        QStringList{"-n", QString::number(ranks), "--oversubscribe", "--allow-run-as-root",
+                    QString(LUCENT_BIN_DIR) + "/lucent-cli"} +
+        args;
+    return runProgram(LUCENT_MPIEXEC, all, timeoutMs);
 }
 
 double statOf(const QString& out, const QString& key) {

@@ -13,9 +13,10 @@ struct CliRun {
     QString err;
 };
 
-inline CliRun runCli(const QStringList& args, int timeoutMs = 120000) {
+// Runs `program` with `args`, waiting at most timeoutMs.
+inline CliRun runProgram(const QString& program, const QStringList& args, int timeoutMs) {
     QProcess p;
-    p.start(QString(LUCENT_BIN_DIR) + "/lucent-cli", args);
+    p.start(program, args);
     if (!p.waitForFinished(timeoutMs)) {
         p.kill();
         p.waitForFinished();
@@ -23,6 +24,10 @@ inline CliRun runCli(const QStringList& args, int timeoutMs = 120000) {
     return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1,
             QString::fromUtf8(p.readAllStandardOutput()),
             QString::fromUtf8(p.readAllStandardError())};
+}
+
+inline CliRun runCli(const QStringList& args, int timeoutMs = 120000) {
+    return runProgram(QString(LUCENT_BIN_DIR) + "/lucent-cli", args, timeoutMs);
 }
 
 } // namespace lucent::test
