@@ -3,10 +3,13 @@
 // by its own renderer, composited in one process as the distributed renderer
 // composites across ranks: the in-process check of the part renderers.
 
+#include <QTest>
+
 #include <algorithm>
 #include <vector>
 
 #include "core/image/Image.h"
+#include "core/image/ImageMetrics.h"
 #include "core/raycast/BrickVisibility.h"
 #include "core/raycast/PartHalo.h"
 #include "core/raycast/PartProjection.h"
@@ -15,6 +18,15 @@
 #include "core/volume/VolumePartition.h"
 
 namespace lucent::test {
+
+struct View {
+    const char* name;
+    double azimuth, elevation;
+};
+// Six axis views and two oblique ones.
+inline constexpr View kViews[] = {{"front", 0, 0},     {"left", 90, 0},       {"back", 180, 0},
+                                  {"right", 270, 0},   {"top", 0, 90},        {"bottom", 0, -90},
+                                  {"oblique", 35, 25}, {"oblique2", 215, -40}};
 
 struct Parts {
     VolumePartition partition;
@@ -91,6 +103,43 @@ template <class Open> Composite renderInParts(const Parts& parts, RenderDescript
         }
     }
     return c;
+}
+
+// Moves the clip box so that part n has nothing left to draw: across an axis on
+// which its box does not span the volume.
+inline void clipAwayPart(RenderDescription& d, const Parts& p, int n, glm::ivec3 dims) {
+    const PartBox box = p.partition.box(n);
+    for (int a = 0; a < 3; ++a) {
+        if (box.lo[a] > 0) {
+            d.clip.hi[a] = double(box.lo[a]) - 0.5;
+            return;
+        }
+        if (box.hi[a] < dims[a] - 1) {
+            d.clip.lo[a] = double(box.hi[a]) + 0.5;
+            return;
+        }
+    }
+}
+
+// From every view: part n draws nothing, the others something, and their
+// composite equals the whole volume's render (`whole`) >= 50 dB.
+template <class Open>
+void expectPartEmptied(Renderer& whole, const Volume& volume, const Parts& p, RenderDescription d,
+                       int n, Open open) {
+    for (const View& view : kViews) {
+        d.camera.azimuth = view.azimuth;
+        d.camera.elevation = view.elevation;
+        d.volume = &volume;
+        const RenderResult reference = whole.render(d);
+        const Composite c = renderInParts(p, d, open);
+        QCOMPARE(c.partAlpha[std::size_t(n)], 0.0f);
+        float others = 0.0f;
+        for (std::size_t k = 0; k < c.partAlpha.size(); ++k) {
+            others += k == std::size_t(n) ? 0.0f : c.partAlpha[k];
+        }
+        QVERIFY(others > 0.0f);
+        QVERIFY2(psnr(reference.image, c.image) >= 50.0, view.name);
+    }
 }
 
 } // namespace lucent::test
