@@ -321,8 +321,7 @@ Volume readMetaImageSlices(const fs::path& mhd, int k0, int k1) {
     }
     if (k0 < 0 || k1 > g.dims.z || k0 >= k1) {
         throw LoadError(f.h.file + ": slices " + std::to_string(k0) + " .. " +
-                        std::to_string(k1 - 1) + " are not within its " +
-                        std::to_string(g.dims.z));
+                        std::to_string(k1 - 1) + " are not within its " + std::to_string(g.dims.z));
     }
     const std::uint64_t sliceBytes =
         std::uint64_t(g.dims.x) * std::uint64_t(g.dims.y) * formats::rawTypeSize(f.layout.rawType);

@@ -131,8 +131,7 @@ void castImage(const Kernel& kernel, const VolumeGeometry& g, const ViewFrame& f
                     total += r[c].samples;
                     premultiplied[std::size_t(y) * desc.width + x] = glm::vec4(r[c].rgba);
                     if (projection != nullptr) {
-                        (*projection)[std::size_t(y) * desc.width + x] =
-                            glm::vec2(r[c].projection);
+                        (*projection)[std::size_t(y) * desc.width + x] = glm::vec2(r[c].projection);
                     }
                     const glm::dvec3 rgb =
                         glm::dvec3(r[c].rgba) + (1.0 - r[c].rgba.a) * desc.background;

@@ -335,15 +335,15 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
         makeViewFrame(part_ ? part_->whole : g, desc.camera, desc.width, desc.height);
 
     // A part's projections are composited from their values (and counts).
-    const bool projecting = part_ && (desc.mode == RenderMode::Mip ||
-                                      desc.mode == RenderMode::MinIp ||
-                                      desc.mode == RenderMode::Average);
+    const bool projecting =
+        part_ && (desc.mode == RenderMode::Mip || desc.mode == RenderMode::MinIp ||
+                  desc.mode == RenderMode::Average);
     if (projecting) {
         result.projection.assign(result.premultiplied.size(), glm::vec2(0.0f));
     }
     auto cast = [&](const auto& kernel) {
-        castImage(kernel, g, frame, local, result.image, result.premultiplied,
-                  result.stats.samples, projecting ? &result.projection : nullptr);
+        castImage(kernel, g, frame, local, result.image, result.premultiplied, result.stats.samples,
+                  projecting ? &result.projection : nullptr);
     };
     auto run = [&](const auto& setup, auto tag) {
         using Real = decltype(tag);
