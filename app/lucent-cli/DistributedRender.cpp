@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "CliCommand.h"
+#include "FrameSeries.h"
 #include "RenderFlags.h"
 #include "core/image/PngIO.h"
 #include "core/io/Catalog.h"
@@ -131,38 +132,19 @@ int runDistributedRender(const QCommandLineParser& parser) {
                    "ranks render on the CPU\n";
         }
         const double loadMs = double(timer.nsecsElapsed()) / 1e6;
-        std::vector<double> frames;
-        RenderResult first;
-        FrameDetails details;
-        for (int n = 0; n < repeat; ++n) {
-            timer.restart();
-            RenderResult r = renderer.render(desc);
-            frames.push_back(double(timer.nsecsElapsed()) / 1e6);
-            if (n == 0) {
-                first = std::move(r);
-            }
-            details = renderer.frameDetails(); // the last frame's: steady state
-            desc.camera.azimuth += 5.0;
-        }
+        const FrameSeries series = renderFrames(renderer, desc, repeat);
         if (root) {
-            writePng(first.image, parser.value("output").toStdString());
+            writePng(series.first.image, parser.value("output").toStdString());
         }
         if (root && parser.isSet("stats")) {
-            const RenderStats& s = first.stats;
             QTextStream out(stdout);
-            out << "load_ms=" << QString::number(loadMs, 'f', 1);
-            if (repeat > 1) {
-                out << " first_ms=" << QString::number(frames.front(), 'f', 1);
-                frames.erase(frames.begin());
-            }
             const PartReadStats& read = renderer.part().read;
-            out << " render_ms=" << QString::number(median(frames), 'f', 1)
-                << " samples=" << s.samples << " bricks_total=" << s.bricksTotal
-                << " bricks_used=" << s.bricksUsed << " lod=0"
-                << " frames=" << repeat << " backend=" << QString::fromStdString(renderer.backend())
+            out << seriesStats(loadMs, series) << " frames=" << repeat
+                << " backend=" << QString::fromStdString(renderer.backend())
                 << " distributed=1 rank0_slab_reading=" << (read.slabs ? 1 : 0)
                 << " rank0_files_read=" << read.files.size();
-            for (const auto& [key, value] : details) {
+            // The last frame's figures: steady state.
+            for (const auto& [key, value] : series.lastDetails) {
                 out << " " << QString::fromStdString(key) << "=" << QString::fromStdString(value);
             }
             out << "\n";

@@ -10,6 +10,7 @@
 
 #include "CliCommand.h"
 #include "DistributedRender.h"
+#include "FrameSeries.h"
 #include "QualityOption.h"
 #include "RemoteRender.h"
 #include "RenderFlags.h"
@@ -194,49 +195,29 @@ int runRender(const QStringList& args) {
                 [&](const RenderDescription& d) { return renderer.render(d); }, err);
         }
         const RenderDescription firstDesc = desc; // the frame whose figures --stats prints
-        std::vector<double> frames;
-        RenderResult first;
-        FrameDetails details;
-        for (int n = 0; n < repeat; ++n) {
-            timer.restart();
-            RenderResult r = renderer.render(desc);
-            frames.push_back(double(timer.nsecsElapsed()) / 1e6);
-            if (n == 0) {
-                if (!r.stats.lodReason.empty()) {
-                    err << "lucent-cli render: rendered from level " << r.stats.lod << ": "
-                        << QString::fromStdString(r.stats.lodReason) << "\n";
-                }
-                first = std::move(r);
-                details = renderer.frameDetails();
-            } else if (n + 1 == repeat) {
-                // The first frame's figures, its times from the last frame (no uploads).
-                for (const auto& [key, value] : renderer.frameDetails()) {
-                    if (key == "uploads") {
-                        details.emplace_back("uploads_after_first", value);
-                    }
-                    for (auto& [firstKey, firstValue] : details) {
-                        if (firstKey == key && key.ends_with("_ms")) {
-                            firstValue = value;
-                        }
-                    }
-                }
-            }
-            desc.camera.azimuth += 5.0;
+        const FrameSeries series = renderFrames(renderer, desc, repeat);
+        const RenderResult& first = series.first;
+        if (!first.stats.lodReason.empty()) {
+            err << "lucent-cli render: rendered from level " << first.stats.lod << ": "
+                << QString::fromStdString(first.stats.lodReason) << "\n";
         }
         writePng(first.image, parser.value("output").toStdString());
         if (parser.isSet("stats")) {
-            const RenderStats& s = first.stats;
-            QTextStream out(stdout);
-            out << "load_ms=" << QString::number(loadMs, 'f', 1);
-            if (repeat > 1) {
-                out << " first_ms=" << QString::number(frames.front(), 'f', 1);
-                frames.erase(frames.begin());
+            // The first frame's figures, its times from the last frame (no uploads).
+            FrameDetails details = series.firstDetails;
+            for (const auto& [key, value] : series.lastDetails) {
+                if (key == "uploads" && repeat > 1) {
+                    details.emplace_back("uploads_after_first", value);
+                }
+                for (auto& [firstKey, firstValue] : details) {
+                    if (firstKey == key && key.ends_with("_ms")) {
+                        firstValue = value;
+                    }
+                }
             }
-            out << " render_ms=" << QString::number(median(frames), 'f', 1)
-                << " samples=" << s.samples << " bricks_total=" << s.bricksTotal
-                << " bricks_used=" << s.bricksUsed << " lod=" << s.lod
-                << " brute_samples=" << bruteForceSamples(firstDesc) << " frames=" << repeat
-                << QString::fromStdString(qualityStats)
+            QTextStream out(stdout);
+            out << seriesStats(loadMs, series) << " brute_samples=" << bruteForceSamples(firstDesc)
+                << " frames=" << repeat << QString::fromStdString(qualityStats)
                 << " backend=" << QString::fromStdString(renderer.backend());
             for (const auto& [key, value] : details) {
                 out << " " << QString::fromStdString(key) << "=" << QString::fromStdString(value);
