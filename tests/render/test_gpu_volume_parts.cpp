@@ -51,18 +51,14 @@ private slots:
         }
         GpuRayCaster whole(volume_);
         for (int parts : {2, 3, 4}) {
-            const Parts p = split(volume_, parts, d, 8);
-            for (const View& view : kViews) {
-                d.camera.azimuth = view.azimuth;
-                d.camera.elevation = view.elevation;
-                d.volume = &volume_;
-                const RenderResult reference = whole.render(d);
-                const Composite c = renderInParts(p, d, openGpu);
-                const double db = psnr(reference.image, c.image);
-                QVERIFY2(
-                    db >= 50.0,
-                    qPrintable(QString("%1 parts, %2: %3 dB").arg(parts).arg(view.name).arg(db)));
-            }
+            compareInViews(
+                whole, volume_, split(volume_, parts, d, 8), d, openGpu,
+                [&](const View& view, const RenderResult& reference, const Composite& c) {
+                    const double db = psnr(reference.image, c.image);
+                    QVERIFY2(db >= 50.0,
+                             qPrintable(
+                                 QString("%1 parts, %2: %3 dB").arg(parts).arg(view.name).arg(db)));
+                });
         }
     }
 
@@ -74,20 +70,7 @@ private slots:
         d.sampling.brickSize = 16;
         GpuRayCaster whole(volume_);
         for (int parts : {2, 3, 4}) {
-            const Parts p = split(volume_, parts, d, 8);
-            for (const View& view : kViews) {
-                d.camera.azimuth = view.azimuth;
-                d.camera.elevation = view.elevation;
-                d.volume = &volume_;
-                const RenderResult reference = whole.render(d);
-                const Composite c = renderInParts(p, d, openGpu);
-                QVERIFY2(c.samples == reference.stats.samples,
-                         qPrintable(QString("%1 parts, %2: %3 samples in parts, %4 whole")
-                                        .arg(parts)
-                                        .arg(view.name)
-                                        .arg(c.samples)
-                                        .arg(reference.stats.samples)));
-            }
+            expectEverySampleOnce(whole, volume_, split(volume_, parts, d, 8), d, openGpu);
         }
     }
 

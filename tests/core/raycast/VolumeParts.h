@@ -121,25 +121,49 @@ inline void clipAwayPart(RenderDescription& d, const Parts& p, int n, glm::ivec3
     }
 }
 
-// From every view: part n draws nothing, the others something, and their
-// composite equals the whole volume's render (`whole`) >= 50 dB.
-template <class Open>
-void expectPartEmptied(Renderer& whole, const Volume& volume, const Parts& p, RenderDescription d,
-                       int n, Open open) {
+// From every view of kViews: the whole volume's render (`whole`) and the parts'
+// composite, handed to check(view, whole frame, composite).
+template <class Open, class Check>
+void compareInViews(Renderer& whole, const Volume& volume, const Parts& p, RenderDescription d,
+                    Open open, Check check) {
     for (const View& view : kViews) {
         d.camera.azimuth = view.azimuth;
         d.camera.elevation = view.elevation;
         d.volume = &volume;
-        const RenderResult reference = whole.render(d);
-        const Composite c = renderInParts(p, d, open);
-        QCOMPARE(c.partAlpha[std::size_t(n)], 0.0f);
-        float others = 0.0f;
-        for (std::size_t k = 0; k < c.partAlpha.size(); ++k) {
-            others += k == std::size_t(n) ? 0.0f : c.partAlpha[k];
-        }
-        QVERIFY(others > 0.0f);
-        QVERIFY2(psnr(reference.image, c.image) >= 50.0, view.name);
+        check(view, whole.render(d), renderInParts(p, d, open));
     }
+}
+
+// Every sample of the whole is taken once by the parts (none twice on a shared face).
+template <class Open>
+void expectEverySampleOnce(Renderer& whole, const Volume& volume, const Parts& p,
+                           const RenderDescription& d, Open open) {
+    compareInViews(whole, volume, p, d, open,
+                   [&](const View& view, const RenderResult& reference, const Composite& c) {
+                       QVERIFY2(c.samples == reference.stats.samples,
+                                qPrintable(QString("%1 parts, %2: %3 samples in parts, %4 whole")
+                                               .arg(p.volumes.size())
+                                               .arg(view.name)
+                                               .arg(c.samples)
+                                               .arg(reference.stats.samples)));
+                   });
+}
+
+// From every view: part n draws nothing, the others something, and their
+// composite equals the whole volume's render >= 50 dB.
+template <class Open>
+void expectPartEmptied(Renderer& whole, const Volume& volume, const Parts& p,
+                       const RenderDescription& d, int n, Open open) {
+    compareInViews(whole, volume, p, d, open,
+                   [&](const View& view, const RenderResult& reference, const Composite& c) {
+                       QCOMPARE(c.partAlpha[std::size_t(n)], 0.0f);
+                       float others = 0.0f;
+                       for (std::size_t k = 0; k < c.partAlpha.size(); ++k) {
+                           others += k == std::size_t(n) ? 0.0f : c.partAlpha[k];
+                       }
+                       QVERIFY(others > 0.0f);
+                       QVERIFY2(psnr(reference.image, c.image) >= 50.0, view.name);
+                   });
 }
 
 } // namespace lucent::test

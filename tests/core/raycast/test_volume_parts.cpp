@@ -147,21 +147,8 @@ private slots:
             // (an odd image size has one) exactly on the shared faces.
             d.sampling.step = 0.5;
             d.width = d.height = 49;
-            const Parts p = split(volume_, parts, d, 8);
             CpuRayCaster whole(volume_);
-            for (const View& view : kViews) {
-                d.camera.azimuth = view.azimuth;
-                d.camera.elevation = view.elevation;
-                d.volume = &volume_;
-                const RenderResult reference = whole.render(d);
-                const Composite c = renderInParts(p, d, openCpu);
-                QVERIFY2(c.samples == reference.stats.samples,
-                         qPrintable(QString("%1 parts, %2: %3 samples in parts, %4 whole")
-                                        .arg(parts)
-                                        .arg(view.name)
-                                        .arg(c.samples)
-                                        .arg(reference.stats.samples)));
-            }
+            expectEverySampleOnce(whole, volume_, split(volume_, parts, d, 8), d, openCpu);
         }
     }
 
