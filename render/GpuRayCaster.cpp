@@ -115,10 +115,6 @@ PartFrame partFrame(const std::optional<VolumePart>& part, const Volume& volume,
     if (!part) {
         return f;
     }
-    if (asked.mode != RenderMode::Dvr && asked.mode != RenderMode::Isosurface) {
-        throw std::invalid_argument(std::string("a GL rank composites dvr and iso, not ") +
-                                    renderModeName(asked.mode) + " (use --backend cpu)");
-    }
     const glm::dvec3 offset(part->offset), wholeHi(part->whole.dims - 1);
     f.boxLo = -offset;
     f.boxHi = wholeHi - offset;
@@ -288,7 +284,11 @@ GpuRenderResult GpuRayCaster::renderWithGpuStats(const RenderDescription& desc) 
     glFinish(); // the read back waits for the cast anyway; this splits the two
     const Clock::time_point t1 = Clock::now();
     RenderResult& r = out.frame;
-    s.target.read(r.premultiplied, r.stats.samples);
+    // A part's projections are composited from their values (and counts).
+    const bool projecting =
+        s.part && (desc.mode == RenderMode::Mip || desc.mode == RenderMode::MinIp ||
+                   desc.mode == RenderMode::Average);
+    s.target.read(r.premultiplied, r.stats.samples, projecting ? &r.projection : nullptr);
     s.inTargetStats = r.stats;
     const Clock::time_point t2 = Clock::now();
     r.image = ImageRGBA8::filled(desc.width, desc.height, 0);

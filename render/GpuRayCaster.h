@@ -61,8 +61,8 @@ public:
     explicit GpuRayCaster(const Volume& volume, GpuOptions options = {});
     // A caster of one part of a volume (a rank of a distributed render), as
     // CpuRayCaster(part, where): its owned box on the whole volume's lattice
-    // and view, over transparent black. DVR and iso only (std::invalid_argument
-    // for the projections, which composite from values).
+    // and view, over transparent black; MIP, MinIP and average also give the
+    // values they composite from (RenderResult::projection).
     GpuRayCaster(const Volume& part, const VolumePart& where, GpuOptions options = {});
     ~GpuRayCaster() override;
     GpuRayCaster(const GpuRayCaster&) = delete;

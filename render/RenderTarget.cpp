@@ -15,6 +15,8 @@ void RenderTarget::resize(int width, int height) {
     glTextureStorage2D(colour_.get(), 1, GL_RGBA32F, width, height);
     samples_ = makeTexture(GL_TEXTURE_2D);
     glTextureStorage2D(samples_.get(), 1, GL_R32UI, width, height);
+    projection_ = makeTexture(GL_TEXTURE_2D);
+    glTextureStorage2D(projection_.get(), 1, GL_RG32F, width, height);
     rowSamples_ = makeTexture(GL_TEXTURE_2D);
     glTextureStorage2D(rowSamples_.get(), 1, GL_R32UI, height, 1);
     GLuint fb = 0;
@@ -22,8 +24,9 @@ void RenderTarget::resize(int width, int height) {
     framebuffer_ = GlFramebuffer(fb);
     glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0, colour_.get(), 0);
     glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, samples_.get(), 0);
-    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    glNamedFramebufferDrawBuffers(fb, 2, buffers);
+    glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT2, projection_.get(), 0);
+    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    glNamedFramebufferDrawBuffers(fb, 3, buffers);
     if (glCheckNamedFramebufferStatus(fb, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
         throw GlError("the " + std::to_string(width) + "x" + std::to_string(height) +
                       " float framebuffer is not complete on this driver");
@@ -70,16 +73,20 @@ void RenderTarget::bindAndClear(bool countRows) {
     const GLuint none[4] = {0, 0, 0, 0};
     glClearNamedFramebufferfv(framebuffer_.get(), GL_COLOR, 0, zero);
     glClearNamedFramebufferuiv(framebuffer_.get(), GL_COLOR, 1, none);
+    glClearNamedFramebufferfv(framebuffer_.get(), GL_COLOR, 2, zero);
     if (countRows) {
         glClearTexImage(rowSamples_.get(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, none);
         glBindImageTexture(0, rowSamples_.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
     }
 }
 
-void RenderTarget::read(std::vector<glm::vec4>& colour, std::size_t& samples) {
+void RenderTarget::read(std::vector<glm::vec4>& colour, std::size_t& samples,
+                        std::vector<glm::vec2>* projection) {
     const std::size_t n = std::size_t(width_) * std::size_t(height_);
     const std::size_t colourBytes = n * sizeof(glm::vec4);
-    const std::size_t bytes = colourBytes + n * sizeof(GLuint);
+    const std::size_t countBytes = n * sizeof(GLuint);
+    const std::size_t projectionBytes = projection != nullptr ? n * sizeof(glm::vec2) : 0;
+    const std::size_t bytes = colourBytes + countBytes + projectionBytes;
     if (readBufferBytes_ < bytes || readBuffer_.get() == 0) {
         GLuint name = 0;
         glCreateBuffers(1, &name);
@@ -93,8 +100,12 @@ void RenderTarget::read(std::vector<glm::vec4>& colour, std::size_t& samples) {
     glBindBuffer(GL_PIXEL_PACK_BUFFER, readBuffer_.get());
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glGetTextureImage(colour_.get(), 0, GL_RGBA, GL_FLOAT, GLsizei(colourBytes), nullptr);
-    glGetTextureImage(samples_.get(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
-                      GLsizei(n * sizeof(GLuint)), reinterpret_cast<void*>(colourBytes));
+    glGetTextureImage(samples_.get(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, GLsizei(countBytes),
+                      reinterpret_cast<void*>(colourBytes));
+    if (projection != nullptr) {
+        glGetTextureImage(projection_.get(), 0, GL_RG, GL_FLOAT, GLsizei(projectionBytes),
+                          reinterpret_cast<void*>(colourBytes + countBytes));
+    }
     glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
     const void* mapped =
         glMapNamedBufferRange(readBuffer_.get(), 0, GLsizeiptr(bytes), GL_MAP_READ_BIT);
@@ -105,12 +116,21 @@ void RenderTarget::read(std::vector<glm::vec4>& colour, std::size_t& samples) {
     const auto* rows = static_cast<const glm::vec4*>(mapped);
     const auto* counts =
         reinterpret_cast<const GLuint*>(static_cast<const char*>(mapped) + colourBytes);
+    const auto* values = reinterpret_cast<const glm::vec2*>(static_cast<const char*>(mapped) +
+                                                            colourBytes + countBytes);
     colour.resize(n);
+    if (projection != nullptr) {
+        projection->resize(n);
+    }
     samples = 0;
 #pragma omp parallel for schedule(static) reduction(+ : samples)
     for (int y = 0; y < height_; ++y) {
         const std::size_t from = std::size_t(height_ - 1 - y) * std::size_t(width_);
         std::copy_n(rows + from, width_, colour.begin() + std::ptrdiff_t(std::size_t(y) * width_));
+        if (projection != nullptr) {
+            std::copy_n(values + from, width_,
+                        projection->begin() + std::ptrdiff_t(std::size_t(y) * width_));
+        }
         for (int x = 0; x < width_; ++x) {
             samples += counts[from + std::size_t(x)];
         }

@@ -1,6 +1,7 @@
 #pragma once
-// The ray caster's framebuffer: premultiplied colour in 32-bit floats and the
-// number of samples each ray took. Private to render/.
+// The ray caster's framebuffer: premultiplied colour in 32-bit floats, the
+// number of samples each ray took and the projections' values (RG32F, what
+// a part of a distributed render composites from). Private to render/.
 
 #include <cstddef>
 #include <vector>
@@ -20,7 +21,9 @@ public:
     // uRowSamples), for countedSamples().
     void bindAndClear(bool countRows);
     // Row 0 of `colour` is the image's top row (GL's is the bottom one).
-    void read(std::vector<glm::vec4>& colour, std::size_t& samples);
+    // `projection`, when given, receives the projections' values likewise.
+    void read(std::vector<glm::vec4>& colour, std::size_t& samples,
+              std::vector<glm::vec2>* projection = nullptr);
     // The samples of the last frame drawn after bindAndClear(true): one value a
     // row read back (4 bytes a row), not the whole count texture.
     std::size_t countedSamples() const;
@@ -38,7 +41,7 @@ public:
 private:
     int width_ = 0, height_ = 0;
     GlFramebuffer framebuffer_, shownFramebuffer_;
-    GlTexture colour_, samples_, rowSamples_, shown_;
+    GlTexture colour_, samples_, projection_, rowSamples_, shown_;
     // Where read() has the driver copy the frame (a pixel pack buffer: the
     // driver's fast path), grown as needed and kept between frames.
     GlBuffer readBuffer_;

@@ -42,11 +42,6 @@ const char* refused(const QCommandLineParser& p) {
     if (p.value("backend") != "cpu" && p.value("backend") != "gl") {
         return "--distributed renders with --backend cpu or gl on every rank";
     }
-    if (p.value("backend") == "gl" && p.isSet("mode") && p.value("mode") != "dvr" &&
-        p.value("mode") != "iso") {
-        return "GL ranks composite --mode dvr and iso; mip, minip and avg composite from the "
-               "ranks' values, which --backend cpu gives";
-    }
     if (p.isSet("quality")) {
         return "--quality measures one process's front; give --step and --interp with "
                "--distributed";

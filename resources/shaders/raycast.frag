@@ -6,6 +6,9 @@
 
 layout(location = 0) out vec4 outColour; // premultiplied rgb, alpha
 layout(location = 1) out uint outSamples;
+// MIP, MinIP: (extreme value, 1) where the ray took a sample; average: (sum,
+// count). What the parts of a distributed render composite from.
+layout(location = 2) out vec2 outProjection;
 
 const int kDvr = 0, kMip = 1, kMinIp = 2, kAverage = 3, kIso = 4;
 const int kNearest = 0, kLinear = 1, kCubic = 2;
@@ -396,6 +399,7 @@ bool raySpanIn(dvec3 o, dvec3 d, dvec3 clipLo, dvec3 clipHi, ivec3 openHi, out d
 void main() {
     outColour = vec4(0.0);
     outSamples = 0u;
+    outProjection = vec2(0.0);
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     // y = 0 is the top row, as in the CPU image.
     double sx = (2.0 * (double(pixel.x) + 0.5) / double(uImageSize.x) - 1.0) * uTanHalfFov * uAspect;
@@ -577,6 +581,7 @@ void main() {
     if (kMode == kMip || kMode == kMinIp || kMode == kAverage) {
         bool any = kMode == kAverage ? count > 0 : havePrev;
         if (any) {
+            outProjection = kMode == kAverage ? vec2(float(sum), float(count)) : vec2(extreme, 1.0);
             float v = kMode == kAverage ? float(sum / double(count)) : extreme;
             vec4 k = classify(v, 1);
             outColour = vec4(k.rgb * k.a, k.a);

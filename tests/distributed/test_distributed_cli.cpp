@@ -109,6 +109,12 @@ private slots:
             << 2 << QStringList{"--backend", "gl", "--azimuth", "40", "--elevation", "20"};
         QTest::newRow("3 gl iso top") << 3 << QStringList{"--backend",   "gl", "--mode",  "iso",
                                                           "--elevation", "90", "--brick", "16"};
+        QTest::newRow("2 gl mip oblique")
+            << 2 << QStringList{"--backend", "gl", "--mode", "mip", "--azimuth", "30"};
+        QTest::newRow("3 gl minip left") << 3 << QStringList{"--backend", "gl", "--mode",  "minip",
+                                                             "--azimuth", "90", "--brick", "32"};
+        QTest::newRow("4 gl average back") << 4 << QStringList{"--backend", "gl",  "--mode",  "avg",
+                                                               "--azimuth", "180", "--brick", "32"};
         QTest::newRow("3 iso oblique")
             << 3 << QStringList{"--mode", "iso",         "--iso", "300",     "--azimuth",
                                 "215",    "--elevation", "-40",   "--brick", "16"};
@@ -137,13 +143,6 @@ private slots:
         const double voxels = statOf(r.out, "rank_voxels_max");
         QVERIFY2(voxels > 0.0 && voxels <= statOf(r.out, "rank_voxels_bound_max"),
                  qPrintable(r.out));
-    }
-
-    void glRanksRefuseProjectionsUpFront() {
-        const CliRun r = runMpi(2, {"render", kSmallCt, "-o", path("glmip.png"), "--size", "32x32",
-                                    "--distributed", "--backend", "gl", "--mode", "mip"});
-        QCOMPARE(r.exitCode, 2);
-        QVERIFY2(r.err.contains("GL ranks composite"), qPrintable(r.err));
     }
 
     // A MetaImage (the 140-slice CT converted): each rank reads the byte

@@ -35,6 +35,9 @@ private slots:
         QTest::newRow("cubic shaded") << 1;
         QTest::newRow("preintegrated") << 2;
         QTest::newRow("iso") << 3;
+        QTest::newRow("mip") << 4;
+        QTest::newRow("minip") << 5;
+        QTest::newRow("average") << 6;
     }
     void partsEqualTheWhole() {
         QFETCH(int, scene);
@@ -48,6 +51,10 @@ private slots:
         } else if (scene == 3) {
             d.mode = RenderMode::Isosurface;
             d.isoValue = 100.0;
+        } else if (scene >= 4) {
+            const RenderMode modes[] = {RenderMode::Mip, RenderMode::MinIp, RenderMode::Average};
+            d.mode = modes[scene - 4];
+            d.transferFunction = rampTf(false);
         }
         GpuRayCaster whole(volume_);
         for (int parts : {2, 3, 4}) {
@@ -93,15 +100,6 @@ private slots:
             QVERIFY(!context->description().empty());
         }
         context_->makeCurrent();
-    }
-
-    void projectionsAreRefusedClearly() {
-        RenderDescription d = describe(volume_, rampTf(false), 16);
-        d.mode = RenderMode::Mip;
-        const Parts p = split(volume_, 2, d, 8);
-        GpuRayCaster part(p.volumes[0], p.where[0]);
-        d.volume = &p.volumes[0];
-        QVERIFY_THROWS_EXCEPTION(std::invalid_argument, part.render(d));
     }
 };
 
