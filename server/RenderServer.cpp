@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "server/ClientConnection.h"
+#include "server/LocalFrameSource.h"
 #include "server/TeachingSession.h"
 #include "server/ViewStream.h"
 
@@ -53,7 +54,9 @@ RenderServer::RenderServer(ServerOptions options, SeriesList storeSeries, Series
     : QObject(parent), options_(std::move(options)), dataSeries_(std::move(dataSeries)),
       series_(mergeServedSeries(storeSeries, dataSeries_)),
       socketServer_(new QWebSocketServer("lucent-server", QWebSocketServer::NonSecureMode, this)),
-      worker_(std::make_unique<RenderWorker>(options_.backend)) {
+      worker_(std::make_unique<RenderWorker>(
+          options_.frameSource ? options_.frameSource()
+                               : std::make_unique<LocalFrameSource>(options_.backend))) {
     qRegisterMetaType<lucent::remote::RenderedFrame>();
     scanPool_.setMaxThreadCount(1);
     worker_->moveToThread(&renderThread_);

@@ -37,6 +37,9 @@ struct ServerOptions {
     quint16 port = 0; // 0: any free port
     std::vector<std::string> tokens;
     RendererKind backend = RendererKind::Gl;
+    // Where frames are drawn; empty: in this process, with `backend`
+    // (LocalFrameSource). Called once, on the thread that makes the server.
+    std::function<std::unique_ptr<FrameSource>()> frameSource;
     int maxClients = 64;
     int maxSessions = 16;
     int maxSessionMembers = 64; // the presenter included

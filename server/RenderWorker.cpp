@@ -5,16 +5,11 @@
 #include <QImage>
 #include <QImageWriter>
 
-#include "core/io/Catalog.h"
 #include "core/quality/InteractiveQuality.h"
 #include "protocol/PngEncoder.h"
-#include "render/RenderDevice.h"
 
 namespace lucent::remote {
 namespace {
-
-// Series kept loaded (with their ray casters) at once.
-constexpr std::size_t kLoadedSeriesLimit = 2;
 
 double millisecondsSince(const QElapsedTimer& timer) {
     return double(timer.nsecsElapsed()) / 1e6;
@@ -42,49 +37,22 @@ QByteArray encode(const ImageRGBA8& image, Quality quality, int jpegQuality) {
 
 } // namespace
 
-struct RenderWorker::LoadedSeries {
-    std::shared_ptr<const SeriesEntry> entry; // held: its address identifies it
-    std::unique_ptr<Volume> volume;
-    std::unique_ptr<Renderer> renderer;
-};
-
-RenderWorker::RenderWorker(RendererKind backend) : backend_(backend) {}
+RenderWorker::RenderWorker(std::unique_ptr<FrameSource> frames) : frames_(std::move(frames)) {}
 
 RenderWorker::~RenderWorker() {
     stop();
 }
 
 QString RenderWorker::start() {
-    device_ = RenderDevice::open(backend_);
-    const QString description = QString::fromStdString(device_->description());
-    if (!device_->fallbackReason().empty()) {
-        return description + " (" + QString::fromStdString(device_->fallbackReason()) + ")";
-    }
-    return description;
+    started_ = true;
+    return frames_->start();
 }
 
 void RenderWorker::stop() {
-    loaded_.clear(); // each GL renderer frees its textures in its own context
-    device_.reset();
-}
-
-RenderWorker::LoadedSeries& RenderWorker::loaded(const std::shared_ptr<const SeriesEntry>& entry) {
-    for (auto it = loaded_.begin(); it != loaded_.end(); ++it) {
-        if ((*it)->entry == entry) {
-            loaded_.splice(loaded_.begin(), loaded_, it);
-            return *loaded_.front();
-        }
+    if (started_) {
+        frames_->stop();
+        started_ = false;
     }
-    while (loaded_.size() >= kLoadedSeriesLimit) {
-        loaded_.pop_back();
-    }
-    auto series = std::make_unique<LoadedSeries>();
-    series->entry = entry;
-    series->volume = std::make_unique<Volume>(loadSeries(*entry));
-    // Where GL fails for this series (its shaders, its size), the CPU renders it.
-    series->renderer = device_->openRenderer(*series->volume).renderer;
-    loaded_.push_front(std::move(series));
-    return *loaded_.front();
 }
 
 void RenderWorker::render(const RenderJob& job) {
@@ -92,16 +60,14 @@ void RenderWorker::render(const RenderJob& job) {
     frame.view = job.view;
     frame.seq = job.seq;
     try {
-        LoadedSeries& series = loaded(job.series);
         RenderDescription description = job.description;
-        description.volume = series.volume.get();
         const bool interactive = job.quality == Quality::Interactive;
         if (interactive) {
             description = interactiveDescription(description, InteractiveQuality{2.0, job.scale});
         }
         QElapsedTimer timer;
         timer.start();
-        const ImageRGBA8 image = series.renderer->render(description).image;
+        const ImageRGBA8 image = frames_->render(job.series, description);
         FrameHeader header;
         header.renderMs = millisecondsSince(timer);
         timer.restart();

@@ -1,24 +1,19 @@
 #pragma once
-// The server's render thread: one object that lives on a QThread, opens its
-// RenderDevice there (an EGL context, or the CPU where GL cannot be had),
-// loads the series that clients open, renders and encodes.
+// The server's render thread: one object that lives on a QThread, has its
+// FrameSource (this process, or the ranks of an MPI job) draw the frames that
+// clients' views need, and encodes them.
 
 #include <QByteArray>
 #include <QObject>
 #include <QString>
 
 #include <cstdint>
-#include <list>
 #include <memory>
 
 #include "core/io/SeriesEntry.h"
 #include "core/scene/RenderDescription.h"
 #include "protocol/ProtocolMessages.h"
-
-namespace lucent {
-class RenderDevice;
-enum class RendererKind;
-} // namespace lucent
+#include "server/FrameSource.h"
 
 namespace lucent::remote {
 
@@ -49,11 +44,11 @@ inline constexpr int kFixedInteractiveJpegQuality = 85;
 class RenderWorker : public QObject {
     Q_OBJECT
 public:
-    explicit RenderWorker(RendererKind backend);
+    explicit RenderWorker(std::unique_ptr<FrameSource> frames);
     ~RenderWorker() override;
 
     // These run on the render thread (queued calls).
-    // Makes the GL context current (GL backend) or settles on the CPU; says which.
+    // Opens what renders (FrameSource::start()); says what.
     QString start();
     // Frees the ray casters and the context while the context is current.
     void stop();
@@ -64,14 +59,8 @@ signals:
     void frameRendered(const lucent::remote::RenderedFrame& frame);
 
 private:
-    struct LoadedSeries;
-    // The loaded volume of exactly this entry: a series the store has grown since
-    // (a new entry with the same id) is loaded again.
-    LoadedSeries& loaded(const std::shared_ptr<const SeriesEntry>& entry);
-
-    RendererKind backend_;
-    std::unique_ptr<RenderDevice> device_;            // made on the render thread by start()
-    std::list<std::unique_ptr<LoadedSeries>> loaded_; // most recently used first
+    std::unique_ptr<FrameSource> frames_;
+    bool started_ = false;
 };
 
 } // namespace lucent::remote

@@ -8,12 +8,20 @@
 #include <QHostAddress>
 #include <QTextStream>
 
+#include <functional>
+
 #include <memory>
 #include <optional>
 
 #include "server/DicomIntake.h"
 #include "server/RenderServer.h"
 #include "server/ServedSeries.h"
+
+#if LUCENT_DISTRIBUTED
+#include "render/distributed/DistributedSeries.h"
+#include "render/distributed/MpiSession.h"
+#include "server/DistributedFrameSource.h"
+#endif
 
 namespace {
 
@@ -33,6 +41,71 @@ bool parseListen(const QString& text, QHostAddress* address, quint16* port) {
     }
     return ok && p <= 65535 && address->setAddress(host) && ((*port = quint16(p)), true);
 }
+
+// What --distributed changes in serve(): `ready` runs once everything is
+// checked, just before the server is made; `frameSource` draws the frames.
+struct ServeHooks {
+    std::function<void()> ready;
+    std::function<std::unique_ptr<lucent::remote::FrameSource>()> frameSource;
+};
+
+int serve(const QCommandLineParser& parser, const ServeHooks& hooks);
+
+#if LUCENT_DISTRIBUTED
+
+// Rank 0 serves; the other ranks wait for its verdict on the start ("go", or
+// the status it exits with) and then follow its frames until it stops.
+int serveDistributed(const QCommandLineParser& parser) {
+    QTextStream err(stderr);
+    std::optional<lucent::MpiSession> mpi;
+    try {
+        // Rank 0 starts in its main thread and renders on its render thread.
+        mpi.emplace(lucent::MpiThreads::Serialised);
+    } catch (const std::exception& e) {
+        err << "lucent-server: --distributed: " << e.what() << "\n";
+        return kBadInput;
+    }
+    const lucent::Communicator comm = lucent::Communicator::world();
+    std::string verdict = "go";
+    if (comm.rank() != 0) {
+        comm.broadcast(verdict, 0);
+        if (verdict != "go") {
+            return std::stoi(verdict);
+        }
+        // The backend was checked by rank 0 before it said go.
+        const lucent::RendererKind backend =
+            lucent::parseRendererKind(parser.value("backend").toStdString());
+        lucent::DistributedSeries(comm, backend).follow();
+        return 0;
+    }
+    bool told = false;
+    const ServeHooks hooks{
+        [&] {
+            comm.broadcast(verdict, 0);
+            told = true;
+        },
+        [&]() -> std::unique_ptr<lucent::remote::FrameSource> {
+            return std::make_unique<lucent::remote::DistributedFrameSource>(
+                comm, lucent::parseRendererKind(parser.value("backend").toStdString()));
+        }};
+    const int status = serve(parser, hooks);
+    if (!told) {
+        verdict = std::to_string(status);
+        comm.broadcast(verdict, 0);
+    }
+    return status;
+}
+
+#else
+
+int serveDistributed(const QCommandLineParser&) {
+    QTextStream(stderr) << "lucent-server: --distributed: this build has no distributed renderer "
+                           "(configure with LUCENT_DISTRIBUTED=ON, which needs Open MPI and "
+                           "IceT: packaging/install-deps.sh)\n";
+    return kUsage;
+}
+
+#endif
 
 } // namespace
 
@@ -67,6 +140,9 @@ int main(int argc, char** argv) {
          "2"},
         {"upload-limit", "Uploads (POST /studies) larger than this are refused.", "MIB", "512"},
         {"check", "Check the configuration, list the series, and exit."},
+        {"distributed", "Render each frame with all the ranks of the MPI job this process is "
+                        "part of (mpirun -n N lucent-server ... --distributed): rank 0 serves, "
+                        "every rank renders its part of the volume, IceT composites."},
     });
     QTextStream err(stderr);
     if (!parser.parse(QCoreApplication::arguments())) {
@@ -79,6 +155,17 @@ int main(int argc, char** argv) {
     if (parser.isSet("version")) {
         parser.showVersion();
     }
+    if (!parser.isSet("distributed")) {
+        return serve(parser, ServeHooks{[] {}, {}});
+    }
+    return serveDistributed(parser);
+}
+
+namespace {
+
+// Everything after the command line: checks, the store, the server until it quits.
+int serve(const QCommandLineParser& parser, const ServeHooks& hooks) {
+    QTextStream err(stderr);
     lucent::remote::ServerOptions options;
     if (!parseListen(parser.value("listen"), &options.address, &options.port)) {
         err << "lucent-server: --listen: '" << parser.value("listen") << "' is not HOST:PORT\n";
@@ -169,6 +256,8 @@ int main(int argc, char** argv) {
     if (parser.isSet("check")) {
         return 0;
     }
+    options.frameSource = hooks.frameSource;
+    hooks.ready(); // from here the other ranks (--distributed) follow rank 0's frames
     lucent::remote::RenderServer server(options, std::move(stored.volumes),
                                         std::move(fromData.volumes));
     QString error;
@@ -195,3 +284,5 @@ int main(int argc, char** argv) {
     out.flush();
     return QCoreApplication::exec();
 }
+
+} // namespace

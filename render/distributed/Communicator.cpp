@@ -6,7 +6,10 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <stdexcept>
+#include <string>
+#include <thread>
 
 namespace lucent {
 
@@ -80,6 +83,31 @@ void Communicator::broadcast(std::string& text, int root) const {
     }
     broadcast(bytes, root);
     text.assign(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+}
+
+void Communicator::broadcastPolled(std::string& text, int root,
+                                   std::chrono::microseconds poll) const {
+    // A non-blocking broadcast of the size (every rank must use the same kind
+    // of collective), tested with sleeps in between; then the text itself.
+    if (text.size() > std::size_t(std::numeric_limits<int>::max())) {
+        throw std::invalid_argument("MPI: a polled broadcast of " + std::to_string(text.size()) +
+                                    " bytes (at most 2 GiB)");
+    }
+    std::uint64_t size = text.size();
+    MPI_Request request = MPI_REQUEST_NULL;
+    check(MPI_Ibcast(&size, 1, MPI_UINT64_T, root, handle_->comm, &request), "MPI_Ibcast");
+    for (;;) {
+        int done = 0;
+        check(MPI_Test(&request, &done, MPI_STATUS_IGNORE), "MPI_Test");
+        if (done != 0) {
+            break;
+        }
+        std::this_thread::sleep_for(poll);
+    }
+    text.resize(size);
+    if (size > 0) {
+        check(MPI_Bcast(text.data(), int(size), MPI_CHAR, root, handle_->comm), "MPI_Bcast");
+    }
 }
 
 void Communicator::allMin(std::span<double> values) const {

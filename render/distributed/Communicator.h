@@ -5,6 +5,7 @@
 // collective, in the same order. Errors throw std::runtime_error naming the
 // call and MPI's message.
 
+#include <chrono>
 #include <cstddef>
 #include <memory>
 #include <span>
@@ -32,6 +33,10 @@ public:
     // root's bytes to every rank (the size first).
     void broadcast(std::vector<std::byte>& bytes, int root) const;
     void broadcast(std::string& text, int root) const;
+    // As broadcast(text), but a rank that waits for root sleeps between looks
+    // (about every `poll`) instead of spinning in MPI: for ranks that wait
+    // long for the next command (a distributed server's idle ranks).
+    void broadcastPolled(std::string& text, int root, std::chrono::microseconds poll) const;
     // The smallest, largest or sum of every rank's values, element by element, on every rank.
     void allMin(std::span<double> values) const;
     void allMax(std::span<double> values) const;

@@ -11,21 +11,25 @@ namespace {
 bool g_session = false;
 } // namespace
 
-MpiSession::MpiSession() {
+MpiSession::MpiSession(MpiThreads threads) {
     if (g_session) {
         throw std::runtime_error("MPI: a second MpiSession in one process");
     }
     int initialised = 0;
     MPI_Initialized(&initialised);
     if (initialised == 0) {
+        const int wanted =
+            threads == MpiThreads::Serialised ? MPI_THREAD_SERIALIZED : MPI_THREAD_FUNNELED;
         int provided = 0;
-        if (MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided) != MPI_SUCCESS) {
+        if (MPI_Init_thread(nullptr, nullptr, wanted, &provided) != MPI_SUCCESS) {
             throw std::runtime_error("MPI: MPI_Init_thread failed");
         }
-        if (provided < MPI_THREAD_FUNNELED) {
+        if (provided < wanted) {
             MPI_Finalize();
             throw std::runtime_error("MPI: the library gives thread level " +
-                                     std::to_string(provided) + ", not MPI_THREAD_FUNNELED");
+                                     std::to_string(provided) + ", not " +
+                                     (threads == MpiThreads::Serialised ? "MPI_THREAD_SERIALIZED"
+                                                                        : "MPI_THREAD_FUNNELED"));
         }
     }
     // Errors come back as codes, so that they can be reported with the rank.

@@ -1,15 +1,19 @@
 #pragma once
 // MPI for the life of a process that renders with others (docs/distributed.md):
-// initialised on construction (threads funnelled: MPI and IceT are called from
-// one thread), finalised on destruction. One per process.
+// initialised on construction, finalised on destruction. One per process.
 
 namespace lucent {
 
+// Which threads call MPI (and IceT): the one that made the session
+// (funnelled), or any one at a time (serialised: a server's rank 0 starts in
+// its main thread and renders on its render thread).
+enum class MpiThreads { Funnelled, Serialised };
+
 class MpiSession {
 public:
-    // Throws std::runtime_error when MPI cannot be initialised, or when a
-    // session already exists in this process.
-    MpiSession();
+    // Throws std::runtime_error when MPI cannot be initialised with the
+    // threads asked for, or when a session already exists in this process.
+    explicit MpiSession(MpiThreads threads = MpiThreads::Funnelled);
     ~MpiSession();
     MpiSession(const MpiSession&) = delete;
     MpiSession& operator=(const MpiSession&) = delete;

@@ -55,9 +55,12 @@ public:
     // Serves `data` (the synthetic CT when empty) with the `backend` and
     // `extraArguments` (a later --store or --listen wins over ours). Started
     // now: a failed start fails the test and startError() says why.
+    // `launcher`: the program and arguments that start lucent-server (mpirun
+    // -n 2 ... for a distributed server); empty: lucent-server itself.
     explicit ServerProcess(const QString& backend = "cpu", const QString& data = {},
-                           const QStringList& extraArguments = {}, Start when = Start::Now)
-        : backend_(backend), extraArguments_(extraArguments) {
+                           const QStringList& extraArguments = {}, Start when = Start::Now,
+                           const QStringList& launcher = {})
+        : backend_(backend), extraArguments_(extraArguments), launcher_(launcher) {
         if (!dir_.isValid()) {
             error_ = "no temporary directory";
             return;
@@ -85,11 +88,19 @@ public:
     QString start() {
         process_ = std::make_unique<QProcess>();
         process_->setProcessChannelMode(QProcess::SeparateChannels);
-        process_->start(QString(LUCENT_BIN_DIR) + "/lucent-server",
-                        QStringList{"--listen", QString("127.0.0.1:%1").arg(port_), "--store",
-                                    storeDir(), "--data", data_, "--token-file", tokenFile(),
-                                    "--backend", backend_} +
-                            extraArguments_);
+        const QString server = QString(LUCENT_BIN_DIR) + "/lucent-server";
+        const QStringList arguments =
+            QStringList{"--listen",     QString("127.0.0.1:%1").arg(port_),
+                        "--store",      storeDir(),
+                        "--data",       data_,
+                        "--token-file", tokenFile(),
+                        "--backend",    backend_} +
+            extraArguments_;
+        if (launcher_.isEmpty()) {
+            process_->start(server, arguments);
+        } else {
+            process_->start(launcher_.front(), launcher_.mid(1) + QStringList{server} + arguments);
+        }
         QString out;
         (void)QTest::qWaitFor(
             [&] {
@@ -147,6 +158,7 @@ private:
     QTemporaryDir dir_;
     QString backend_;
     QStringList extraArguments_;
+    QStringList launcher_;
     QString volumeFile_;
     QString data_;
     std::unique_ptr<QProcess> process_;

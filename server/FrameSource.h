@@ -1,0 +1,31 @@
+#pragma once
+// Where the render thread's frames are drawn: in this process
+// (LocalFrameSource: the series loaded whole, rendered on its RenderDevice) or
+// by all the ranks of an MPI job (DistributedFrameSource). RenderWorker asks
+// it for images and encodes them; everything runs on the render thread.
+
+#include <QString>
+
+#include <memory>
+
+#include "core/image/Image.h"
+#include "core/io/SeriesEntry.h"
+#include "core/scene/RenderDescription.h"
+
+namespace lucent::remote {
+
+class FrameSource {
+public:
+    virtual ~FrameSource() = default;
+    // Opens what renders (an EGL context, or the CPU where GL cannot be had);
+    // says what renders, and why not what was asked.
+    virtual QString start() = 0;
+    // Frees the renderers (and the context while it is current).
+    virtual void stop() = 0;
+    // The image of `description` (its volume ignored) of `series`. Throws on
+    // failure, with a message for the client.
+    virtual ImageRGBA8 render(const std::shared_ptr<const SeriesEntry>& series,
+                              const RenderDescription& description) = 0;
+};
+
+} // namespace lucent::remote

@@ -1,0 +1,68 @@
+#include "server/LocalFrameSource.h"
+
+#include "core/io/Catalog.h"
+#include "core/scene/Renderer.h"
+
+namespace lucent::remote {
+namespace {
+
+// Series kept loaded (with their ray casters) at once.
+constexpr std::size_t kLoadedSeriesLimit = 2;
+
+} // namespace
+
+struct LocalFrameSource::LoadedSeries {
+    std::shared_ptr<const SeriesEntry> entry; // held: its address identifies it
+    std::unique_ptr<Volume> volume;
+    std::unique_ptr<Renderer> renderer;
+};
+
+LocalFrameSource::LocalFrameSource(RendererKind backend) : backend_(backend) {}
+
+LocalFrameSource::~LocalFrameSource() {
+    stop();
+}
+
+QString LocalFrameSource::start() {
+    device_ = RenderDevice::open(backend_);
+    const QString description = QString::fromStdString(device_->description());
+    if (!device_->fallbackReason().empty()) {
+        return description + " (" + QString::fromStdString(device_->fallbackReason()) + ")";
+    }
+    return description;
+}
+
+void LocalFrameSource::stop() {
+    loaded_.clear(); // each GL renderer frees its textures in its own context
+    device_.reset();
+}
+
+LocalFrameSource::LoadedSeries&
+LocalFrameSource::loaded(const std::shared_ptr<const SeriesEntry>& entry) {
+    for (auto it = loaded_.begin(); it != loaded_.end(); ++it) {
+        if ((*it)->entry == entry) {
+            loaded_.splice(loaded_.begin(), loaded_, it);
+            return *loaded_.front();
+        }
+    }
+    while (loaded_.size() >= kLoadedSeriesLimit) {
+        loaded_.pop_back();
+    }
+    auto series = std::make_unique<LoadedSeries>();
+    series->entry = entry;
+    series->volume = std::make_unique<Volume>(loadSeries(*entry));
+    // Where GL fails for this series (its shaders, its size), the CPU renders it.
+    series->renderer = device_->openRenderer(*series->volume).renderer;
+    loaded_.push_front(std::move(series));
+    return *loaded_.front();
+}
+
+ImageRGBA8 LocalFrameSource::render(const std::shared_ptr<const SeriesEntry>& entry,
+                                    const RenderDescription& description) {
+    LoadedSeries& series = loaded(entry);
+    RenderDescription d = description;
+    d.volume = series.volume.get();
+    return series.renderer->render(d).image;
+}
+
+} // namespace lucent::remote
