@@ -74,9 +74,10 @@ std::string optionText(const Json& value, const RenderOption& o, const std::stri
         }
         return value.get<bool>() ? "true" : "false";
     case OptionKind::Size:
+    case OptionKind::Box:
         break;
     }
-    throw std::logic_error("options of kind Size do not travel in " + type);
+    throw std::logic_error("the image size and clip box travel in their own messages, not " + type);
 }
 
 Json optionJson(const OptionValue& v) {
@@ -97,9 +98,10 @@ Json optionJson(const OptionValue& v) {
     case OptionKind::Switch:
         return t == "true";
     case OptionKind::Size:
+    case OptionKind::Box:
         break;
     }
-    throw std::logic_error("options of kind Size do not travel on the wire");
+    throw std::logic_error("the image size and clip box travel in their own messages");
 }
 
 OptionUpdate parseOptions(const Json& m, const std::string& type) {

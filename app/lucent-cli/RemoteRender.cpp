@@ -45,8 +45,9 @@ std::vector<SetOption> setOptions(const QCommandLineParser& p, QTextStream& err)
         if (o.cliFlag.empty() || !given.contains(flag)) {
             continue;
         }
-        // The image size travels in its own message; the others in their table's.
-        if (o.wireMessage.empty() && o.kind != OptionKind::Size) {
+        // The image size and clip box travel in their own messages; the others
+        // in their table's.
+        if (o.wireMessage.empty() && o.kind != OptionKind::Size && o.kind != OptionKind::Box) {
             err << "lucent-cli render: --" << flag
                 << " is not sent to a remote backend (the server chooses it)\n";
             continue;

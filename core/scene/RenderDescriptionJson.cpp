@@ -43,7 +43,6 @@ std::string toJson(const RenderDescription& d) {
     return json{{"options", options},
                 {"tf", toJson(d.transferFunction)},
                 {"fov", d.camera.fieldOfView},
-                {"clip", json::array({vec(d.clip.lo), vec(d.clip.hi)})},
                 {"background", vec(d.background)},
                 {"simd", d.sampling.simd}}
         .dump();
@@ -80,12 +79,6 @@ RenderDescription parseRenderDescription(std::string_view text) {
         throw std::invalid_argument("render description: 'fov' must be a number");
     }
     d.camera.fieldOfView = fov.get<double>();
-    const json& clip = field(j, "clip");
-    if (!clip.is_array() || clip.size() != 2) {
-        throw std::invalid_argument("render description: 'clip' must be two corners");
-    }
-    d.clip.lo = vec(clip[0], "clip");
-    d.clip.hi = vec(clip[1], "clip");
     d.background = vec(field(j, "background"), "background");
     const json& simd = field(j, "simd");
     if (!simd.is_boolean()) {

@@ -10,8 +10,8 @@
 
 namespace lucent {
 
-// Every option of the render options table, the transfer function, the field
-// of view, the clip box, the background and the SIMD switch.
+// Every option of the render options table (the clip box among them), the
+// transfer function, the field of view, the background and the SIMD switch.
 std::string toJson(const RenderDescription& description);
 
 // The description toJson() wrote (volume null). Throws std::invalid_argument

@@ -80,6 +80,14 @@ std::vector<RenderOption> makeTable() {
          .read =
              [](const D& d) { return std::to_string(d.width) + "x" + std::to_string(d.height); },
          .write = [](D& d, sv v) { std::tie(d.width, d.height) = parseImageSize(v); }});
+    t.push_back({.name = "clip",
+                 .words = "clip box",
+                 .kind = OptionKind::Box,
+                 .cliFlag = "clip",
+                 .valueName = "X0,Y0,Z0,X1,Y1,Z1",
+                 .help = "Clip box in voxel indices (both corners included); all: none.",
+                 .read = [](const D& d) { return clipBoxText(d.clip); },
+                 .write = [](D& d, sv v) { d.clip = parseClipBox(v); }});
     t.push_back({.name = "mode",
                  .words = "mode",
                  .kind = OptionKind::Choice,
@@ -360,6 +368,46 @@ std::pair<int, int> parseImageSize(std::string_view text) {
     return {w, h};
 }
 
+ClipBox parseClipBox(std::string_view text) {
+    if (text == "all") {
+        return ClipBox{};
+    }
+    double v[6] = {};
+    std::size_t at = 0;
+    for (int n = 0; n < 6; ++n) {
+        const std::size_t comma = n < 5 ? text.find(',', at) : text.size();
+        if (comma == std::string_view::npos) {
+            throw std::invalid_argument("clip box '" + std::string(text) +
+                                        "' is not X0,Y0,Z0,X1,Y1,Z1 or all");
+        }
+        try {
+            v[n] = parseNumber(text.substr(at, comma - at));
+        } catch (const std::invalid_argument&) {
+            throw std::invalid_argument("clip box '" + std::string(text) +
+                                        "' is not X0,Y0,Z0,X1,Y1,Z1 or all");
+        }
+        if (!std::isfinite(v[n])) {
+            throw std::invalid_argument("clip box '" + std::string(text) + "' is not finite");
+        }
+        at = comma + 1;
+    }
+    const ClipBox box{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
+    if (glm::any(glm::greaterThan(box.lo, box.hi))) {
+        throw std::invalid_argument("clip box '" + std::string(text) +
+                                    "': a first corner's coordinate exceeds the second's");
+    }
+    return box;
+}
+
+std::string clipBoxText(const ClipBox& box) {
+    const ClipBox all;
+    if (box.lo == all.lo && box.hi == all.hi) {
+        return "all";
+    }
+    return number(box.lo.x) + "," + number(box.lo.y) + "," + number(box.lo.z) + "," +
+           number(box.hi.x) + "," + number(box.hi.y) + "," + number(box.hi.z);
+}
+
 void applyRenderOption(RenderDescription& description, const RenderOption& option,
                        std::string_view text) {
     switch (option.kind) {
@@ -394,6 +442,9 @@ void applyRenderOption(RenderDescription& description, const RenderOption& optio
         break;
     case OptionKind::Size:
         parseImageSize(text); // throws with the reason
+        break;
+    case OptionKind::Box:
+        parseClipBox(text); // throws with the reason
         break;
     }
     option.write(description, text);
@@ -454,6 +505,10 @@ std::string renderOptionsMarkdown() {
         case OptionKind::Size:
             kind = "WxH";
             range = "1 to " + std::to_string(kMaxImageSide) + " per side";
+            break;
+        case OptionKind::Box:
+            kind = "box";
+            range = "X0,Y0,Z0,X1,Y1,Z1 (voxels, X0 <= X1 ...) or all";
             break;
         }
         md += "| `" + std::string(o.name) + "` | " + cli + " | " + wire + " | " + kind + " | " +

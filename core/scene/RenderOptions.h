@@ -22,6 +22,7 @@ enum class OptionKind {
     Choice,  // one of `choices`
     Switch,  // true or false
     Size,    // WIDTHxHEIGHT
+    Box,     // "X0,Y0,Z0,X1,Y1,Z1" (voxel indices, corners included) or "all"
 };
 
 // Which protocol message carries an option ("" : not on the wire).
@@ -67,6 +68,11 @@ void checkRenderOptionRanges(const RenderDescription& description);
 // "WIDTHxHEIGHT", each side 1..kMaxImageSide. Throws std::invalid_argument.
 inline constexpr int kMaxImageSide = 16384;
 std::pair<int, int> parseImageSize(std::string_view text);
+
+// A clip box as text: "X0,Y0,Z0,X1,Y1,Z1" in voxel indices, each corner's
+// coordinate at most the other's, or "all" (no clip). Throws std::invalid_argument.
+ClipBox parseClipBox(std::string_view text);
+std::string clipBoxText(const ClipBox& box);
 
 // The option list as a Markdown table (docs/options.md).
 std::string renderOptionsMarkdown();

@@ -130,8 +130,9 @@ RenderResult DistributedRenderer::render(const RenderDescription& description) {
 
     // Figures of every rank.
     // Samples and bricks summed over the ranks (their part grids, halos included).
-    double sums[3] = {double(mine.stats.samples), double(mine.stats.bricksTotal),
-                      double(mine.stats.bricksUsed)};
+    // The last: ranks whose part took no sample (a clip box left it nothing).
+    double sums[4] = {double(mine.stats.samples), double(mine.stats.bricksTotal),
+                      double(mine.stats.bricksUsed), mine.stats.samples == 0 ? 1.0 : 0.0};
     comm_.allSum(sums);
     const std::vector<double> times = comm_.allGather(renderMs);
     const double voxels = comm_.allMax(double(part_.voxels.geometry().voxelCount()));
@@ -148,6 +149,7 @@ RenderResult DistributedRenderer::render(const RenderDescription& description) {
     const double sent = comm_.allMax(icet_->last().bytesSent);
     details_ = {
         {"ranks", std::to_string(comm_.size())},
+        {"ranks_empty", fixed(sums[3], 0)},
         {"composite_ms", fixed(d.mode == RenderMode::Average ? averageMs_ : icet_->last().totalMs)},
         {"icet_composite_ms", fixed(icet_->last().compositeMs)},
         {"rank0_wait_ms", fixed(waitMs)},

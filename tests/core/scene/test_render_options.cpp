@@ -26,6 +26,8 @@ std::string otherValue(const RenderOption& o) {
         return renderOptionDefault(o) == "true" ? "false" : "true";
     case OptionKind::Size:
         return "300x200";
+    case OptionKind::Box:
+        return "1,2,3,40,50.5,60";
     }
     return {};
 }
