@@ -68,8 +68,10 @@ std::vector<glm::vec4> DistributedRenderer::compositeParts(const RenderDescripti
                                                            const std::vector<int>& order) {
     switch (d.mode) {
     case RenderMode::Dvr:
-    case RenderMode::Isosurface:
-        return icet_->blend(d.width, d.height, mine.premultiplied, order);
+    case RenderMode::Isosurface: {
+        const auto view = icet_->blend(d.width, d.height, mine.premultiplied, order);
+        return {view.begin(), view.end()};
+    }
     case RenderMode::Mip:
     case RenderMode::MinIp: {
         const auto [lo, hi] = part_.where.valueRange;
@@ -77,7 +79,8 @@ std::vector<glm::vec4> DistributedRenderer::compositeParts(const RenderDescripti
         for (std::size_t i = 0; i < depth.size(); ++i) {
             depth[i] = projectionDepth(d.mode, mine.projection[i], lo, hi);
         }
-        return icet_->closest(d.width, d.height, mine.premultiplied, depth);
+        const auto view = icet_->closest(d.width, d.height, mine.premultiplied, depth);
+        return {view.begin(), view.end()};
     }
     case RenderMode::Average:
         break;
@@ -178,11 +181,13 @@ RenderResult DistributedRenderer::render(const RenderDescription& description) {
     }
     out.premultiplied = std::move(composite);
     out.image = ImageRGBA8::filled(d.width, d.height, 255);
-    for (std::size_t i = 0; i < out.premultiplied.size(); ++i) {
-        const glm::vec4 p = out.premultiplied[i];
+    const std::ptrdiff_t pixels = std::ptrdiff_t(out.premultiplied.size());
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t i = 0; i < pixels; ++i) {
+        const glm::vec4 p = out.premultiplied[std::size_t(i)];
         const glm::dvec3 rgb = glm::dvec3(p) + (1.0 - double(p.a)) * d.background;
         for (int c = 0; c < 3; ++c) {
-            out.image.pixels[i * 4 + std::size_t(c)] =
+            out.image.pixels[std::size_t(i) * 4 + std::size_t(c)] =
                 std::uint8_t(std::clamp(rgb[c], 0.0, 1.0) * 255.0 + 0.5);
         }
     }

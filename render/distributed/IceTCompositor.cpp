@@ -121,7 +121,7 @@ template <class Used> std::array<IceTInt, 4> validViewport(int width, int height
             x0 = std::min(x0, first);
             x1 = std::max(x1, last);
             y0 = std::min(y0, y);
-            y1 = y;
+            y1 = std::max(y1, y);
         }
     }
     if (x1 < 0) {
@@ -130,13 +130,26 @@ template <class Used> std::array<IceTInt, 4> validViewport(int width, int height
     return {x0, y0, x1 - x0 + 1, y1 - y0 + 1};
 }
 
+// The composite's colour in IceT's buffer (RGBA float, the format set).
+std::span<const glm::vec4> colourOf(IceTImage image, std::size_t pixels) {
+    if (std::size_t(icetImageGetNumPixels(image)) != pixels) {
+        throw std::runtime_error("IceT: the composite has " +
+                                 std::to_string(icetImageGetNumPixels(image)) + " pixels, not " +
+                                 std::to_string(pixels));
+    }
+    const auto* colour = reinterpret_cast<const glm::vec4*>(icetImageGetColorcf(image));
+    checkIceT("reading the composite");
+    return {colour, pixels};
+}
+
 const IceTDouble kIdentity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
 const IceTFloat kTransparent[4] = {0, 0, 0, 0};
 
 } // namespace
 
-std::vector<glm::vec4> IceTCompositor::blend(int width, int height, std::span<const glm::vec4> rgba,
-                                             std::span<const int> frontToBack) {
+std::span<const glm::vec4> IceTCompositor::blend(int width, int height,
+                                                 std::span<const glm::vec4> rgba,
+                                                 std::span<const int> frontToBack) {
     const auto start = std::chrono::steady_clock::now();
     checkImage(width, height, rgba.size());
     if (int(frontToBack.size()) != state_->comm->size()) {
@@ -146,7 +159,7 @@ std::vector<glm::vec4> IceTCompositor::blend(int width, int height, std::span<co
     }
     if (state_->comm->size() == 1) {
         last_ = {};
-        return {rgba.begin(), rgba.end()}; // nothing to composite
+        return rgba; // nothing to composite
     }
     icetSetContext(state_->context);
     prepare(width, height, ICET_COMPOSITE_MODE_BLEND, state_->width, state_->height, state_->mode);
@@ -157,20 +170,18 @@ std::vector<glm::vec4> IceTCompositor::blend(int width, int height, std::span<co
     const IceTImage image =
         icetCompositeImage(rgba.data(), nullptr, valid.data(), kIdentity, kIdentity, kTransparent);
     checkIceT("icetCompositeImage (blend)");
-    std::vector<glm::vec4> out;
+    std::span<const glm::vec4> out;
     if (state_->comm->rank() == 0 && !icetImageIsNull(image)) {
-        out.resize(rgba.size());
-        icetImageCopyColorf(image, &out[0].x, ICET_IMAGE_COLOR_RGBA_FLOAT);
-        checkIceT("copying the composite");
+        out = colourOf(image, rgba.size());
     }
     recordFigures(start);
     return out;
 }
 
-std::vector<glm::vec4> IceTCompositor::closest(int width, int height,
-                                               std::span<const glm::vec4> rgba,
-                                               std::span<const float> depth,
-                                               std::vector<float>* depthOut) {
+std::span<const glm::vec4> IceTCompositor::closest(int width, int height,
+                                                   std::span<const glm::vec4> rgba,
+                                                   std::span<const float> depth,
+                                                   std::vector<float>* depthOut) {
     const auto start = std::chrono::steady_clock::now();
     checkImage(width, height, rgba.size());
     checkImage(width, height, depth.size());
@@ -179,7 +190,7 @@ std::vector<glm::vec4> IceTCompositor::closest(int width, int height,
         if (depthOut != nullptr) {
             depthOut->assign(depth.begin(), depth.end());
         }
-        return {rgba.begin(), rgba.end()}; // nothing to composite
+        return rgba; // nothing to composite
     }
     icetSetContext(state_->context);
     prepare(width, height, ICET_COMPOSITE_MODE_Z_BUFFER, state_->width, state_->height,
@@ -194,10 +205,9 @@ std::vector<glm::vec4> IceTCompositor::closest(int width, int height,
     const IceTImage image = icetCompositeImage(rgba.data(), depth.data(), valid.data(), kIdentity,
                                                kIdentity, kTransparent);
     checkIceT("icetCompositeImage (depth)");
-    std::vector<glm::vec4> out;
+    std::span<const glm::vec4> out;
     if (state_->comm->rank() == 0 && !icetImageIsNull(image)) {
-        out.resize(rgba.size());
-        icetImageCopyColorf(image, &out[0].x, ICET_IMAGE_COLOR_RGBA_FLOAT);
+        out = colourOf(image, rgba.size());
         if (depthOut != nullptr) {
             depthOut->resize(depth.size());
             icetImageCopyDepthf(image, depthOut->data(), ICET_IMAGE_DEPTH_FLOAT);

@@ -118,6 +118,11 @@ private slots:
             << 2 << QStringList{"--backend", "gl", "--azimuth", "40", "--elevation", "20"};
         QTest::newRow("3 gl iso top") << 3 << QStringList{"--backend",   "gl", "--mode",  "iso",
                                                           "--elevation", "90", "--brick", "16"};
+        QTest::newRow("2 gl cubic bottom")
+            << 2 << QStringList{"--backend", "gl", "--interp", "cubic", "--elevation", "-90"};
+        QTest::newRow("4 gl preintegrated left")
+            << 4
+            << QStringList{"--backend", "gl", "--preintegrate", "--azimuth", "90", "--brick", "32"};
         QTest::newRow("2 gl mip oblique")
             << 2 << QStringList{"--backend", "gl", "--mode", "mip", "--azimuth", "30"};
         QTest::newRow("3 gl minip left") << 3 << QStringList{"--backend", "gl", "--mode",  "minip",

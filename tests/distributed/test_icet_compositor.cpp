@@ -77,7 +77,8 @@ private slots:
         }
         IceTCompositor icet(comm_);
         const std::vector<glm::vec4> mine = myLayer(width, height);
-        const std::vector<glm::vec4> out = icet.blend(width, height, mine, order);
+        const auto view = icet.blend(width, height, mine, order);
+        const std::vector<glm::vec4> out(view.begin(), view.end());
         if (comm_.rank() != 0) {
             QVERIFY(out.empty());
             return;
@@ -117,7 +118,8 @@ private slots:
             }
         }
         std::vector<float> depthOut;
-        const std::vector<glm::vec4> out = icet.closest(w, h, colour, depth, &depthOut);
+        const auto view = icet.closest(w, h, colour, depth, &depthOut);
+        const std::vector<glm::vec4> out(view.begin(), view.end());
         if (comm_.rank() != 0) {
             QVERIFY(out.empty());
             return;
