@@ -20,6 +20,8 @@ packages=(
   orthanc orthanc-dicomweb
   # the distributed renderer: Open MPI, and IceT (shipped in Debian only inside ParaView 5.11)
   libopenmpi-dev openmpi-bin paraview-dev
+  # surfaces: mesh decimation (meshoptimizer); VTK's marching cubes for the surface benchmark
+  libmeshoptimizer-dev python3-vtk9
   # the web test: headless Chromium driven through chromedriver; openssl makes the TLS test's certificate
   chromium chromium-driver openssl
 )
