@@ -22,6 +22,7 @@
 #include "render/GpuBudget.h"
 #include "render/RenderTarget.h"
 #include "render/SceneTextures.h"
+#include "render/SurfaceRenderer.h"
 
 namespace lucent {
 
@@ -159,8 +160,19 @@ struct GpuRayCaster::State {
     std::size_t driverSlotLimit = std::numeric_limits<std::size_t>::max(); // after a refusal
     bool gradientsRefused = false; // the driver refused the memory for the gradient cache
     SceneTextures scene;
+    std::shared_ptr<const SurfaceDisplay> surface; // drawn with the volume; null: none
+    std::unique_ptr<SurfaceRenderer> surfaceRenderer;
 
     State(const Volume& v, GpuOptions o) : volume(v), options(o) {}
+
+    std::size_t drawSurface(const RenderDescription& d) {
+        if (!surfaceRenderer) {
+            surfaceRenderer = std::make_unique<SurfaceRenderer>();
+        }
+        return surfaceRenderer->draw(*surface,
+                                     makeViewFrame(volume.geometry(), d.camera, d.width, d.height),
+                                     d.transferFunction.shading, d.width, d.height);
+    }
 
     const Volume& levelVolume(int level) {
         if (level == 0) {
@@ -231,6 +243,18 @@ GpuRayCaster::GpuRayCaster(const Volume& part, const VolumePart& where, GpuOptio
 }
 
 GpuRayCaster::~GpuRayCaster() = default;
+
+bool GpuRayCaster::setSurface(std::shared_ptr<const SurfaceDisplay> surface) {
+    if (state_->part) {
+        throw std::logic_error("a part of a distributed render draws no surface");
+    }
+    if (surface) {
+        checkSurfaceDisplay(*surface);
+    }
+    state_->surface = std::move(surface);
+    state_->inTarget.reset(); // the kept frame shows the old one
+    return true;
+}
 
 RenderResult GpuRayCaster::render(const RenderDescription& description) {
     return renderWithGpuStats(description).frame;
@@ -409,6 +433,18 @@ GpuRenderResult GpuRayCaster::cast(const RenderDescription& asked, bool countRow
     }
     if (desc.volume != nullptr && desc.volume != &s.volume) {
         throw std::invalid_argument("render description names another volume than this caster's");
+    }
+    if (s.surface && !s.surface->showVolume) { // the surface alone: no bricks, no rays
+        s.inTarget.reset();
+        GpuRenderResult out;
+        out.gpu.surfaceBytesUploaded = s.drawSurface(desc);
+        s.target.resize(desc.width, desc.height);
+        s.target.bindAndClear(countRows);
+        s.surfaceRenderer->copyColourTo(s.target.colour());
+        s.inTarget = desc;
+        s.inTarget->volume = &s.volume;
+        s.last = out.gpu;
+        return out;
     }
     const SamplingSettings& sampling = desc.sampling;
     const bool cubic = sampling.interpolation == Interpolation::Cubic;
@@ -612,10 +648,14 @@ GpuRenderResult GpuRayCaster::cast(const RenderDescription& asked, bool countRow
         "\n#define LUCENT_GRADIENT_IN_POOL " + flag(pool.gradientsShareTexture()) +
         "\n#define LUCENT_SPECULAR_INT " +
         std::to_string(integerPower(desc.transferFunction.shading)) +
-        "\n#define LUCENT_ROW_SAMPLES " + flag(countRows) + "\n";
+        "\n#define LUCENT_ROW_SAMPLES " + flag(countRows) + "\n#define LUCENT_SURFACE " +
+        flag(s.surface != nullptr) + "\n";
     auto& program = s.programs[defines];
     if (!program) {
         program = std::make_unique<ShaderProgram>("raycast.vert", "raycast.frag", defines);
+    }
+    if (s.surface) { // its own program and framebuffer: before the rays' are set
+        out.gpu.surfaceBytesUploaded = s.drawSurface(desc);
     }
     const ShaderProgram& p = *program;
     p.use();
@@ -674,6 +714,8 @@ GpuRenderResult GpuRayCaster::cast(const RenderDescription& asked, bool countRow
         {"uTable", s.scene.table()},
         {"uPreTable", preintegrate ? s.scene.preintegrationTable() : s.scene.table()},
         {"uGradientPool", pool.hasGradients() ? pool.gradientTexture() : pool.texture()},
+        {"uSurfaceColour", s.surface ? s.surfaceRenderer->colour() : 0},
+        {"uSurfaceDistance", s.surface ? s.surfaceRenderer->distance() : 0},
     };
     for (int u = 0; u < int(std::size(units)); ++u) {
         glBindTextureUnit(GLuint(u), units[u].second);

@@ -38,6 +38,8 @@ struct GpuFrameStats {
     bool gradientsCached = false;
     std::string budgetSource; // where the budget came from
     std::string lodReason;    // why a coarser level, when one was used
+    // This frame: the surface's mesh or field, uploaded when the display's pointers changed.
+    std::size_t surfaceBytesUploaded = 0;
     // Where a read-back frame's time went (render(), not drawInPlace()): the
     // set-up and ray cast until the GPU finished, the read back, the conversion.
     double castMs = 0.0;
@@ -75,6 +77,24 @@ public:
     RenderResult render(const RenderDescription& description) override;
     // The same, with what the frame did on the GPU.
     GpuRenderResult renderWithGpuStats(const RenderDescription& description);
+
+    // Shows `surface` with the volume from the next frame on, each occluding
+    // the other; null: none. The surface is drawn first for the same camera
+    // (render/SurfaceRenderer.h): per pixel its lit colour and the distance tS
+    // from the eye along the pixel's ray, in the rays' parameter t (mm). A ray
+    // takes sample n only while t0 + n * dt < tS: a sample exactly at the
+    // surface belongs to the surface. The ray's premultiplied colour is then
+    // composited over the opaque surface, ray + (1 - ray.a) * surface, where
+    // there is one (the background no longer shows there), in the ray pass
+    // itself: render()'s premultiplied frame and drawInPlace() both get it and
+    // add the background as before. MIP, MinIP and average project only the
+    // samples in front of the surface, composited over it the same way.
+    // showVolume false: no bricks, no rays (no samples); the frame is the
+    // surface over the background. Needs no context (the mesh is uploaded
+    // with the next frame). Throws std::invalid_argument for a display
+    // checkSurfaceDisplay() refuses, and std::logic_error on a part caster: a
+    // part of a distributed render draws volumes only. Returns true.
+    bool setSurface(std::shared_ptr<const SurfaceDisplay> surface) override;
 
     bool drawsInPlace() const override { return true; }
     // Ray casts into the caster's float target as render() does, then draws

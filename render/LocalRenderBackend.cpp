@@ -5,6 +5,7 @@
 
 #include "core/volume/BrickResidency.h"
 #include "render/GlError.h"
+#include "render/SurfaceRenderer.h"
 
 namespace lucent {
 
@@ -34,6 +35,23 @@ void LocalRenderBackend::setVolume(std::shared_ptr<const Volume> volume) {
     pending_.reset();
 }
 
+void LocalRenderBackend::setSurface(std::shared_ptr<const SurfaceDisplay> surface) {
+    if (surface) {
+        checkSurfaceDisplay(*surface);
+    }
+    surface_ = std::move(surface);
+    if (renderer_) {
+        rendererDrawsSurfaces_ = renderer_->setSurface(surface_);
+        if (lastInPlace_) {
+            emit renderWanted(); // drawPending() draws the last frame again, with it
+        }
+    }
+}
+
+bool LocalRenderBackend::surfaceShown() const {
+    return surface_ != nullptr && (renderer_ ? rendererDrawsSurfaces_ : kind_ == RendererKind::Gl);
+}
+
 void LocalRenderBackend::request(const RenderDescription& still, const FrameOptions& options) {
     pending_ = Pending{still, options};
     emit renderWanted();
@@ -43,6 +61,7 @@ void LocalRenderBackend::dropRenderer() {
     renderer_.reset();
     rendererVolume_.reset();
     rendererIsGl_ = false;
+    rendererDrawsSurfaces_ = false;
     last_.reset();
     lastInPlace_ = false;
 }
@@ -67,6 +86,7 @@ Renderer& LocalRenderBackend::renderer() {
             throw GlError(opened.fallbackReason);
         }
         renderer_ = std::move(opened.renderer);
+        rendererDrawsSurfaces_ = renderer_->setSurface(surface_);
         rendererVolume_ = volume_;
         rendererIsGl_ = kind_ == RendererKind::Gl;
     }

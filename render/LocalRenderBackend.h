@@ -32,6 +32,16 @@ public:
     void setGpuOptions(const GpuOptions& options) { gpuOptions_ = options; }
 
     void setVolume(std::shared_ptr<const Volume> volume) override;
+    // The surface shown with the volume (null: none), drawn by the GL
+    // renderer only (GpuRayCaster::setSurface): kept, and given to every
+    // renderer opened later. A frame drawn in place is drawn again with it
+    // (renderWanted()). Throws std::invalid_argument for a display
+    // checkSurfaceDisplay() refuses (render/SurfaceRenderer.h), whatever the kind.
+    void setSurface(std::shared_ptr<const SurfaceDisplay> surface);
+    // Whether the frames show the surface: one is set and the renderer draws
+    // surfaces (GL does, the CPU does not); before a renderer is opened,
+    // whether the kind is Gl. What the view tells the user.
+    bool surfaceShown() const;
     void request(const RenderDescription& still, const FrameOptions& options) override;
     bool pending() const { return pending_.has_value(); }
 
@@ -85,6 +95,8 @@ private:
     std::shared_ptr<const Volume> rendererVolume_;
     std::unique_ptr<Renderer> renderer_;
     bool rendererIsGl_ = false;
+    std::shared_ptr<const SurfaceDisplay> surface_;
+    bool rendererDrawsSurfaces_ = false; // what the renderer's setSurface() answered
     // The description of the renderer's last frame, and whether it was drawn in place.
     std::optional<RenderDescription> last_;
     bool lastInPlace_ = false;

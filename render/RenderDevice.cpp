@@ -34,6 +34,9 @@ public:
         context_->makeCurrent();
         return caster_->drawInPlace(description, target);
     }
+    bool setSurface(std::shared_ptr<const SurfaceDisplay> surface) override {
+        return caster_->setSurface(std::move(surface)); // GL-free: uploaded with the next frame
+    }
 
 private:
     std::shared_ptr<OffscreenContext> context_;

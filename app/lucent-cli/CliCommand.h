@@ -27,5 +27,6 @@ int runRender(const QStringList& args);
 int runPacs(const QStringList& args); // exit 4: the PACS or the network failed
 int runBench(const QStringList& args);
 int runOptions(const QStringList& args); // the render options table
+int runSurface(const QStringList& args); // isosurface meshes and the method of spheres
 
 } // namespace lucent::cli

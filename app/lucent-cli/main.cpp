@@ -15,6 +15,8 @@ const char* kUsageText =
     "  render PATH -o OUT.png [options]     volume rendering (CPU, GL or a server); --help "
     "lists options\n"
     "  compare A.png B.png                  print psnr_db=<x> ssim=<y> for two images\n"
+    "  surface PATH -o OUT.stl|ply|vtk|obj --iso HU [--svr-radius MM] [...]\n"
+    "                                       isosurface mesh, local surface-to-volume ratio\n"
     "  options [--markdown]                 every render option: flag, wire key, range, default\n"
     "  bench quality PATH [--backend cpu|gl] [--csv OUT.csv] [--plot OUT.png]\n"
     "                                       time against PSNR/SSIM of every sampling setting\n"
@@ -68,6 +70,9 @@ int main(int argc, char** argv) {
     }
     if (command == "options") {
         return lucent::cli::runOptions(args);
+    }
+    if (command == "surface") {
+        return lucent::cli::runSurface(args);
     }
     if (command == "compare") {
         return lucent::cli::runCompare(args);

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <ostream>
 #include <stdexcept>
+#include <tuple>
 
 #include "core/formats/AtomicFile.h"
 #include "core/image/ColourMap.h"
@@ -155,6 +156,21 @@ void writeObj(std::ostream& out, const TriangleMesh& mesh, const MeshFileContent
 }
 
 } // namespace
+
+MeshFileContent surfaceFileContent(const SurfaceResult& surface, double iso) {
+    MeshFileContent content;
+    char text[96];
+    std::snprintf(text, sizeof text, "iso=%.1f", iso);
+    content.description = text;
+    if (surface.svr) {
+        content.svr.assign(surface.svr->svr.begin(), surface.svr->svr.end());
+        content.svrRadiusMm = surface.svr->radius;
+        std::tie(content.colourLo, content.colourHi) = surfaceFieldRange(*surface.svr);
+        std::snprintf(text, sizeof text, " svr_radius_mm=%.3f", surface.svr->radius);
+        content.description += text;
+    }
+    return content;
+}
 
 MeshFormat meshFormatOf(const std::filesystem::path& file) {
     std::string ext = file.extension().string();

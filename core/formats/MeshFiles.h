@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/surface/SurfacePipeline.h"
 #include "core/surface/TriangleMesh.h"
 
 namespace lucent {
@@ -32,6 +33,11 @@ struct MeshFileContent {
     double svrRadiusMm = 0.0;
     double colourLo = 0.0, colourHi = 1.0;
 };
+
+// What a file of a computed surface holds: "iso=300.0 svr_radius_mm=5.000",
+// and its field coloured over the field's 5th to 95th percentile (the
+// display's range, surfaceFieldRange()).
+MeshFileContent surfaceFileContent(const SurfaceResult& surface, double iso);
 
 // Writes `mesh` as `format` to `file`. Throws std::runtime_error naming the
 // file when it cannot be written (a missing folder, no permission, a full

@@ -5,6 +5,7 @@
 // render/RenderDevice.h, which picks GL or CPU and says why it fell back.
 
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -15,6 +16,8 @@
 #include "core/scene/RenderDescription.h"
 
 namespace lucent {
+
+struct SurfaceDisplay; // core/scene/SurfaceDisplay.h
 
 struct RenderStats {
     std::size_t samples = 0;     // volume samples taken along all rays
@@ -67,6 +70,14 @@ public:
     // the description's background. Throws std::logic_error where !drawsInPlace().
     virtual RenderStats drawInPlace(const RenderDescription& description,
                                     const FramebufferTarget& target);
+
+    // Shows `surface` with the volume from the next frame on, each occluding
+    // the other; null: none. Returns whether this renderer draws surfaces:
+    // the default (the CPU ray caster, a distributed render) ignores it.
+    virtual bool setSurface(std::shared_ptr<const SurfaceDisplay> surface) {
+        (void)surface;
+        return false;
+    }
 };
 
 } // namespace lucent

@@ -38,6 +38,13 @@ const bool kGradientInPool = LUCENT_GRADIENT_IN_POOL;
 // A frame drawn in place is not read back: its samples are also summed per
 // row here (one atomic add a pixel), so that 4 bytes a row tell the count.
 const bool kRowSamples = LUCENT_ROW_SAMPLES;
+// A surface shown with the volume (render/SurfaceRenderer): its opaque colour
+// (premultiplied) and its distance from the eye along this pixel's ray, in
+// the rays' parameter t (+inf where there is none). The ray stops there and
+// its colour is composited over the surface's.
+const bool kSurface = LUCENT_SURFACE;
+uniform sampler2D uSurfaceColour;
+uniform sampler2D uSurfaceDistance;
 layout(binding = 0, r32ui) uniform uimage2D uRowSamples; // (row, 0)
 uniform float uEarlyTermination, uIso;
 uniform vec4 uLight; // ambient, diffuse, specular, specular power
@@ -396,7 +403,18 @@ bool raySpanIn(dvec3 o, dvec3 d, dvec3 clipLo, dvec3 clipHi, ivec3 openHi, out d
     return true;
 }
 
-void main() {
+// The last sample in front of the surface: n with t0 + n * dt < tS (a
+// sample exactly at the surface belongs to it), no earlier than nFirst - 1.
+int lastBeforeSurface(double t0, int nFirst, int nLast) {
+    float tS = texelFetch(uSurfaceDistance, ivec2(gl_FragCoord.xy), 0).r;
+    if (!(tS < 3.0e38)) {
+        return nLast;
+    }
+    double before = ceil((double(tS) - t0) / uDt) - 1.0;
+    return int(clamp(before, double(nFirst - 1), double(nLast)));
+}
+
+void castRay() {
     outColour = vec4(0.0);
     outSamples = 0u;
     outProjection = vec2(0.0);
@@ -424,6 +442,10 @@ void main() {
             nFirst - 1 >= sceneFirst) {
             nFirst -= 1;
         }
+    }
+
+    if (kSurface) {
+        nLast = lastBeforeSurface(t0, nFirst, nLast);
     }
 
     vec3 entry = vec3(o + d * t0), stride = vec3(d * uDt);
@@ -589,4 +611,11 @@ void main() {
         return;
     }
     outColour = acc;
+}
+
+void main() {
+    castRay();
+    if (kSurface) {
+        outColour += (1.0 - outColour.a) * texelFetch(uSurfaceColour, ivec2(gl_FragCoord.xy), 0);
+    }
 }

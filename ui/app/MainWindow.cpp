@@ -13,6 +13,7 @@
 #include <QSettings>
 #include <QStandardPaths>
 #include <QStatusBar>
+#include <QTabWidget>
 #include <QVBoxLayout>
 
 #include "core/pacs/PacsService.h"
@@ -25,6 +26,7 @@
 #include "ui/study/VolumeLoader.h"
 #include "ui/transfer/TransferFunctionEditor.h"
 #include "ui/volume/RenderServerSettings.h"
+#include "ui/volume/SurfacePanel.h"
 #include "ui/volume/VolumeView.h"
 #include "ui/volume/VolumeViewControls.h"
 
@@ -84,7 +86,11 @@ MainWindow::MainWindow(QWidget* parent)
     tfEditor_ = new TransferFunctionEditor;
     auto* panel = new QWidget;
     auto* column = new QVBoxLayout(panel);
-    column->addWidget(new VolumeViewControls(volumeView_, panel));
+    // The view's controls and the Surface panel share the top of the dock.
+    auto* tabs = new QTabWidget(panel);
+    tabs->addTab(new VolumeViewControls(volumeView_, tabs), tr("View"));
+    tabs->addTab(new SurfacePanel(volumeView_, tabs), tr("Surface"));
+    column->addWidget(tabs);
     column->addWidget(tfEditor_, 1);
     auto* dock = new QDockWidget(tr("3D / Transfer function"), this);
     dock->setObjectName(QStringLiteral("volumeDock"));

@@ -12,6 +12,7 @@
 #include <QWheelEvent>
 
 #include "core/scene/ViewFrame.h"
+#include "ui/volume/SurfaceColourBar.h"
 #include "ui/volume/VolumeSurfaces.h"
 
 namespace lucent {
@@ -176,6 +177,10 @@ void VolumeView::updateNotice() {
     } else if (backend_ == Backend::Remote) {
         line = tr("3D on the server: %1").arg(remote_->statusMessage());
     }
+    if (surfaceDisplay_ && backend_ != Backend::Gpu) {
+        line +=
+            (line.isEmpty() ? "" : "; ") + tr("the surface is shown with the GPU renderer only");
+    }
     if (!frameError_.isEmpty()) {
         line = line.isEmpty() ? frameError_ : line + "; " + frameError_;
     }
@@ -190,6 +195,14 @@ void VolumeView::updateSurface() {
     if (surface_) {
         surface_->update();
     }
+}
+
+void VolumeView::setSurfaceDisplay(std::shared_ptr<const SurfaceDisplay> display, double radiusMm) {
+    surfaceDisplay_ = std::move(display);
+    surfaceRadius_ = radiusMm;
+    local_->setSurface(surfaceDisplay_);
+    updateNotice();
+    requestRender();
 }
 
 void VolumeView::setVolume(std::shared_ptr<const Volume> volume) {
@@ -386,6 +399,9 @@ void VolumeView::paintFrame(QPainter& painter) {
         }
         if (clipHandlesShown_) {
             paintClipBox(painter);
+        }
+        if (surfaceDisplay_ && local_->surfaceShown() && backend_ == Backend::Gpu) {
+            paintSurfaceColourBar(painter, area, *surfaceDisplay_, surfaceRadius_);
         }
     }
     if (!notice_.isEmpty()) {

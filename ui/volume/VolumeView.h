@@ -13,6 +13,7 @@
 #include "core/quality/InteractiveQuality.h"
 #include "core/raycast/CpuRayCaster.h"
 #include "core/scene/RenderDescription.h"
+#include "core/scene/SurfaceDisplay.h"
 #include "render/LocalRenderBackend.h"
 #include "render/RemoteRenderBackend.h"
 #include "ui/volume/ClipBoxHandles.h"
@@ -119,6 +120,13 @@ public slots:
     void setClipHandlesShown(bool shown);
     void requestRender();
 
+public:
+    // A surface shown with the volume (null: none), with the radius of its
+    // SVR field for the colour bar. The GPU renderer draws it; on the CPU or
+    // a server the notice says it is not shown.
+    void setSurfaceDisplay(std::shared_ptr<const SurfaceDisplay> display, double radiusMm);
+    const std::shared_ptr<const SurfaceDisplay>& surfaceDisplay() const { return surfaceDisplay_; }
+
 signals:
     void volumeChanged();
     void cameraChanged(const lucent::Camera& camera);
@@ -164,6 +172,9 @@ private:
     SamplingSettings sampling_;
     InteractiveQuality quality_;
     bool clipHandlesShown_ = false;
+
+    std::shared_ptr<const SurfaceDisplay> surfaceDisplay_;
+    double surfaceRadius_ = 0.0;
 
     Backend backend_ = Backend::Cpu;
     std::unique_ptr<QWidget> surface_; // a child: VolumeGlSurface or VolumeFrameSurface
