@@ -70,19 +70,28 @@ std::string fixed(double v, int digits) {
 
 std::string statsOf(const SurfaceResult& s) {
     const MeshReport& m = s.report;
-    std::string line = "triangles=" + std::to_string(m.triangles) +
-                       " vertices=" + std::to_string(m.vertices) + " area_mm2=" + fixed(m.area, 1) +
-                       " volume_mm3=" + fixed(m.volume, 1) +
-                       " watertight=" + (m.closedManifold() ? "1" : "0") +
-                       " components=" + std::to_string(m.components) +
-                       " components_dropped=" + std::to_string(s.componentsDropped) +
-                       " h_max_mm=" + fixed(m.hMax, 3) + " extract_ms=" + fixed(s.extractMs, 1) +
-                       " cleanup_ms=" + fixed(s.cleanupMs, 1);
+    std::string line =
+        "triangles=" + std::to_string(m.triangles) + " vertices=" + std::to_string(m.vertices) +
+        " area_mm2=" + fixed(m.area, 1) + " volume_mm3=" + fixed(m.volume, 1) +
+        " watertight=" + (m.closedManifold() ? "1" : "0") +
+        " components=" + std::to_string(m.components) +
+        " components_dropped=" + std::to_string(s.componentsDropped) +
+        " h_max_mm=" + fixed(m.hMax, 3) + " mesh_bytes_per_triangle=" +
+        fixed(double(s.mesh.vertices.size() * sizeof(glm::dvec3) +
+                     s.mesh.triangles.size() * sizeof(glm::u32vec3)) /
+                  double(m.triangles),
+              1) +
+        " extract_ms=" + fixed(s.extractMs, 1) + " cleanup_ms=" + fixed(s.cleanupMs, 1);
     if (s.svr) {
         line += " svr_radius_mm=" + fixed(s.svr->radius, 3) +
                 " h_max_over_r=" + fixed(s.svr->longestEdgeOverRadius, 3) +
                 " svr_ms=" + fixed(s.svrMs, 1) + " " + statsLine("svr", fieldStats(s.svr->svr)) +
-                " svr_global=" + fixed(s.svr->totalRatio, 6);
+                " svr_global=" + fixed(s.svr->totalRatio, 6) +
+                " svr_candidates_per_vertex=" + fixed(s.svr->candidatesPerQuery, 1) +
+                " svr_clipped_per_vertex=" + fixed(s.svr->clippedPerQuery, 1) +
+                " svr_index_bytes_per_triangle=" +
+                fixed(double(s.svr->indexBytes) / double(m.triangles), 1) +
+                " svr_threads=" + std::to_string(s.svr->threads);
     }
     return line;
 }
