@@ -12,8 +12,10 @@
 
 #include "core/image/ImageMetrics.h"
 #include "core/image/PngIO.h"
+#include "tests/support/CliRunner.h"
 
 using namespace lucent;
+using lucent::test::statOf;
 
 namespace {
 
@@ -27,11 +29,6 @@ QString runMpi(int ranks, const QStringList& args) {
         return {};
     }
     return QString::fromUtf8(p.readAllStandardOutput());
-}
-
-double statOf(const QString& out, const QString& key) {
-    const auto m = QRegularExpression("(?:^| )" + key + "=([0-9.]+)").match(out);
-    return m.hasMatch() ? m.captured(1).toDouble() : -1.0;
 }
 
 } // namespace

@@ -31,12 +31,6 @@ CliRun runMpi(int ranks, const QStringList& args, int timeoutMs = 120000) {
     return runProgram(LUCENT_MPIEXEC, all, timeoutMs);
 }
 
-double statOf(const QString& out, const QString& key) {
-    const QRegularExpression re("(?:^| )" + key + "=([0-9.]+)");
-    const auto m = re.match(out);
-    return m.hasMatch() ? m.captured(1).toDouble() : -1.0;
-}
-
 } // namespace
 
 class TestDistributedCli : public QObject {

@@ -25,13 +25,7 @@ QStringList mpirun(int ranks) {
 }
 
 RenderDescription localDescription(const Volume& volume, const Camera& camera) {
-    RenderDescription d;
-    d.volume = &volume;
-    d.width = kSide;
-    d.height = kSide;
-    d.transferFunction = loadPreset("ct-bone");
-    d.camera = camera;
-    return d;
+    return referenceDescription(volume, camera, kSide);
 }
 
 // Authenticates (unless told not to), opens the only series at kSide with ct-bone; its uid.

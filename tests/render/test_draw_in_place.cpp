@@ -20,47 +20,6 @@ using namespace lucent::test;
 
 namespace {
 
-// An RGBA8 framebuffer like a QOpenGLWidget's, in the current context.
-class TestFramebuffer {
-public:
-    TestFramebuffer(int width, int height) : width_(width), height_(height) {
-        texture_ = makeTexture(GL_TEXTURE_2D);
-        glTextureStorage2D(texture_.get(), 1, GL_RGBA8, width, height);
-        GLuint fb = 0;
-        glCreateFramebuffers(1, &fb);
-        framebuffer_ = GlFramebuffer(fb);
-        glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0, texture_.get(), 0);
-        if (glCheckNamedFramebufferStatus(fb, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-            throw std::runtime_error("the test framebuffer is not complete");
-        }
-    }
-    GLuint name() const { return framebuffer_.get(); }
-    FramebufferTarget whole() const { return {name(), 0, 0, width_, height_}; }
-    void clear(const glm::vec4& colour) {
-        glClearNamedFramebufferfv(name(), GL_COLOR, 0, &colour[0]);
-    }
-    // The rectangle (GL's origin: bottom left) as an image, top row first.
-    ImageRGBA8 read(int x, int y, int width, int height) const {
-        ImageRGBA8 bottomUp = ImageRGBA8::filled(width, height);
-        glPixelStorei(GL_PACK_ALIGNMENT, 1);
-        glGetTextureSubImage(texture_.get(), 0, x, y, 0, width, height, 1, GL_RGBA,
-                             GL_UNSIGNED_BYTE, GLsizei(bottomUp.pixels.size()),
-                             bottomUp.pixels.data());
-        checkGl("reading the test framebuffer");
-        ImageRGBA8 image = ImageRGBA8::filled(width, height);
-        for (int row = 0; row < height; ++row) {
-            std::copy_n(bottomUp.at(0, height - 1 - row), 4 * width, image.at(0, row));
-        }
-        return image;
-    }
-    ImageRGBA8 read() const { return read(0, 0, width_, height_); }
-
-private:
-    int width_, height_;
-    GlTexture texture_;
-    GlFramebuffer framebuffer_;
-};
-
 // The test's volume with an oblique direction and uneven spacing (as
 // test_gpu_ray_caster's), int16.
 Volume madeVolume() {

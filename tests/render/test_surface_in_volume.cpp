@@ -23,44 +23,6 @@
 using namespace lucent;
 using namespace lucent::test;
 
-namespace {
-
-// An RGBA8 framebuffer like a QOpenGLWidget's, in the current context.
-class TestFramebuffer {
-public:
-    TestFramebuffer(int width, int height) : width_(width), height_(height) {
-        texture_ = makeTexture(GL_TEXTURE_2D);
-        glTextureStorage2D(texture_.get(), 1, GL_RGBA8, width, height);
-        GLuint fb = 0;
-        glCreateFramebuffers(1, &fb);
-        framebuffer_ = GlFramebuffer(fb);
-        glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0, texture_.get(), 0);
-        const GLfloat magenta[4] = {1, 0, 1, 1}; // every pixel must be drawn over
-        glClearNamedFramebufferfv(fb, GL_COLOR, 0, magenta);
-    }
-    FramebufferTarget whole() const { return {framebuffer_.get(), 0, 0, width_, height_}; }
-    // glReadPixels, top row first.
-    ImageRGBA8 read() const {
-        ImageRGBA8 bottomUp = ImageRGBA8::filled(width_, height_);
-        glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_.get());
-        glPixelStorei(GL_PACK_ALIGNMENT, 1);
-        glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, bottomUp.pixels.data());
-        checkGl("reading the test framebuffer");
-        ImageRGBA8 image = ImageRGBA8::filled(width_, height_);
-        for (int row = 0; row < height_; ++row) {
-            std::copy_n(bottomUp.at(0, height_ - 1 - row), 4 * width_, image.at(0, row));
-        }
-        return image;
-    }
-
-private:
-    int width_, height_;
-    GlTexture texture_;
-    GlFramebuffer framebuffer_;
-};
-
-} // namespace
-
 class TestSurfaceInVolume : public QObject {
     Q_OBJECT
     std::unique_ptr<OffscreenContext> context_;

@@ -15,6 +15,7 @@
 #include <memory>
 
 #include "core/image/Image.h"
+#include "core/scene/RenderDescription.h"
 #include "protocol/ProtocolMessages.h"
 #include "tests/support/ServerProcess.h"
 
@@ -33,6 +34,19 @@ struct ReceivedFrame {
         return out;
     }
 };
+
+// What a server renders for a view opened at side x side with ct-bone and
+// given `camera`: the local reference of the remote tests.
+inline RenderDescription referenceDescription(const Volume& volume, const Camera& camera,
+                                              int side) {
+    RenderDescription d;
+    d.volume = &volume;
+    d.width = side;
+    d.height = side;
+    d.transferFunction = loadPreset("ct-bone");
+    d.camera = camera;
+    return d;
+}
 
 class RemoteTestClient {
 public:

@@ -22,13 +22,7 @@ constexpr int kSide = 128;
 
 // The description the server should render after openView() and `camera`.
 RenderDescription localDescription(const Volume& volume, const Camera& camera) {
-    RenderDescription d;
-    d.volume = &volume;
-    d.width = kSide;
-    d.height = kSide;
-    d.transferFunction = loadPreset("ct-bone");
-    d.camera = camera;
-    return d;
+    return referenceDescription(volume, camera, kSide);
 }
 
 // Authenticates, opens the only series, sets size and preset.

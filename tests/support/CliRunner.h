@@ -2,8 +2,11 @@
 // Runs build/bin/lucent-cli as a user would, for the command-line tests.
 
 #include <QProcess>
+#include <QRegularExpression>
 #include <QString>
 #include <QStringList>
+
+#include <cmath>
 
 namespace lucent::test {
 
@@ -28,6 +31,12 @@ inline CliRun runProgram(const QString& program, const QStringList& args, int ti
 
 inline CliRun runCli(const QStringList& args, int timeoutMs = 120000) {
     return runProgram(QString(LUCENT_BIN_DIR) + "/lucent-cli", args, timeoutMs);
+}
+
+// The number of `key=` in a --stats line; NaN when it is not there.
+inline double statOf(const QString& out, const QString& key) {
+    const auto m = QRegularExpression("(?:^| )" + key + "=(-?[0-9.]+(?:e[+-]?[0-9]+)?)").match(out);
+    return m.hasMatch() ? m.captured(1).toDouble() : std::nan("");
 }
 
 } // namespace lucent::test

@@ -13,16 +13,11 @@
 #include "tests/support/CliRunner.h"
 
 using namespace lucent;
+using lucent::test::statOf;
 
 namespace {
 
 const QString kSeries = QStringLiteral(LUCENT_TEST_DATA_DIR "/dcm_qa_ct/Philips_S21570/S2020");
-
-double statOf(const QString& out, const QString& key) {
-    const QRegularExpression re("(?:^| )" + key + "=([0-9.]+)");
-    const auto m = re.match(out);
-    return m.hasMatch() ? m.captured(1).toDouble() : -1.0;
-}
 
 // Opacity 0.002 from `hiddenBelow` HU up, nothing below.
 QString writeTf(const QTemporaryDir& dir, const QString& name, double hiddenBelow) {

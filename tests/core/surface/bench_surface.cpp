@@ -17,15 +17,6 @@
 
 using namespace lucent::test;
 
-namespace {
-
-double statOf(const QString& out, const QString& key) {
-    const auto m = QRegularExpression("(?:^| )" + key + "=(-?[0-9.e+-]+)").match(out);
-    return m.hasMatch() ? m.captured(1).toDouble() : -1.0;
-}
-
-} // namespace
-
 class BenchSurface : public QObject {
     Q_OBJECT
     QTemporaryDir tmp_;

@@ -20,11 +20,6 @@ namespace {
 const QString kSkull = "/usr/share/doc/invesalius-examples/examples/Cranium.inv3";
 const QString kCt = LUCENT_TEST_DATA_DIR "/dcm_qa_ct/Philips_S21570/S2010";
 
-double statOf(const QString& out, const QString& key) {
-    const auto m = QRegularExpression("(?:^| )" + key + "=(-?[0-9.e+-]+)").match(out);
-    return m.hasMatch() ? m.captured(1).toDouble() : std::nan("");
-}
-
 } // namespace
 
 class TestSurfaceCli : public QObject {

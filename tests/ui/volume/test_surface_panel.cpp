@@ -15,31 +15,14 @@
 
 #include "core/image/ImageMetrics.h"
 #include "tests/support/XvfbRelaunch.h"
+#include "tests/ui/volume/BallVolume.h"
 #include "ui/volume/SurfacePanel.h"
 #include "ui/volume/VolumeView.h"
 
 using namespace lucent;
+using lucent::test::makeBall;
 
 namespace {
-
-// A ball of 1000 (radius 10 voxels, 1 mm) in 0.
-std::shared_ptr<const Volume> ball() {
-    VolumeGeometry g;
-    g.dims = {32, 32, 32};
-    auto volume = std::make_shared<Volume>(g, VoxelType::Int16);
-    auto voxels = volume->voxels<std::int16_t>();
-    for (int k = 0; k < 32; ++k) {
-        for (int j = 0; j < 32; ++j) {
-            for (int i = 0; i < 32; ++i) {
-                const double r = glm::length(glm::dvec3(i, j, k) - glm::dvec3(15.5));
-                voxels[volume->linearIndex(i, j, k)] =
-                    std::int16_t(std::clamp((11.0 - r) / 2.0, 0.0, 1.0) * 1000.0);
-            }
-        }
-    }
-    volume->modality = "CT";
-    return volume;
-}
 
 // Noise: a surface of millions of triangles, for the cancel test.
 std::shared_ptr<const Volume> noise() {
@@ -78,7 +61,7 @@ private slots:
     void init() {
         view_ = std::make_unique<VolumeView>();
         view_->resize(160, 128);
-        view_->setVolume(ball());
+        view_->setVolume(makeBall());
         view_->show();
         QVERIFY(QTest::qWaitForWindowExposed(view_.get()));
         panel_ = std::make_unique<SurfacePanel>(view_.get());
@@ -152,7 +135,7 @@ private slots:
 
     void theCpuRendererSaysItDoesNotDrawIt() {
         VolumeView cpu(nullptr, VolumeView::Backend::Cpu);
-        cpu.setVolume(ball());
+        cpu.setVolume(makeBall());
         SurfacePanel panel(&cpu);
         panel.radius()->setValue(0.0);
         QSignalSpy computed(&panel, &SurfacePanel::computed);
