@@ -33,16 +33,7 @@ QString openView(RemoteTestClient& client, bool authenticate = true) {
     if (authenticate && (!client.waitConnected() || !client.authenticate())) {
         return {};
     }
-    client.send({{"type", "list"}});
-    const QJsonArray series = client.waitForText("series")["series"].toArray();
-    if (series.size() != 1) {
-        return {};
-    }
-    const QString uid = series[0].toObject()["uid"].toString();
-    client.change({{"type", "open"}, {"series", uid}});
-    client.change({{"type", "size"}, {"width", kSide}, {"height", kSide}});
-    client.change({{"type", "tf"}, {"preset", "ct-bone"}});
-    return uid;
+    return openOnlySeries(client, kSide);
 }
 
 double psnrTo(const RenderDescription& d, const ReceivedFrame& frame, const QString& name) {

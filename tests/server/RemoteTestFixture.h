@@ -4,6 +4,7 @@
 
 #include <QElapsedTimer>
 #include <QImage>
+#include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QTest>
@@ -137,5 +138,21 @@ public:
 private:
     QWebSocket socket_;
 };
+
+// Opens the server's only series at side x side with ct-bone (three view
+// changes); its uid, empty when the server lists another number of series.
+// The client must be authenticated.
+inline QString openOnlySeries(RemoteTestClient& client, int side) {
+    client.send({{"type", "list"}});
+    const QJsonArray series = client.waitForText("series")["series"].toArray();
+    if (series.size() != 1) {
+        return {};
+    }
+    const QString uid = series[0].toObject()["uid"].toString();
+    client.change({{"type", "open"}, {"series", uid}});
+    client.change({{"type", "size"}, {"width", side}, {"height", side}});
+    client.change({{"type", "tf"}, {"preset", "ct-bone"}});
+    return uid;
+}
 
 } // namespace lucent::test

@@ -30,17 +30,7 @@ QString openView(RemoteTestClient& client) {
     if (!client.waitConnected() || !client.authenticate()) {
         return {};
     }
-    client.send({{"type", "list"}});
-    const QJsonObject list = client.waitForText("series");
-    const QJsonArray series = list["series"].toArray();
-    if (series.size() != 1) {
-        return {};
-    }
-    const QString uid = series[0].toObject()["uid"].toString();
-    client.change({{"type", "open"}, {"series", uid}});
-    client.change({{"type", "size"}, {"width", kSide}, {"height", kSide}});
-    client.change({{"type", "tf"}, {"preset", "ct-bone"}});
-    return uid;
+    return openOnlySeries(client, kSide);
 }
 
 void saveOnFailure(const ImageRGBA8& image, const QString& name, bool failed) {
