@@ -25,6 +25,32 @@ void gl_delete::buffer(GLuint name) {
     glDeleteBuffers(1, &name);
 }
 
+GlTexture makeTexture2D(GLenum format, int width, int height) {
+    GlTexture texture = makeTexture(GL_TEXTURE_2D);
+    glTextureStorage2D(texture.get(), 1, format, width, height);
+    return texture;
+}
+
+GlFramebuffer makeFramebuffer(std::initializer_list<std::pair<GLenum, GLuint>> attachments,
+                              const std::string& what) {
+    GLuint name = 0;
+    glCreateFramebuffers(1, &name);
+    GlFramebuffer framebuffer(name);
+    std::vector<GLenum> drawn;
+    for (const auto& [point, texture] : attachments) {
+        glNamedFramebufferTexture(name, point, texture, 0);
+        if (point != GL_DEPTH_ATTACHMENT) {
+            drawn.push_back(point);
+        }
+    }
+    glNamedFramebufferDrawBuffers(name, GLsizei(drawn.size()), drawn.data());
+    if (glCheckNamedFramebufferStatus(name, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        throw GlError("the " + what + " framebuffer is not complete on this driver");
+    }
+    checkGl(what + " framebuffer");
+    return framebuffer;
+}
+
 GlTexture makeTexture(GLenum target) {
     GLuint name = 0;
     glCreateTextures(target, 1, &name);

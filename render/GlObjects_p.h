@@ -4,6 +4,7 @@
 
 #include <epoxy/gl.h>
 
+#include <initializer_list>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -54,6 +55,13 @@ using GlVertexArray = GlName<gl_delete::vertexArray>;
 using GlBuffer = GlName<gl_delete::buffer>;
 
 GlTexture makeTexture(GLenum target);
+// A 2D texture with immutable storage of `format` (makeTexture's filtering).
+GlTexture makeTexture2D(GLenum format, int width, int height);
+// A framebuffer of these (attachment point, texture) pairs that draws into
+// its colour attachments in the order given. Throws GlError saying "the
+// <what> framebuffer is not complete on this driver" when the driver refuses.
+GlFramebuffer makeFramebuffer(std::initializer_list<std::pair<GLenum, GLuint>> attachments,
+                              const std::string& what);
 
 // A vertex and a fragment shader linked into one program. Throws GlError with
 // the driver's log (and the shader's name) when either fails.

@@ -11,27 +11,14 @@ void RenderTarget::resize(int width, int height) {
     if (width == width_ && height == height_ && framebuffer_.get() != 0) {
         return;
     }
-    colour_ = makeTexture(GL_TEXTURE_2D);
-    glTextureStorage2D(colour_.get(), 1, GL_RGBA32F, width, height);
-    samples_ = makeTexture(GL_TEXTURE_2D);
-    glTextureStorage2D(samples_.get(), 1, GL_R32UI, width, height);
-    projection_ = makeTexture(GL_TEXTURE_2D);
-    glTextureStorage2D(projection_.get(), 1, GL_RG32F, width, height);
-    rowSamples_ = makeTexture(GL_TEXTURE_2D);
-    glTextureStorage2D(rowSamples_.get(), 1, GL_R32UI, height, 1);
-    GLuint fb = 0;
-    glCreateFramebuffers(1, &fb);
-    framebuffer_ = GlFramebuffer(fb);
-    glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0, colour_.get(), 0);
-    glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, samples_.get(), 0);
-    glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT2, projection_.get(), 0);
-    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-    glNamedFramebufferDrawBuffers(fb, 3, buffers);
-    if (glCheckNamedFramebufferStatus(fb, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-        throw GlError("the " + std::to_string(width) + "x" + std::to_string(height) +
-                      " float framebuffer is not complete on this driver");
-    }
-    checkGl("render target");
+    colour_ = makeTexture2D(GL_RGBA32F, width, height);
+    samples_ = makeTexture2D(GL_R32UI, width, height);
+    projection_ = makeTexture2D(GL_RG32F, width, height);
+    rowSamples_ = makeTexture2D(GL_R32UI, height, 1);
+    framebuffer_ = makeFramebuffer({{GL_COLOR_ATTACHMENT0, colour_.get()},
+                                    {GL_COLOR_ATTACHMENT1, samples_.get()},
+                                    {GL_COLOR_ATTACHMENT2, projection_.get()}},
+                                   std::to_string(width) + "x" + std::to_string(height) + " float");
     width_ = width;
     height_ = height;
     shownFramebuffer_.reset();
@@ -40,21 +27,14 @@ void RenderTarget::resize(int width, int height) {
 
 GLuint RenderTarget::shownFramebuffer() {
     if (shownFramebuffer_.get() == 0) {
-        shown_ = makeTexture(GL_TEXTURE_2D);
-        glTextureStorage2D(shown_.get(), 1, GL_RGBA8, width_, height_);
+        shown_ = makeTexture2D(GL_RGBA8, width_, height_);
         glTextureParameteri(shown_.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
         glTextureParameteri(shown_.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
         glTextureParameteri(shown_.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
         glTextureParameteri(shown_.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-        GLuint fb = 0;
-        glCreateFramebuffers(1, &fb);
-        shownFramebuffer_ = GlFramebuffer(fb);
-        glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0, shown_.get(), 0);
-        if (glCheckNamedFramebufferStatus(fb, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-            throw GlError("the " + std::to_string(width_) + "x" + std::to_string(height_) +
-                          " RGBA8 framebuffer is not complete on this driver");
-        }
-        checkGl("shown frame");
+        shownFramebuffer_ =
+            makeFramebuffer({{GL_COLOR_ATTACHMENT0, shown_.get()}},
+                            std::to_string(width_) + "x" + std::to_string(height_) + " RGBA8");
     }
     return shownFramebuffer_.get();
 }

@@ -68,8 +68,7 @@ void SceneTextures::updateTables(const TransferFunction& tf, double lo, double h
                         : float(1.0 - std::pow(1.0 - std::min(double(raw.a), 1.0), stepRatio));
             rows[std::size_t(n)] = raw;
         }
-        table_ = makeTexture(GL_TEXTURE_2D);
-        glTextureStorage2D(table_.get(), 1, GL_RGBA32F, tableSize, 2);
+        table_ = makeTexture2D(GL_RGBA32F, tableSize, 2);
         glTextureSubImage2D(table_.get(), 0, 0, 0, tableSize, 2, GL_RGBA, GL_FLOAT, rows.data());
         // The shader's one fetch per lookup interpolates between entries.
         glTextureParameteri(table_.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
@@ -87,8 +86,7 @@ void SceneTextures::updateTables(const TransferFunction& tf, double lo, double h
     if (preintegrate && preKey_ != key) {
         const PreintegrationTable pre =
             buildPreintegrationTable(tf, lo, hi, preintegrationSize, stepRatio);
-        preTable_ = makeTexture(GL_TEXTURE_2D);
-        glTextureStorage2D(preTable_.get(), 1, GL_RGBA32F, preintegrationSize, preintegrationSize);
+        preTable_ = makeTexture2D(GL_RGBA32F, preintegrationSize, preintegrationSize);
         glTextureSubImage2D(preTable_.get(), 0, 0, 0, preintegrationSize, preintegrationSize,
                             GL_RGBA, GL_FLOAT, pre.rgba.data());
         preKey_ = std::move(key);

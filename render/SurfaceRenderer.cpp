@@ -123,25 +123,13 @@ void SurfaceRenderer::Gl::resize(int w, int h) {
     if (w == width && h == height && framebuffer.get() != 0) {
         return;
     }
-    colour = makeTexture(GL_TEXTURE_2D);
-    glTextureStorage2D(colour.get(), 1, GL_RGBA32F, w, h);
-    distance = makeTexture(GL_TEXTURE_2D);
-    glTextureStorage2D(distance.get(), 1, GL_R32F, w, h);
-    depth = makeTexture(GL_TEXTURE_2D);
-    glTextureStorage2D(depth.get(), 1, GL_DEPTH_COMPONENT32F, w, h);
-    GLuint fb = 0;
-    glCreateFramebuffers(1, &fb);
-    framebuffer = GlFramebuffer(fb);
-    glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0, colour.get(), 0);
-    glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT1, distance.get(), 0);
-    glNamedFramebufferTexture(fb, GL_DEPTH_ATTACHMENT, depth.get(), 0);
-    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    glNamedFramebufferDrawBuffers(fb, 2, buffers);
-    if (glCheckNamedFramebufferStatus(fb, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-        throw GlError("the " + std::to_string(w) + "x" + std::to_string(h) +
-                      " surface framebuffer is not complete on this driver");
-    }
-    checkGl("surface target");
+    colour = makeTexture2D(GL_RGBA32F, w, h);
+    distance = makeTexture2D(GL_R32F, w, h);
+    depth = makeTexture2D(GL_DEPTH_COMPONENT32F, w, h);
+    framebuffer = makeFramebuffer({{GL_COLOR_ATTACHMENT0, colour.get()},
+                                   {GL_COLOR_ATTACHMENT1, distance.get()},
+                                   {GL_DEPTH_ATTACHMENT, depth.get()}},
+                                  std::to_string(w) + "x" + std::to_string(h) + " surface");
     width = w;
     height = h;
 }

@@ -44,17 +44,10 @@ inline double comparedPsnr(const ImageRGBA8& gpu, const ImageRGBA8& reference,
 class TestFramebuffer {
 public:
     TestFramebuffer(int width, int height) : width_(width), height_(height) {
-        texture_ = makeTexture(GL_TEXTURE_2D);
-        glTextureStorage2D(texture_.get(), 1, GL_RGBA8, width, height);
-        GLuint fb = 0;
-        glCreateFramebuffers(1, &fb);
-        framebuffer_ = GlFramebuffer(fb);
-        glNamedFramebufferTexture(fb, GL_COLOR_ATTACHMENT0, texture_.get(), 0);
+        texture_ = makeTexture2D(GL_RGBA8, width, height);
+        framebuffer_ = makeFramebuffer({{GL_COLOR_ATTACHMENT0, texture_.get()}}, "test");
         const GLfloat magenta[4] = {1, 0, 1, 1}; // every pixel a test reads must be drawn over
-        glClearNamedFramebufferfv(fb, GL_COLOR, 0, magenta);
-        if (glCheckNamedFramebufferStatus(fb, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-            throw std::runtime_error("the test framebuffer is not complete");
-        }
+        glClearNamedFramebufferfv(framebuffer_.get(), GL_COLOR, 0, magenta);
     }
     GLuint name() const { return framebuffer_.get(); }
     FramebufferTarget whole() const { return {name(), 0, 0, width_, height_}; }
