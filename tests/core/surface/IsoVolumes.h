@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/surface/IsosurfaceExtractor.h"
 #include "core/surface/MarchingCubesTable.h"
 #include "core/volume/Volume.h"
 
@@ -121,6 +122,13 @@ inline std::pair<std::size_t, std::size_t> bruteForceCounts(const Volume& v, dou
         }
     }
     return {triangles, vertices};
+}
+
+// The isosurface of `v` at `iso` with no other option.
+inline IsosurfaceResult contour(const Volume& v, double iso) {
+    IsosurfaceOptions o;
+    o.iso = iso;
+    return extractIsosurface(v, o);
 }
 
 } // namespace lucent::test

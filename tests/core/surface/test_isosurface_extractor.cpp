@@ -20,12 +20,6 @@ using namespace lucent::test;
 
 namespace {
 
-IsosurfaceResult extract(const Volume& v, double iso) {
-    IsosurfaceOptions o;
-    o.iso = iso;
-    return extractIsosurface(v, o);
-}
-
 // Closed, manifold, consistently oriented, no zero-area triangle, positive volume.
 void verifyClosed(const TriangleMesh& mesh, const char* what) {
     const MeshReport r = checkMesh(mesh);
@@ -74,7 +68,7 @@ private slots:
     void gaussianNoiseIsClosed() {
         QFETCH(unsigned, seed);
         const Volume v = gaussianNoise(40, seed);
-        const TriangleMesh mesh = extract(v, 0.0).mesh;
+        const TriangleMesh mesh = contour(v, 0.0).mesh;
         verifyClosed(mesh, "gaussian noise");
         const auto [triangles, vertices] = bruteForceCounts(v, 0.0);
         QCOMPARE(mesh.triangles.size(), triangles);
@@ -82,15 +76,15 @@ private slots:
     }
 
     void binaryNoiseIsClosed() {
-        const IsosurfaceResult r = extract(integerNoise(40, 0, 1, 7), 0.5);
+        const IsosurfaceResult r = contour(integerNoise(40, 0, 1, 7), 0.5);
         verifyClosed(r.mesh, "50 % binary");
         QCOMPARE(r.warnings.size(), std::size_t(1));
     }
 
     // Voxels equal to the iso value everywhere: ties must not give zero areas.
     void integerNoiseWithTiesIsClosed() {
-        verifyClosed(extract(integerNoise(40, -2, 2, 11), 0.0).mesh, "integer noise at 0");
-        verifyClosed(extract(integerNoise(40, -2, 2, 12), 2.0).mesh, "integer noise at its max");
+        verifyClosed(contour(integerNoise(40, -2, 2, 11), 0.0).mesh, "integer noise at 0");
+        verifyClosed(contour(integerNoise(40, -2, 2, 12), 2.0).mesh, "integer noise at its max");
     }
 
     void sphereConvergesAsHSquared() {
@@ -98,7 +92,7 @@ private slots:
         double areaError[2], volumeError[2];
         const double h[2] = {1.0, 0.5};
         for (int i = 0; i < 2; ++i) {
-            const IsosurfaceResult r = extract(sphereDistance(a, h[i]), 0.0);
+            const IsosurfaceResult r = contour(sphereDistance(a, h[i]), 0.0);
             verifyClosed(r.mesh, "sphere");
             const MeshReport m = checkMesh(r.mesh);
             QCOMPARE(m.components, std::size_t(1));
@@ -125,7 +119,7 @@ private slots:
         const Volume v = sampledVolume(g, VoxelType::Float32, [a](const glm::dvec3& x) {
             return a - glm::length(x - kSphereCentre);
         });
-        const MeshReport m = checkMesh(extract(v, 0.0).mesh);
+        const MeshReport m = checkMesh(contour(v, 0.0).mesh);
         QVERIFY(m.closedManifold());
         QVERIFY(std::abs(m.volume / sphereVolume(a) - 1.0) < 5e-3);
     }
@@ -133,15 +127,15 @@ private slots:
     // A mirrored frame: same surface, same positive volume, normals still out.
     void mirroredFrameKeepsVolumePositive() {
         const Volume v = sphereDistance(10.0, 1.0);
-        const MeshReport plain = checkMesh(extract(v, 0.0).mesh);
+        const MeshReport plain = checkMesh(contour(v, 0.0).mesh);
         const Volume m = mirrored(v);
         QVERIFY(glm::determinant(glm::dmat3(m.geometry().indexToPatient())) < 0.0);
-        const TriangleMesh mesh = extract(m, 0.0).mesh;
+        const TriangleMesh mesh = contour(m, 0.0).mesh;
         verifyClosed(mesh, "mirrored sphere");
         const MeshReport r = checkMesh(mesh);
         QVERIFY(std::abs(r.volume - plain.volume) < 1e-9 * plain.volume);
         QVERIFY(std::abs(r.area - plain.area) < 1e-9 * plain.area);
-        verifyClosed(extract(mirrored(gaussianNoise(30, 5)), 0.0).mesh, "mirrored noise");
+        verifyClosed(contour(mirrored(gaussianNoise(30, 5)), 0.0).mesh, "mirrored noise");
     }
 
     // A ball centred on a corner of the volume: only its octant is inside the
@@ -153,7 +147,7 @@ private slots:
         const auto ball = [a](const glm::dvec3& x) { return a - glm::length(x); };
         VolumeGeometry g;
         g.dims = glm::ivec3(20);
-        const TriangleMesh mesh = extract(sampledVolume(g, VoxelType::Float32, ball), 0.0).mesh;
+        const TriangleMesh mesh = contour(sampledVolume(g, VoxelType::Float32, ball), 0.0).mesh;
         verifyClosed(mesh, "cut ball");
         const double octant = sphereVolume(a) / 8.0;
         const double grown = octant + 3.0 * 0.5 * std::numbers::pi * a * a / 4.0 + 0.75 * a + 0.125;
@@ -176,7 +170,7 @@ private slots:
     // slice gives a closed plate one voxel thick.
     void wholeFieldOfViewAndSingleSlice() {
         const Volume v = integerNoise(12, 3, 9, 2);
-        const TriangleMesh box = extract(v, 3.0).mesh;
+        const TriangleMesh box = contour(v, 3.0).mesh;
         verifyClosed(box, "box");
         const MeshReport r = checkMesh(box);
         QCOMPARE(r.components, std::size_t(1));
@@ -187,7 +181,7 @@ private slots:
         const Volume slice = sampledVolume(g, VoxelType::Float32, [](const glm::dvec3& x) {
             return 6.0 - glm::length(glm::dvec2(x.x - 14.2, x.y - 9.6));
         });
-        const TriangleMesh plate = extract(slice, 0.0).mesh;
+        const TriangleMesh plate = contour(slice, 0.0).mesh;
         verifyClosed(plate, "single slice");
         const double disc = std::numbers::pi * 36.0; // times a thickness of one voxel
         QVERIFY(std::abs(checkMesh(plate).volume / disc - 1.0) < 0.1);
@@ -195,7 +189,7 @@ private slots:
 
     void clipBoxClosesWhatItCuts() {
         const Volume v = sphereDistance(10.0, 0.5);
-        const MeshReport whole = checkMesh(extract(v, 0.0).mesh);
+        const MeshReport whole = checkMesh(contour(v, 0.0).mesh);
         // Split at voxel plane 23.5 (x): left keeps i <= 23, right i >= 24.
         IsosurfaceOptions o;
         o.clip.hi.x = 23.0;
@@ -223,7 +217,7 @@ private slots:
     void binaryMasksWarnAndSmoothingRemovesTheBias() {
         const double a = 10.0;
         const Volume mask = binaryBall(a, 0.5);
-        const IsosurfaceResult raw = extract(mask, 0.5);
+        const IsosurfaceResult raw = contour(mask, 0.5);
         verifyClosed(raw.mesh, "raw mask");
         QCOMPARE(raw.warnings.size(), std::size_t(1));
         QVERIFY2(raw.warnings[0].find("binary") != std::string::npos, raw.warnings[0].c_str());
@@ -274,9 +268,9 @@ private slots:
         const int threads = omp_get_max_threads();
         for (const Volume& v : volumes) {
             omp_set_num_threads(1);
-            const IsosurfaceResult one = extract(v, 0.0);
+            const IsosurfaceResult one = contour(v, 0.0);
             omp_set_num_threads(2);
-            const IsosurfaceResult two = extract(v, 0.0);
+            const IsosurfaceResult two = contour(v, 0.0);
             QCOMPARE(two.threads, 2);
             QVERIFY(one.mesh.triangles == two.mesh.triangles);
             QVERIFY(one.mesh.vertices == two.mesh.vertices);
@@ -293,10 +287,10 @@ private slots:
             });
         };
         for (const double iso : {4.0, 4.5}) {
-            const TriangleMesh reference = extract(i16, iso).mesh;
+            const TriangleMesh reference = contour(i16, iso).mesh;
             QVERIFY(reference.triangles.size() > 1000);
             for (const VoxelType type : {VoxelType::UInt16, VoxelType::Float32}) {
-                const TriangleMesh mesh = extract(copyAs(type), iso).mesh;
+                const TriangleMesh mesh = contour(copyAs(type), iso).mesh;
                 QVERIFY(mesh.triangles == reference.triangles);
                 QVERIFY(mesh.vertices == reference.vertices);
             }
@@ -313,7 +307,7 @@ private slots:
         Volume v(g, VoxelType::Float32);
         std::fill(v.voxels<float>().begin(), v.voxels<float>().end(), 0.0f);
         v.voxels<float>()[v.linearIndex(1, 1, 1)] = 4.0f;
-        const TriangleMesh mesh = extract(v, 1.0).mesh; // t = 1/4 away from the centre voxel
+        const TriangleMesh mesh = contour(v, 1.0).mesh; // t = 1/4 away from the centre voxel
         QCOMPARE(mesh.triangles.size(), std::size_t(8));
         const glm::dvec3 centre = g.toPatient({1, 1, 1});
         for (const glm::dvec3& p : mesh.vertices) {
@@ -326,14 +320,14 @@ private slots:
     void isoOutsideTheRangeIsRefused() {
         const Volume v = integerNoise(8, -2, 2, 1);
         try {
-            extract(v, 7.25);
+            contour(v, 7.25);
             QFAIL("no exception");
         } catch (const std::invalid_argument& e) {
             const std::string what = e.what();
             QVERIFY2(what.find("7.25") != std::string::npos, e.what());
             QVERIFY2(what.find("[-2, 2]") != std::string::npos, e.what());
         }
-        QVERIFY_THROWS_EXCEPTION(std::invalid_argument, extract(v, std::nan("")));
+        QVERIFY_THROWS_EXCEPTION(std::invalid_argument, contour(v, std::nan("")));
         IsosurfaceOptions o;
         o.smoothingSigma = -1.0;
         QVERIFY_THROWS_EXCEPTION(std::invalid_argument, extractIsosurface(v, o));

@@ -19,12 +19,6 @@ using namespace lucent::test;
 
 namespace {
 
-TriangleMesh extract(const Volume& v, double iso) {
-    IsosurfaceOptions o;
-    o.iso = iso;
-    return extractIsosurface(v, o).mesh;
-}
-
 struct Ball {
     glm::dvec3 centre;
     double radius;
@@ -84,7 +78,7 @@ class TestMeshCleanup : public QObject {
 
 private slots:
     void componentFilterDropsSpecksThenKeepsTheLargest() {
-        TriangleMesh mesh = extract(ballsAndSpecks(5), 0.0);
+        TriangleMesh mesh = contour(ballsAndSpecks(5), 0.0).mesh;
         QCOMPARE(checkMesh(mesh).components, std::size_t(8));
 
         const ComponentFilterReport specks = filterComponents(mesh, {50, 0});
@@ -108,7 +102,7 @@ private slots:
     }
 
     void componentFilterByVolume() {
-        TriangleMesh mesh = extract(ballsAndSpecks(5), 0.0);
+        TriangleMesh mesh = contour(ballsAndSpecks(5), 0.0).mesh;
         ComponentFilter filter;
         filter.minVolume = 200.0; // mm³: the specks and the 3 mm ball (113 mm³) go
         const ComponentFilterReport r = filterComponents(mesh, filter);
@@ -124,7 +118,7 @@ private slots:
     // default (0.01) keep the volume within 0.5 %; Laplacian smoothing at the
     // same number of iterations loses several times more.
     void windowedSincKeepsVolumeWhereLaplacianShrinks() {
-        const TriangleMesh sphere = extract(sphereDistance(10.0, 1.0), 0.0);
+        const TriangleMesh sphere = contour(sphereDistance(10.0, 1.0), 0.0).mesh;
         const MeshReport before = checkMesh(sphere);
         for (const double passBand : {0.1, slicerPassBand(0.5)}) {
             TriangleMesh sinc = sphere;
@@ -147,7 +141,7 @@ private slots:
     // default brings the area bias from ~8 % to under 3 % at about the same volume.
     void windowedSincFlattensAMaskStaircase() {
         const double a = 10.0;
-        TriangleMesh mask = extract(binaryBall(a, 0.5), 0.5);
+        TriangleMesh mask = contour(binaryBall(a, 0.5), 0.5).mesh;
         const double rawBias = relative(meshArea(mask), sphereArea(a));
         smoothWindowedSinc(mask, {20, slicerPassBand(0.5)});
         const MeshReport r = checkMesh(mask);
@@ -161,7 +155,7 @@ private slots:
     }
 
     void windowedSincCommutesWithTranslation() {
-        TriangleMesh a = extract(sphereDistance(5.0, 1.0), 0.0);
+        TriangleMesh a = contour(sphereDistance(5.0, 1.0), 0.0).mesh;
         TriangleMesh b = a;
         const glm::dvec3 shift(-180.0, 240.0, 1200.0);
         for (glm::dvec3& v : b.vertices) {
@@ -175,7 +169,7 @@ private slots:
     }
 
     void windowedSincRefusesBadParameters() {
-        TriangleMesh m = extract(sphereDistance(5.0, 1.0), 0.0);
+        TriangleMesh m = contour(sphereDistance(5.0, 1.0), 0.0).mesh;
         QVERIFY_THROWS_EXCEPTION(std::invalid_argument, smoothWindowedSinc(m, {0, 0.1}));
         QVERIFY_THROWS_EXCEPTION(std::invalid_argument, smoothWindowedSinc(m, {20, 0.0}));
         QVERIFY_THROWS_EXCEPTION(std::invalid_argument, smoothWindowedSinc(m, {20, 2.0}));
@@ -185,7 +179,7 @@ private slots:
 
     // Boundary vertices stay where they are: an open mesh keeps its rim.
     void windowedSincHoldsBoundaries() {
-        TriangleMesh m = extract(sphereDistance(8.0, 1.0), 0.0);
+        TriangleMesh m = contour(sphereDistance(8.0, 1.0), 0.0).mesh;
         m.triangles.resize(m.triangles.size() / 2);
         removeUnusedVertices(m);
         const TriangleMesh before = m;
@@ -210,7 +204,7 @@ private slots:
     }
 
     void decimationKeepsTheSphereClosed() {
-        TriangleMesh mesh = extract(sphereDistance(10.0, 0.5), 0.0);
+        TriangleMesh mesh = contour(sphereDistance(10.0, 0.5), 0.0).mesh;
         const MeshReport before = checkMesh(mesh);
         const DecimationReport d = decimate(mesh, {0.25, 1.0});
         const MeshReport after = checkMesh(mesh);
@@ -234,7 +228,7 @@ private slots:
     // On noise (hundreds of small, knotted components) decimation may not stay
     // closed; whatever it makes, the report says so.
     void decimationReportsWhatItMade() {
-        TriangleMesh mesh = extract(gaussianNoise(30, 8), 0.0);
+        TriangleMesh mesh = contour(gaussianNoise(30, 8), 0.0).mesh;
         const DecimationReport d = decimate(mesh, {0.25, 1.0});
         const MeshReport after = checkMesh(mesh);
         qInfo("noise: %zu -> %zu triangles, %zu boundary, %zu non-manifold edges, %zu "

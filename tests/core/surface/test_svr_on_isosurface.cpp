@@ -19,9 +19,7 @@ constexpr double kA = 10.0;
 
 // The largest relative error of the field against the smooth sphere's.
 double worstError(double h, double radius) {
-    IsosurfaceOptions o;
-    o.iso = 0.0;
-    const TriangleMesh mesh = extractIsosurface(sphereDistance(kA, h), o).mesh;
+    const TriangleMesh mesh = contour(sphereDistance(kA, h), 0.0).mesh;
     const SvrField field = computeSvrField(mesh, radius);
     double worst = 0.0;
     for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
