@@ -1,8 +1,11 @@
 #pragma once
 
+#include <QCommandLineParser>
 #include <QStringList>
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 // Exit status of every lucent-cli command: 0 ok, 2 usage, 3 nothing loadable or bad input.
@@ -12,6 +15,26 @@ constexpr int kOk = 0;
 constexpr int kUsage = 2;
 constexpr int kBadInput = 3;
 constexpr int kNetwork = 4; // a PACS, a render server or the network failed
+
+// A command line a command cannot take: the command exits kUsage with the message.
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// The number given with --name, or `fallback` when the flag is absent. Throws
+// UsageError naming the flag when the text is not a number.
+inline double numberFlag(const QCommandLineParser& p, const QString& name, double fallback) {
+    if (!p.isSet(name)) {
+        return fallback;
+    }
+    bool ok = false;
+    const double v = p.value(name).toDouble(&ok);
+    if (!ok) {
+        throw UsageError("--" + name.toStdString() + ": '" + p.value(name).toStdString() +
+                         "' is not a number");
+    }
+    return v;
+}
 
 // The median of frame times (render --repeat, bench quality).
 inline double median(std::vector<double> v) {

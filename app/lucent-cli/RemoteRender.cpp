@@ -21,10 +21,6 @@ namespace {
 
 constexpr int kTimeoutMs = 120000;
 
-struct UsageError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
-
 QString flagName(std::string_view flag) {
     return QString::fromUtf8(flag.data(), qsizetype(flag.size()));
 }

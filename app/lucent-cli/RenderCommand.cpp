@@ -26,23 +26,6 @@
 namespace lucent::cli {
 namespace {
 
-struct UsageError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
-
-double number(const QCommandLineParser& p, const QString& name, double fallback) {
-    if (!p.isSet(name)) {
-        return fallback;
-    }
-    bool ok = false;
-    const double v = p.value(name).toDouble(&ok);
-    if (!ok) {
-        throw UsageError("--" + name.toStdString() + ": '" + p.value(name).toStdString() +
-                         "' is not a number");
-    }
-    return v;
-}
-
 // The description the flags ask for: the table's options, then the transfer
 // function (whose preset may depend on the mode), then the options again,
 // since shading lives in the transfer function.
@@ -142,11 +125,11 @@ int runRender(const QStringList& args) {
                 throw UsageError(std::string("--") + e.what());
             }
         }
-        repeat = static_cast<int>(number(parser, "repeat", 1));
+        repeat = static_cast<int>(numberFlag(parser, "repeat", 1));
         if (repeat < 1 || repeat > 10000) {
             throw UsageError("--repeat must be between 1 and 10000");
         }
-        const double budget = number(parser, "gpu-budget", 0.0);
+        const double budget = numberFlag(parser, "gpu-budget", 0.0);
         if (!(budget >= 0.0) || budget > 1e7) {
             throw UsageError("--gpu-budget must be a number of MiB above 0");
         }

@@ -18,47 +18,32 @@
 namespace lucent::cli {
 namespace {
 
-// A number option: its value, or the default when absent. Throws
-// std::invalid_argument naming the flag.
-double number(const QCommandLineParser& p, const char* flag, double fallback) {
-    if (!p.isSet(flag)) {
-        return fallback;
-    }
-    bool ok = false;
-    const double v = p.value(flag).toDouble(&ok);
-    if (!ok) {
-        throw std::invalid_argument(std::string("--") + flag + ": '" + p.value(flag).toStdString() +
-                                    "' is not a number");
-    }
-    return v;
-}
-
 SurfaceRequest requestOf(const QCommandLineParser& p) {
     if (!p.isSet("iso")) {
-        throw std::invalid_argument("--iso VALUE is required (HU for CT)");
+        throw UsageError("--iso VALUE is required (HU for CT)");
     }
     if (p.isSet("min-component-voxels") && p.isSet("largest")) {
-        throw std::invalid_argument("--min-component-voxels and --largest exclude each other");
+        throw UsageError("--min-component-voxels and --largest exclude each other");
     }
     SurfaceRequest r;
-    r.iso = number(p, "iso", 0.0);
+    r.iso = numberFlag(p, "iso", 0.0);
     if (p.isSet("clip")) {
         r.clip = parseClipBox(p.value("clip").toStdString());
     }
-    r.maskSigma = number(p, "smooth-mask", 0.0);
-    r.minComponentVoxels = number(p, "min-component-voxels", 0.0);
-    const double largest = number(p, "largest", 0.0);
+    r.maskSigma = numberFlag(p, "smooth-mask", 0.0);
+    r.minComponentVoxels = numberFlag(p, "min-component-voxels", 0.0);
+    const double largest = numberFlag(p, "largest", 0.0);
     if (largest < 0.0 || largest != std::floor(largest)) {
-        throw std::invalid_argument("--largest must be a whole number of parts");
+        throw UsageError("--largest must be a whole number of parts");
     }
     r.keepLargest = std::size_t(largest);
-    const double iterations = number(p, "smooth", 0.0);
+    const double iterations = numberFlag(p, "smooth", 0.0);
     if (iterations != std::floor(iterations)) {
-        throw std::invalid_argument("--smooth must be a whole number of iterations");
+        throw UsageError("--smooth must be a whole number of iterations");
     }
     r.smoothIterations = int(iterations);
-    r.decimate = number(p, "decimate", 0.0);
-    r.svrRadius = number(p, "svr-radius", 0.0);
+    r.decimate = numberFlag(p, "decimate", 0.0);
+    r.svrRadius = numberFlag(p, "svr-radius", 0.0);
     return r;
 }
 
@@ -139,7 +124,7 @@ int runSurface(const QStringList& args) {
     try {
         request = requestOf(parser);
         format = meshFormatOf(parser.value("output").toStdString());
-    } catch (const std::invalid_argument& e) {
+    } catch (const std::exception& e) { // UsageError, and std::invalid_argument of the clip box
         err << "lucent-cli surface: " << e.what() << "\n";
         return kUsage;
     }
@@ -161,10 +146,6 @@ int runSurface(const QStringList& args) {
         if (parser.isSet("stats")) {
             QTextStream(stdout) << QString::fromStdString(statsOf(surface)) << "\n";
         }
-    } catch (const std::invalid_argument& e) {
-        progress.finish();
-        err << "lucent-cli surface: " << e.what() << "\n";
-        return kBadInput;
     } catch (const std::exception& e) {
         progress.finish();
         err << "lucent-cli surface: " << e.what() << "\n";
