@@ -52,6 +52,30 @@ DistributedRenderer::DistributedRenderer(const Communicator& comm, LoadedPart pa
     });
     const double gl = comm_.allMin(caster_->backend() == "gl" ? 1.0 : 0.0);
     backend_ = gl > 0.0 ? "gl" : "cpu";
+    partFigures_ = partFigures();
+}
+
+// What the ranks' parts hold and what reading them took: the same every frame,
+// so gathered once.
+FrameDetails DistributedRenderer::partFigures() const {
+    const VolumeGeometry& whole = part_.where.whole;
+    // What a rank may hold: its box grown by the halo on every side (clamped).
+    const glm::dvec3 bound =
+        glm::min(glm::dvec3(part_.where.owned.hi - part_.where.owned.lo + 1 + 2 * part_.halo),
+                 glm::dvec3(whole.dims));
+    double most[5] = {double(part_.voxels.geometry().voxelCount()), bound.x * bound.y * bound.z,
+                      double(part_.read.files.size()), part_.read.bytes, part_.read.partBytes};
+    comm_.allMax(most);
+    const double slabs = comm_.allMin(part_.read.slabs ? 1.0 : 0.0);
+    return {
+        {"rank_voxels_max", fixed(most[0], 0)},
+        {"rank_voxels_bound_max", fixed(most[1], 0)},
+        {"volume_voxels", std::to_string(whole.voxelCount())},
+        {"rank_files_read_max", fixed(most[2], 0)},
+        {"rank_bytes_read_max", fixed(most[3], 0)},
+        {"rank_part_bytes_read_max", fixed(most[4], 0)},
+        {"rank_slab_reading_min", fixed(slabs, 0)},
+    };
 }
 
 DistributedRenderer::~DistributedRenderer() = default;
@@ -137,39 +161,24 @@ RenderResult DistributedRenderer::render(const RenderDescription& description) {
     double sums[4] = {double(mine.stats.samples), double(mine.stats.bricksTotal),
                       double(mine.stats.bricksUsed), mine.stats.samples == 0 ? 1.0 : 0.0};
     comm_.allSum(sums);
-    const std::vector<double> times = comm_.allGather(renderMs);
-    const double voxels = comm_.allMax(double(part_.voxels.geometry().voxelCount()));
-    // What a rank may hold: its box grown by the halo on every side (clamped).
-    const glm::dvec3 bound =
-        glm::min(glm::dvec3(part_.where.owned.hi - part_.where.owned.lo + 1 + 2 * part_.halo),
-                 glm::dvec3(whole.dims));
-    const double voxelBound = comm_.allMax(bound.x * bound.y * bound.z);
-    const double filesRead = comm_.allMax(double(part_.read.files.size()));
-    const double bytesRead = comm_.allMax(part_.read.bytes);
-    const double partBytesRead = comm_.allMax(part_.read.partBytes);
-    const double slabs = comm_.allMin(part_.read.slabs ? 1.0 : 0.0);
-    const double resident = comm_.allMax(residentMib());
-    const double sent = comm_.allMax(icet_->last().bytesSent);
+    // Per frame, one reduction each way: resident memory, bytes sent, render time.
+    double most[3] = {residentMib(), icet_->last().bytesSent, renderMs};
+    comm_.allMax(most);
+    const double fastest = comm_.allMin(renderMs);
     details_ = {
         {"ranks", std::to_string(comm_.size())},
         {"ranks_empty", fixed(sums[3], 0)},
         {"composite_ms", fixed(d.mode == RenderMode::Average ? averageMs_ : icet_->last().totalMs)},
         {"icet_composite_ms", fixed(icet_->last().compositeMs)},
         {"rank0_wait_ms", fixed(waitMs)},
-        {"render_ms_max", fixed(*std::max_element(times.begin(), times.end()))},
-        {"render_ms_min", fixed(*std::min_element(times.begin(), times.end()))},
-        {"rank_voxels_max", fixed(voxels, 0)},
-        {"rank_voxels_bound_max", fixed(voxelBound, 0)},
-        {"volume_voxels", std::to_string(whole.voxelCount())},
-        {"rank_resident_mib_max", fixed(resident)},
-        {"rank_files_read_max", fixed(filesRead, 0)},
-        {"rank_bytes_read_max", fixed(bytesRead, 0)},
-        {"rank_part_bytes_read_max", fixed(partBytesRead, 0)},
-        {"rank_slab_reading_min", fixed(slabs, 0)},
-        {"icet_bytes_sent_max", fixed(sent, 0)},
+        {"render_ms_max", fixed(most[2])},
+        {"render_ms_min", fixed(fastest)},
+        {"rank_resident_mib_max", fixed(most[0])},
+        {"icet_bytes_sent_max", fixed(most[1], 0)},
         {"icet_strategy", icet_->strategyName()},
         {"rank_backend_gl_min", backend_ == "gl" ? "1" : "0"},
     };
+    details_.insert(details_.end(), partFigures_.begin(), partFigures_.end());
 
     RenderResult out;
     out.stats = mine.stats;

@@ -44,6 +44,7 @@ public:
     const LoadedPart& part() const { return part_; }
 
 private:
+    FrameDetails partFigures() const; // collective
     std::vector<glm::vec4> compositeParts(const RenderDescription& d, const RenderResult& mine,
                                           const std::vector<int>& order);
 
@@ -55,6 +56,7 @@ private:
     std::string fallback_; // why this rank renders on the CPU where GL was asked
     std::unique_ptr<IceTCompositor> icet_;
     FrameDetails details_;
+    FrameDetails partFigures_; // gathered once, at construction
     double averageMs_ = 0.0;
 };
 
