@@ -1,8 +1,6 @@
 #include "render/BrickPool.h"
 
 #include <algorithm>
-#include <cmath>
-#include <stdexcept>
 #include <string>
 #include <type_traits>
 
@@ -12,36 +10,35 @@ namespace lucent {
 
 namespace {
 
-// The slot grid for `capacity` slots: the fewest slots beyond it within
-// maxSlots (the texture takes them all, so this keeps it in the budget), as
-// cubic as the texture limit allows among those.
-glm::ivec3 slotGrid(std::size_t capacity, std::size_t maxSlots, int slotSize) {
-    GLint maxSize = 0;
-    glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSize);
-    const int perAxisMax = std::max(1, maxSize / slotSize);
-    const std::size_t c = std::max<std::size_t>(capacity, 1);
-    glm::ivec3 best(0);
-    std::size_t bestCount = 0;
-    for (int x = 1; x <= perAxisMax; ++x) {
-        for (int y = 1; y <= perAxisMax; ++y) {
-            const std::size_t xy = std::size_t(x) * std::size_t(y);
-            const std::size_t z = (c + xy - 1) / xy;
-            const std::size_t count = xy * z;
-            if (z > std::size_t(perAxisMax) || (count > maxSlots && count > c)) {
-                continue;
-            }
-            const int longest = std::max({x, y, int(z)});
-            if (bestCount == 0 || count < bestCount ||
-                (count == bestCount && longest < std::max({best.x, best.y, best.z}))) {
-                best = {x, y, int(z)};
-                bestCount = count;
-            }
-        }
+std::size_t volumeOf(glm::ivec3 s) {
+    return std::size_t(s.x) * std::size_t(s.y) * std::size_t(s.z);
+}
+
+bool holds(const StoredBox& outer, const StoredBox& inner) {
+    return glm::all(glm::lessThanEqual(outer.lo, inner.lo)) &&
+           glm::all(glm::greaterThanEqual(outer.lo + outer.size, inner.lo + inner.size));
+}
+
+void linearFiltering(GLuint t) {
+    glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    for (const GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) {
+        glTextureParameteri(t, wrap, GL_CLAMP_TO_EDGE);
     }
-    if (bestCount == 0) { // more than one texture holds: as many as it does
-        return glm::ivec3(perAxisMax);
+}
+
+// Zero in every texel: glClearTexImage where the context has it (4.4), else
+// zeros uploaded a slice at a time.
+void clearToZero(GLuint t, glm::ivec3 size, GLenum format, GLenum type, std::size_t texelBytes) {
+    if (epoxy_gl_version() >= 44 || epoxy_has_gl_extension("GL_ARB_clear_texture")) {
+        glClearTexImage(t, 0, format, type, nullptr);
+        return;
     }
-    return best;
+    const std::vector<std::byte> zeros(std::size_t(size.x) * std::size_t(size.y) * texelBytes);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    for (int z = 0; z < size.z; ++z) {
+        glTextureSubImage3D(t, 0, 0, 0, z, size.x, size.y, 1, format, type, zeros.data());
+    }
 }
 
 } // namespace
@@ -57,140 +54,155 @@ std::size_t BrickPool::texelBytes(const TexelFormat& format, bool withGradients)
     return format.gpuBytes + (withGradients ? kGradientBytes : 0);
 }
 
-BrickPool::BrickPool(int slotSize, const TexelFormat& format, std::size_t capacity,
-                     bool withGradients, std::size_t maxSlots)
-    : slotSize_(slotSize), format_(format), withGradients_(withGradients),
-      shared_(sharesTexture(format, withGradients)), slots_(0) {
-    slotsPerAxis_ = slotGrid(capacity, maxSlots, slotSize);
-    const std::size_t fits =
-        std::size_t(slotsPerAxis_.x) * std::size_t(slotsPerAxis_.y) * std::size_t(slotsPerAxis_.z);
-    slots_ = BrickSlots(std::min(fits, std::max(capacity, maxSlots)));
-    texture_ = makeTexture(GL_TEXTURE_3D);
-    const glm::ivec3 size = textureSize();
-    glTextureStorage3D(texture_.get(), 1, shared_ ? GL_RGBA16_SNORM : format_.internalFormat,
-                       size.x, size.y, size.z);
-    checkGl("brick pool of " + std::to_string(size.x) + "x" + std::to_string(size.y) + "x" +
-            std::to_string(size.z) + " texels (" + std::to_string(bytes() >> 20) + " MiB)");
-    const auto linear = [](GLuint t) {
-        glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-        glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        for (const GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) {
-            glTextureParameteri(t, wrap, GL_CLAMP_TO_EDGE);
-        }
+BrickPool::BrickPool(const TexelFormat& format, bool withGradients, glm::ivec3 extent)
+    : format_(format), withGradients_(withGradients), shared_(sharesTexture(format, withGradients)),
+      atlas_(extent) {
+    const auto describe = [&] {
+        return std::to_string(extent.x) + "x" + std::to_string(extent.y) + "x" +
+               std::to_string(extent.z) + " texels (" + std::to_string(bytes() >> 20) + " MiB)";
     };
-    linear(texture_.get());
+    values_ = makeTexture(GL_TEXTURE_3D);
+    glTextureStorage3D(values_.get(), 1, shared_ ? GL_RGBA16_SNORM : format_.internalFormat,
+                       extent.x, extent.y, extent.z);
+    checkGl("brick pool of " + describe());
+    linearFiltering(values_.get());
+    if (shared_) {
+        clearToZero(values_.get(), extent, GL_RGBA, GL_SHORT, 8);
+    } else {
+        clearToZero(values_.get(), extent, GL_RED, format_.uploadType, format_.clientBytes);
+    }
     if (withGradients && !shared_) {
         gradients_ = makeTexture(GL_TEXTURE_3D);
-        glTextureStorage3D(gradients_.get(), 1, GL_RGBA16_SNORM, size.x, size.y, size.z);
-        checkGl("gradient pool (" + std::to_string(bytes() >> 20) + " MiB with the values)");
-        linear(gradients_.get());
+        glTextureStorage3D(gradients_.get(), 1, GL_RGBA16_SNORM, extent.x, extent.y, extent.z);
+        checkGl("gradient pool, with the values " + describe());
+        linearFiltering(gradients_.get());
+        clearToZero(gradients_.get(), extent, GL_RGBA, GL_SHORT, 8);
     }
-}
-
-std::size_t BrickPool::slotBytes() const {
-    return std::size_t(slotSize_) * slotSize_ * slotSize_ * texelBytes(format_, withGradients_);
+    checkGl("clearing the brick pool");
 }
 
 std::size_t BrickPool::bytes() const {
-    const glm::ivec3 s = textureSize();
-    return std::size_t(s.x) * std::size_t(s.y) * std::size_t(s.z) *
-           texelBytes(format_, withGradients_);
+    return atlas_.texels() * texelBytes(format_, withGradients_);
 }
 
-glm::ivec3 BrickPool::slotOrigin(std::uint32_t slot) const {
-    const int x = int(slot % std::uint32_t(slotsPerAxis_.x));
-    const int y = int((slot / std::uint32_t(slotsPerAxis_.x)) % std::uint32_t(slotsPerAxis_.y));
-    const int z = int(slot / std::uint32_t(slotsPerAxis_.x * slotsPerAxis_.y));
-    return {x, y, z};
+bool BrickPool::sameKind(const BrickPool& other) const {
+    return other.format_.internalFormat == format_.internalFormat &&
+           other.withGradients_ == withGradients_ && other.shared_ == shared_;
 }
 
-bool BrickPool::canAdopt(const BrickPool& smaller) const {
-    return smaller.slotSize_ == slotSize_ &&
-           smaller.format_.internalFormat == format_.internalFormat && smaller.shared_ == shared_ &&
-           (smaller.withGradients_ || !withGradients_) &&
-           smaller.slots_.resident() <= slots_.capacity();
+const BrickPool::Entry* BrickPool::find(int level, std::uint32_t brick,
+                                        const StoredBox& needed) const {
+    const auto it = entries_.find(key(level, brick));
+    return it != entries_.end() && holds(it->second.box, needed) ? &it->second : nullptr;
 }
 
-void BrickPool::adopt(const BrickPool& smaller) {
-    if (!canAdopt(smaller)) {
-        throw std::logic_error("a brick pool can adopt only a smaller pool of the same kind");
+void BrickPool::touch(int level, std::uint32_t brick, std::uint64_t frame) {
+    const auto it = entries_.find(key(level, brick));
+    if (it != entries_.end()) {
+        it->second.lastUse = frame;
     }
-    const std::size_t resident = smaller.slots_.resident();
-    for (std::uint32_t slot = 0; slot < resident; ++slot) {
-        const glm::ivec3 from = smaller.slotOrigin(slot) * slotSize_;
-        const glm::ivec3 to = slotOrigin(slot) * slotSize_;
-        glCopyImageSubData(smaller.texture(), GL_TEXTURE_3D, 0, from.x, from.y, from.z, texture(),
-                           GL_TEXTURE_3D, 0, to.x, to.y, to.z, slotSize_, slotSize_, slotSize_);
-        if (withGradients_ && !shared_) {
-            glCopyImageSubData(smaller.gradientTexture(), GL_TEXTURE_3D, 0, from.x, from.y, from.z,
-                               gradientTexture(), GL_TEXTURE_3D, 0, to.x, to.y, to.z, slotSize_,
-                               slotSize_, slotSize_);
+}
+
+void BrickPool::remove(std::uint64_t k) {
+    const auto it = entries_.find(k);
+    if (it != entries_.end()) {
+        atlas_.release(it->second.at, it->second.box.size);
+        entries_.erase(it);
+    }
+}
+
+std::optional<glm::ivec3> BrickPool::place(const StoredBox& box, std::uint64_t frame) {
+    if (auto at = atlas_.place(box.size)) {
+        return at;
+    }
+    std::vector<std::pair<std::uint64_t, std::uint64_t>> old; // last use, key
+    for (const auto& [k, e] : entries_) {
+        if (e.lastUse < frame) {
+            old.emplace_back(e.lastUse, k);
         }
     }
-    slots_ = smaller.slots_.withCapacity(slots_.capacity());
-    checkGl("moving " + std::to_string(resident) + " bricks into a larger pool");
+    std::sort(old.begin(), old.end());
+    for (const auto& [use, k] : old) {
+        remove(k);
+        if (auto at = atlas_.place(box.size)) {
+            return at;
+        }
+    }
+    return std::nullopt;
 }
 
-void BrickPool::uploadGradients(std::uint32_t slot, const std::int16_t* texels) {
-    const glm::ivec3 at = slotOrigin(slot) * slotSize_;
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTextureSubImage3D(gradientTexture(), 0, at.x, at.y, at.z, slotSize_, slotSize_, slotSize_,
-                        GL_RGBA, GL_SHORT, texels);
-}
-
-void BrickPool::upload(std::uint32_t slot, const void* texels) {
-    const glm::ivec3 at = slotOrigin(slot) * slotSize_;
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTextureSubImage3D(texture_.get(), 0, at.x, at.y, at.z, slotSize_, slotSize_, slotSize_,
-                        GL_RED, format_.uploadType, texels);
-}
-
-std::size_t BrickPool::uploadBricks(const std::vector<BrickSlots::Upload>& uploads,
-                                    const BrickGrid& grid, const Volume& source, BrickEdge edge,
-                                    double gradientUnit) {
-    constexpr std::size_t kBatch = 16; // bricks extracted at once: a few tens of MB of staging
-    const int overlap = grid.overlap();
-    const std::size_t texels = std::size_t(slotSize_) * slotSize_ * slotSize_;
-    const std::size_t batch = std::min(uploads.size(), kBatch);
-    std::vector<std::byte> staging(batch * texels * format_.clientBytes);
-    std::vector<std::int16_t> gradients(hasGradients() ? batch * texels * 4 : 0);
+std::size_t BrickPool::upload(const std::vector<Upload>& uploads, const Volume& source,
+                              BrickEdge edge, double gradientUnit, std::uint64_t frame) {
+    constexpr std::size_t kBatch = 16; // boxes extracted at once: a few tens of MB of staging
+    std::size_t sent = 0;
+    std::vector<std::vector<std::byte>> values(std::min(uploads.size(), kBatch));
+    std::vector<std::vector<std::int16_t>> gradients(values.size());
     for (std::size_t first = 0; first < uploads.size(); first += kBatch) {
         const std::size_t count = std::min(kBatch, uploads.size() - first);
         visitVoxels(source, [&](auto voxels) {
             using T = std::remove_const_t<typename decltype(voxels)::element_type>;
-            T* dst = reinterpret_cast<T*>(staging.data());
 #pragma omp parallel for schedule(dynamic)
             for (std::size_t n = 0; n < count; ++n) {
-                const Brick& b = grid.bricks()[std::uint32_t(uploads[first + n].key)];
-                T* values = dst + n * texels;
-                extractBrick<T>(voxels.data(), source.dims(), b.first, overlap, slotSize_, edge,
-                                values);
-                if (hasGradients()) {
-                    std::int16_t* g = gradients.data() + n * texels * 4;
-                    extractGradientBrick<T>(voxels.data(), source.dims(), b.first, overlap,
-                                            slotSize_, gradientUnit, g);
+                const StoredBox& b = uploads[first + n].box;
+                const std::size_t texels = volumeOf(b.size);
+                values[n].resize(texels * sizeof(T));
+                T* out = reinterpret_cast<T*>(values[n].data());
+                extractBox<T>(voxels.data(), source.dims(), b.lo, b.size, edge, out);
+                if (withGradients_) {
+                    gradients[n].resize(4 * texels);
+                    std::int16_t* g = gradients[n].data();
+                    extractGradientBox<T>(voxels.data(), source.dims(), b.lo, b.size, gradientUnit,
+                                          g);
                     if constexpr (std::is_same_v<T, std::int16_t>) {
-                        if (shared_) {
+                        if (shared_) { // the value rides in the gradient texel's alpha
                             for (std::size_t t = 0; t < texels; ++t) {
-                                g[4 * t + 3] = values[t];
+                                g[4 * t + 3] = out[t];
                             }
                         }
                     }
                 }
             }
         });
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
         for (std::size_t n = 0; n < count; ++n) {
+            const Upload& u = uploads[first + n];
+            const glm::ivec3 s = u.box.size;
             if (!shared_) {
-                upload(uploads[first + n].slot, staging.data() + n * texels * format_.clientBytes);
+                glTextureSubImage3D(values_.get(), 0, u.at.x, u.at.y, u.at.z, s.x, s.y, s.z, GL_RED,
+                                    format_.uploadType, values[n].data());
+                sent += values[n].size();
             }
-            if (hasGradients()) {
-                uploadGradients(uploads[first + n].slot, gradients.data() + n * texels * 4);
+            if (withGradients_) {
+                glTextureSubImage3D(gradientTexture(), 0, u.at.x, u.at.y, u.at.z, s.x, s.y, s.z,
+                                    GL_RGBA, GL_SHORT, gradients[n].data());
+                sent += gradients[n].size() * sizeof(std::int16_t);
             }
+            const std::uint64_t k = key(u.level, u.brick);
+            const auto old = entries_.find(k);
+            if (old != entries_.end()) { // a smaller box of the same brick: its room is free
+                atlas_.release(old->second.at, old->second.box.size);
+                entries_.erase(old);
+            }
+            entries_[k] = Entry{u.level, u.brick, u.box, u.at, frame};
         }
         checkGl("uploading bricks");
     }
-    return uploads.size() * texels *
-           (shared_ ? kGradientBytes : format_.clientBytes + (hasGradients() ? kGradientBytes : 0));
+    return sent;
+}
+
+void BrickPool::copyFrom(const BrickPool& other, const Entry& e, glm::ivec3 at,
+                         std::uint64_t frame) {
+    const glm::ivec3 s = e.box.size;
+    glCopyImageSubData(other.values_.get(), GL_TEXTURE_3D, 0, e.at.x, e.at.y, e.at.z, values_.get(),
+                       GL_TEXTURE_3D, 0, at.x, at.y, at.z, s.x, s.y, s.z);
+    if (withGradients_ && !shared_) {
+        glCopyImageSubData(other.gradients_.get(), GL_TEXTURE_3D, 0, e.at.x, e.at.y, e.at.z,
+                           gradients_.get(), GL_TEXTURE_3D, 0, at.x, at.y, at.z, s.x, s.y, s.z);
+    }
+    Entry copy = e;
+    copy.at = at;
+    copy.lastUse = frame;
+    entries_[key(e.level, e.brick)] = copy;
 }
 
 } // namespace lucent

@@ -11,12 +11,9 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "core/raycast/BSplinePrefilter.h"
 #include "core/raycast/BrickVisibility.h"
 #include "core/scene/ViewFrame.h"
-#include "core/volume/BrickResidency.h"
-#include "core/volume/LodPyramid.h"
-#include "render/BrickPool.h"
+#include "render/BrickStreamer.h"
 #include "render/GlError.h"
 #include "render/GlObjects_p.h"
 #include "render/GpuBudget.h"
@@ -30,19 +27,7 @@ namespace {
 
 constexpr int kTableSize = 4096; // as the CPU ray caster's float path
 constexpr int kPreintegrationSize = 256;
-constexpr int kOverlap = 3;
-constexpr int kCellSize = 8; // the finer leaping level, as on the CPU
-
-TexelFormat texelFormat(VoxelType type, bool coefficients, bool half) {
-    if (coefficients || type == VoxelType::Float32) {
-        return half && coefficients ? TexelFormat{GL_R16F, GL_FLOAT, 4, 2, 1.0f}
-                                    : TexelFormat{GL_R32F, GL_FLOAT, 4, 4, 1.0f};
-    }
-    if (type == VoxelType::UInt16) {
-        return {GL_R16, GL_UNSIGNED_SHORT, 2, 2, 65535.0f};
-    }
-    return {GL_R16_SNORM, GL_SHORT, 2, 2, 32767.0f};
-}
+constexpr int kCellSize = 8; // the finer leaping level, as on the CPU (BrickStreamer's cells)
 
 // The specular power when it is a whole number the shader can multiply out, else 0.
 int integerPower(const Shading& s) {
@@ -94,6 +79,24 @@ bool sameCast(const RenderDescription& a, const RenderDescription& b) {
            castFields(sampling) == castFields(b.sampling) && width == b.width && height == b.height;
 }
 
+// What refining a brick is worth before its content: the projected size of a
+// level-0 voxel at its nearest point to the eye, in pixels, weighed by how
+// near the centre of the image it is (1 there, 1/2 at the image's edge).
+double brickWorth(const VolumeGeometry& g, const ViewFrame& frame, int height, const glm::dvec3& lo,
+                  const glm::dvec3& hi) {
+    const glm::dvec3 centreIndex = 0.5 * (lo + hi);
+    const glm::dvec3 centre = g.toPatient(centreIndex);
+    const double radius = 0.5 * glm::length(g.toPatient(hi) - g.toPatient(lo));
+    const double depth = std::max(glm::dot(centre - frame.eye, frame.forward) - radius, 1e-3);
+    const double voxel = std::min({g.spacing.x, g.spacing.y, g.spacing.z});
+    const double pixels = voxel / (2.0 * depth * frame.tanHalfFov) * double(height);
+    const glm::dvec3 toCentre = centre - frame.eye;
+    const double along = std::max(glm::dot(toCentre, frame.forward), 1e-3);
+    const double x = glm::dot(toCentre, frame.right) / (along * frame.tanHalfFov * frame.aspect);
+    const double y = glm::dot(toCentre, frame.up) / (along * frame.tanHalfFov);
+    return pixels / (1.0 + x * x + y * y);
+}
+
 } // namespace
 
 namespace {
@@ -140,9 +143,6 @@ struct GpuRayCaster::State {
     std::size_t budget = 0;
     std::string budgetSource;
 
-    std::unique_ptr<LodPyramid> pyramid;            // built when level 0 does not fit
-    std::map<int, std::unique_ptr<Volume>> splines; // B-spline coefficients per level
-    std::map<std::tuple<int, bool, int>, std::unique_ptr<BrickGrid>> grids; // (brick, cubic, level)
     double valueLo = 0.0, valueHi = 1.0;
     std::optional<VolumePart> part; // a part of a volume drawn alone (VolumePart.h)
 
@@ -153,12 +153,8 @@ struct GpuRayCaster::State {
     // The description whose frame the target holds, and that frame's statistics.
     std::optional<RenderDescription> inTarget;
     RenderStats inTargetStats;
-    GpuFrameStats last; // the last frame's
-    std::unique_ptr<BrickPool> pool;
-    std::tuple<int, bool> poolKind{0, false};
-    std::string poolNote; // why the pool is smaller than the budget, if it is
-    std::size_t driverSlotLimit = std::numeric_limits<std::size_t>::max(); // after a refusal
-    bool gradientsRefused = false; // the driver refused the memory for the gradient cache
+    GpuFrameStats last;                      // the last frame's
+    std::unique_ptr<BrickStreamer> streamer; // the bricks on the GPU
     SceneTextures scene;
     std::shared_ptr<const SurfaceDisplay> surface; // drawn with the volume; null: none
     std::unique_ptr<SurfaceRenderer> surfaceRenderer;
@@ -172,43 +168,6 @@ struct GpuRayCaster::State {
         return surfaceRenderer->draw(*surface,
                                      makeViewFrame(volume.geometry(), d.camera, d.width, d.height),
                                      d.transferFunction.shading, d.width, d.height);
-    }
-
-    const Volume& levelVolume(int level) {
-        if (level == 0) {
-            return volume;
-        }
-        if (!pyramid) {
-            pyramid = std::make_unique<LodPyramid>(volume);
-        }
-        return pyramid->level(level);
-    }
-    int levelCount() {
-        if (!pyramid) {
-            pyramid = std::make_unique<LodPyramid>(volume);
-        }
-        return pyramid->levelCount();
-    }
-    // What the pool holds for a level: voxels, or the spline's coefficients.
-    const Volume& source(int level, bool cubic) {
-        const Volume& v = levelVolume(level);
-        if (!cubic) {
-            return v;
-        }
-        auto& s = splines[level];
-        if (!s) {
-            s = std::make_unique<Volume>(v.geometry(), VoxelType::Float32);
-            const std::vector<float> c = bsplineCoefficients<float>(v);
-            std::copy(c.begin(), c.end(), s->voxels<float>().begin());
-        }
-        return *s;
-    }
-    const BrickGrid& grid(int brickSize, bool cubic, int level) {
-        auto& g = grids[{brickSize, cubic, level}];
-        if (!g) {
-            g = std::make_unique<BrickGrid>(source(level, cubic), brickSize, kOverlap);
-        }
-        return *g;
     }
 };
 
@@ -284,13 +243,23 @@ FrameDetails GpuRayCaster::frameDetails() const {
         std::snprintf(text, sizeof text, "%.1f", double(bytes) / 1048576.0);
         return std::string(text);
     };
+    std::string levels;
+    for (std::size_t l = 0; l < g.bricksPerLevel.size(); ++l) {
+        levels += (levels.empty() ? "" : ",") + std::to_string(l) + ":" +
+                  std::to_string(g.bricksPerLevel[l]);
+    }
     return {{"uploads", std::to_string(g.bricksUploaded)},
             {"upload_mib", mib(g.bytesUploaded)},
             {"resident", std::to_string(g.bricksResident)},
-            {"pool_slots", std::to_string(g.poolSlots)},
+            {"pages", std::to_string(g.pagesShown)},
+            {"levels", levels},
+            {"pending", std::to_string(g.pending)},
             {"budget_mib", std::to_string(g.budgetBytes >> 20)},
             {"gradients", g.gradientsCached ? "cached" : "computed"},
             {"resident_mib", mib(g.residentBytes)},
+            {"values_mib", mib(g.valueBytes)},
+            {"gradients_mib", mib(g.gradientBytes)},
+            {"page_table_kib", std::to_string((g.tableBytes + 1023) / 1024)},
             {"pool_mib", mib(g.poolBytes)},
             {"cast_ms", fixed(g.castMs)},
             {"read_ms", fixed(g.readMs)},
@@ -450,185 +419,80 @@ GpuRenderResult GpuRayCaster::cast(const RenderDescription& asked, bool countRow
     const bool cubic = sampling.interpolation == Interpolation::Cubic;
     const bool preintegrate = sampling.preintegrate && desc.mode == RenderMode::Dvr;
     const int brickSize = sampling.brickSize;
-    const int slotSize = brickSize + 2 * kOverlap;
     GpuRenderResult out;
-
-    // The pool: one per brick size and content; a change starts a new one.
-    const TexelFormat format = texelFormat(s.volume.type(), cubic, s.options.halfFloatCoefficients);
-    const std::size_t texelsPerSlot = std::size_t(slotSize) * slotSize * slotSize;
-    if (s.pool && s.poolKind != std::tuple(brickSize, cubic)) {
-        s.pool.reset();
+    if (!s.streamer) {
+        s.streamer = std::make_unique<BrickStreamer>(s.volume, s.budget);
     }
-    const std::size_t allLevel0 = s.grid(brickSize, cubic, 0).count();
-    // The most slots the budget (and what the driver accepted) allows.
-    const auto slotLimit = [&](bool gradients) {
-        const std::size_t slotBytes = texelsPerSlot * BrickPool::texelBytes(format, gradients);
-        return std::min({s.budget / slotBytes, allLevel0, s.driverSlotLimit});
-    };
-    if (slotLimit(false) == 0) {
-        throw BudgetError("the GPU budget of " + std::to_string(s.budget >> 20) +
-                          " MiB holds no brick of " +
-                          std::to_string((texelsPerSlot * format.gpuBytes) >> 10) + " KiB");
-    }
+    BrickStreamer& streamer = *s.streamer;
 
     // Table range: the voxels', or the coefficients' (a spline overshoots its samples).
     double tLo = s.valueLo, tHi = s.valueHi;
     if (cubic) {
-        tLo = std::numeric_limits<double>::max();
-        tHi = std::numeric_limits<double>::lowest();
-        for (const Brick& b : s.grid(brickSize, true, 0).bricks()) {
-            tLo = std::min(tLo, double(b.minValue));
-            tHi = std::max(tHi, double(b.maxValue));
-        }
+        std::tie(tLo, tHi) = streamer.valueRange(true, brickSize);
     }
     std::tie(tLo, tHi) = tableRange(tLo, tHi);
     const auto visible =
         valueVisibility(desc, tLo, tHi, preintegrate ? kPreintegrationSize : kTableSize);
 
-    // The finest level whose bricks in view fit the slots the budget holds.
+    // The bricks in view, each at the finest level the budget allows for it.
     const VolumeGeometry& g = s.volume.geometry();
     const ViewFrame frame =
         makeViewFrame(s.part ? s.part->whole : g, desc.camera, desc.width, desc.height);
-    const BoxTest inView = [&](const glm::dvec3& lo, const glm::dvec3& hi) {
+    const bool shadedMode = desc.mode == RenderMode::Dvr || desc.mode == RenderMode::Isosurface;
+    BrickRequest request;
+    request.brickSize = brickSize;
+    request.cubic = cubic;
+    request.halfFloat = s.options.halfFloatCoefficients;
+    request.shaded = shadedMode && desc.transferFunction.shading.enabled;
+    request.gradientCache = s.options.gradientCache;
+    request.gradientUnit = std::max(s.valueHi - s.valueLo, 1e-30) / 2.0 / 32767.0;
+    request.visible = visible;
+    request.decides = shadedMode;
+    request.withNeighbours = preintegrate || desc.mode == RenderMode::Isosurface;
+    request.clip = desc.clip;
+    request.inView = [&](const glm::dvec3& lo, const glm::dvec3& hi) {
         return boxInView(g, frame, lo, hi);
     };
-    const bool neighbours = preintegrate || desc.mode == RenderMode::Isosurface;
-    std::size_t plannedSlots = 0;
-    const auto planWithin = [&](std::size_t slots) {
-        plannedSlots = slots;
-        std::vector<const BrickGrid*> levels{&s.grid(brickSize, cubic, 0)};
-        for (;;) {
-            try {
-                return planResidency(levels, visible, desc.clip, neighbours, slots, inView);
-            } catch (const BudgetError& e) {
-                if (int(levels.size()) >= s.levelCount()) {
-                    throw BudgetError(std::string(e.what()) + " (budget " +
-                                      std::to_string(s.budget >> 20) + " MiB, " + s.budgetSource +
-                                      ")");
-                }
-                levels.push_back(&s.grid(brickSize, cubic, int(levels.size())));
-            }
-        }
+    request.worth = [&](const glm::dvec3& lo, const glm::dvec3& hi, double content) {
+        return brickWorth(g, frame, desc.height, lo, hi) * content;
     };
-    // The finest level whose bricks fit the budget; gradients cached when that
-    // level's bricks fit it with them too (they never cost a finer level). A
-    // pool that had to drop them keeps without.
-    std::optional<ResidencyPlan> plan = planWithin(slotLimit(false));
-    const bool gradients = !cubic && s.options.gradientCache && !s.gradientsRefused &&
-                           (!s.pool || s.pool->hasGradients()) &&
-                           plan->bricks.size() <= slotLimit(true);
-
-    // Sized to what the scene needs (with an eighth of headroom), grown when a
-    // transfer function needs more, never shrunk: a grown pool takes over the
-    // bricks already resident by copies on the GPU, uploading none again.
-    const std::size_t need = plan->bricks.size();
-    if (!s.pool || s.pool->hasGradients() != gradients || s.pool->slots().capacity() < need) {
-        const std::size_t old = s.pool ? s.pool->slots().capacity() : 0;
-        bool withGradients = gradients;
-        std::size_t limit = slotLimit(withGradients);
-        std::size_t capacity = std::min(limit, std::max(need + need / 8 + 1, old + old / 2));
-        std::unique_ptr<BrickPool> grown;
-        // Where the driver refuses the memory: without the gradient cache, then
-        // half as many slots, until it accepts (coarser levels take the rest).
-        while (!grown) {
-            try {
-                grown =
-                    std::make_unique<BrickPool>(slotSize, format, capacity, withGradients, limit);
-            } catch (const GlOutOfMemory& e) {
-                if (withGradients) {
-                    withGradients = false;
-                    s.gradientsRefused = true;
-                    limit = slotLimit(false);
-                    capacity = std::min(limit, std::max(need + need / 8 + 1, old));
-                } else if (capacity > 1) {
-                    capacity /= 2;
-                    s.driverSlotLimit = capacity;
-                    limit = capacity;
-                } else {
-                    throw BudgetError(std::string(e.what()) + ", even for one brick");
-                }
-                s.poolNote = std::string("the driver refused the memory asked for; the pool "
-                                         "holds ") +
-                             std::to_string(capacity) + " bricks";
-            }
-        }
-        if (s.pool && grown->canAdopt(*s.pool)) {
-            grown->adopt(*s.pool);
-        }
-        s.pool = std::move(grown);
-        s.poolKind = {brickSize, cubic};
-        if (s.pool->slots().capacity() < need) {
-            plan = planWithin(s.pool->slots().capacity());
-        }
-    }
-    BrickPool& pool = *s.pool;
-    const int level = plan->level;
-    const BrickGrid& grid = s.grid(brickSize, cubic, level);
-    if (level > 0) {
-        out.gpu.lodReason = "level 0 needs " + std::to_string(plan->rejected.front()) +
-                            " bricks; the budget of " + std::to_string(s.budget >> 20) +
-                            " MiB holds " + std::to_string(plannedSlots);
-    }
-
-    // Upload what is missing, in batches: bricks extracted in parallel, then copied.
-    std::vector<std::uint64_t> keys;
-    keys.reserve(plan->bricks.size());
-    for (const std::uint32_t id : plan->bricks) {
-        keys.push_back(BrickSlots::key(level, id));
-    }
-    const std::vector<BrickSlots::Upload> uploads = pool.slots().acquire(keys);
-    const double gradientUnit = std::max(s.valueHi - s.valueLo, 1e-30) / 2.0 / 32767.0;
-    const std::size_t bytes =
-        pool.uploadBricks(uploads, grid, s.source(level, cubic),
-                          cubic ? BrickEdge::Mirror : BrickEdge::Clamp, gradientUnit);
-    out.gpu.bricksUploaded = uploads.size();
-    out.gpu.bytesUploaded = bytes;
-    out.gpu.gradientsCached = pool.hasGradients();
-    out.gpu.bricksResident = pool.slots().resident();
-    out.gpu.residentBytes = pool.slots().resident() * pool.slotBytes();
-    out.gpu.poolSlots = pool.slots().capacity();
+    request.policy = s.options.lodPolicy;
+    request.uploadCap = s.options.uploadBytesPerFrame;
+    request.tight = s.options.tightBricks;
+    BrickFrameStats bricks;
+    const BrickTable& table = streamer.update(request, bricks);
+    const BrickPool& pool = streamer.pool();
+    const TexelFormat format = pool.format();
+    out.gpu.bricksUploaded = bricks.bricksUploaded;
+    out.gpu.bytesUploaded = bricks.bytesUploaded;
+    out.gpu.gradientsCached = bricks.gradientsCached;
+    out.gpu.bricksResident = pool.residentCount();
+    out.gpu.valueBytes = bricks.valueBytes;
+    out.gpu.gradientBytes = bricks.gradientBytes;
+    out.gpu.tableBytes = bricks.tableBytes;
+    out.gpu.residentBytes = bricks.valueBytes + bricks.gradientBytes;
     out.gpu.poolBytes = pool.bytes();
     out.gpu.budgetBytes = s.budget;
-    out.gpu.budgetSource = s.budgetSource + (s.poolNote.empty() ? "" : "; " + s.poolNote);
+    out.gpu.budgetSource = s.budgetSource;
+    out.gpu.bricksPerLevel = bricks.perLevel;
+    out.gpu.levelOfBrick = bricks.levelOfBrick;
+    out.gpu.pageSize = bricks.brickSize;
+    out.gpu.pagesShown = bricks.bricksShown;
+    out.gpu.pending = bricks.pending;
+    out.gpu.lodReason = bricks.lodReason;
 
-    // Page table, leaping cells and tables: rebuilt only when they change.
-    const BrickGrid& cells = s.grid(kCellSize, cubic, level);
-    SceneTextures::Bricks bricks;
-    bricks.grid = &grid;
-    bricks.cells = &cells;
-    bricks.plan = &*plan;
-    for (const std::uint64_t k : keys) {
-        bricks.slotOrigins.push_back(pool.slotOrigin(*pool.slots().slotOf(k)));
-    }
-    bricks.visible = visible;
-    bricks.decides = desc.mode == RenderMode::Dvr || desc.mode == RenderMode::Isosurface;
-    bricks.cubic = cubic;
-    // Everything the codes depend on besides the plan: the TF through its table, mode, iso.
-    std::vector<double> signature{double(level),
-                                  double(shaderMode(desc.mode)),
-                                  desc.isoValue,
-                                  double(brickSize),
-                                  cubic ? 1.0 : 0.0,
-                                  tLo,
-                                  tHi,
-                                  preintegrate ? 1.0 : 0.0};
-    for (const OpacityPoint& o : desc.transferFunction.opacity) {
-        signature.push_back(o.value);
-        signature.push_back(o.opacity);
-    }
-    s.scene.updateBricks(bricks, signature);
-    const double levelFactor = std::ldexp(1.0, level);
-    const double stepRatio = sampling.step * levelFactor;
-    s.scene.updateTables(desc.transferFunction, tLo, tHi, stepRatio, preintegrate, kTableSize,
+    s.scene.updateBricks(table);
+    s.scene.updateTables(desc.transferFunction, tLo, tHi, sampling.step, preintegrate, kTableSize,
                          kPreintegrationSize);
-    const glm::ivec3 per = grid.bricksPerAxis();
-    const glm::ivec3 cellsPer = s.scene.cellsPerAxis();
+    const glm::ivec3 per = table.bricksPerAxis;
+    const glm::ivec3 cellsPer = table.cellsPerAxis;
+    std::vector<glm::ivec3> levelDims = streamer.levelDims();
+    levelDims.resize(8, levelDims.back());
 
-    // Uniforms: the CPU ray caster's setup, with the level's scale.
+    // Uniforms: the CPU ray caster's setup; each brick's level is in its page entry.
     const glm::dmat3 linear(g.direction[0] * g.spacing.x, g.direction[1] * g.spacing.y,
                             g.direction[2] * g.spacing.z);
-    const double dt =
-        sampling.step * std::min({g.spacing.x, g.spacing.y, g.spacing.z}) * levelFactor;
+    const double dt = sampling.step * std::min({g.spacing.x, g.spacing.y, g.spacing.z});
     const glm::dvec3 boxLo = part.boxLo, boxHi = part.boxHi;
     const double tableCell = (tHi - tLo) / double(kTableSize - 1);
     const auto [visLo, visHi] = visibleValueRange(desc.transferFunction, tableCell);
@@ -642,11 +506,10 @@ GpuRenderResult GpuRayCaster::cast(const RenderDescription& asked, bool countRow
         "\n#define LUCENT_PRECLASSIFY " + flag(sampling.classification == Classification::Pre) +
         "\n#define LUCENT_PREINTEGRATE " + flag(preintegrate) + "\n#define LUCENT_SHADING " +
         flag(desc.transferFunction.shading.enabled) + "\n#define LUCENT_LEAP " +
-        flag(sampling.emptySpaceLeaping) + "\n#define LUCENT_LEVEL0 " + flag(level == 0) +
-        "\n#define LUCENT_CELLS_IN_ONE_BRICK " + flag(brickSize % kCellSize == 0) +
-        "\n#define LUCENT_GRADIENT_TEXTURE " + flag(pool.hasGradients()) +
-        "\n#define LUCENT_GRADIENT_IN_POOL " + flag(pool.gradientsShareTexture()) +
-        "\n#define LUCENT_SPECULAR_INT " +
+        flag(sampling.emptySpaceLeaping) + "\n#define LUCENT_CELLS_IN_ONE_BRICK " +
+        flag(table.brickSize % kCellSize == 0) + "\n#define LUCENT_GRADIENT_TEXTURE " +
+        flag(pool.hasGradients()) + "\n#define LUCENT_GRADIENT_IN_POOL " +
+        flag(pool.gradientsShareTexture()) + "\n#define LUCENT_SPECULAR_INT " +
         std::to_string(integerPower(desc.transferFunction.shading)) +
         "\n#define LUCENT_ROW_SAMPLES " + flag(countRows) + "\n#define LUCENT_SURFACE " +
         flag(s.surface != nullptr) + "\n";
@@ -680,22 +543,18 @@ GpuRenderResult GpuRayCaster::cast(const RenderDescription& asked, bool countRow
     p.set("uEarlyTermination", float(sampling.earlyTermination));
     p.set("uIso", float(desc.isoValue));
     p.set("uLight", glm::vec4(light.ambient, light.diffuse, light.specular, light.specularPower));
-    p.set("uGradientToWorld", glm::mat3(glm::transpose(glm::inverse(linear)) /
-                                        (levelFactor * gradientScale(s.valueLo, s.valueHi))));
+    p.set("uGradientToWorld",
+          glm::mat3(glm::transpose(glm::inverse(linear)) / gradientScale(s.valueLo, s.valueHi)));
     p.set("uVisibleLo", float(std::max(visLo, -3.0e38)));
     p.set("uVisibleHi", float(std::min(visHi, 3.0e38)));
-    p.set("uStepRatio", float(stepRatio));
-    p.set("uLevelScale", float(1.0 / levelFactor));
-    p.set("uLevelOffset", float(-(levelFactor - 1.0) * 0.5 / levelFactor));
-    p.set("uDims", grid.volumeDims());
-    p.set("uBrickSize", brickSize);
-    p.set("uInvBrickSize", 1.0f / float(brickSize));
+    p.set("uStepRatio", float(sampling.step));
+    glUniform3iv(p.location("uLevelDims[0]"), 8, &levelDims[0].x);
+    p.set("uBrickSize", table.brickSize);
+    p.set("uInvBrickSize", 1.0f / float(table.brickSize));
     p.set("uBricksPerAxis", per);
-    p.set("uOverlap", kOverlap);
-    p.set("uSlotSize", slotSize);
-    p.set("uInvPoolSize", 1.0f / glm::vec3(pool.textureSize()));
+    p.set("uInvPoolSize", 1.0f / glm::vec3(pool.extent()));
     p.set("uValueScale", format.valueScale);
-    p.set("uGradientScale", float(gradientUnit * 32767.0));
+    p.set("uGradientScale", float(request.gradientUnit * 32767.0));
     p.set("uTableSize", kTableSize);
     p.set("uTableLo", float(tLo));
     p.set("uTableScale", float(double(kTableSize - 1) / (tHi - tLo)));
@@ -708,6 +567,7 @@ GpuRenderResult GpuRayCaster::cast(const RenderDescription& asked, bool countRow
     // Texture units, in the order of the samplers' names.
     const std::pair<const char*, GLuint> units[] = {
         {"uPageTable", s.scene.pageTable()},
+        {"uPageBox", s.scene.pageBox()},
         {"uCellCode", s.scene.cellCode()},
         {"uCellRange", s.scene.cellRange()},
         {"uPool", pool.texture()},
@@ -730,9 +590,9 @@ GpuRenderResult GpuRayCaster::cast(const RenderDescription& asked, bool countRow
     glDrawArrays(GL_TRIANGLES, 0, 3);
     checkGl("ray casting");
     RenderStats& stats = out.frame.stats;
-    stats.bricksTotal = grid.count();
-    stats.bricksUsed = plan->needed;
-    stats.lod = level;
+    stats.bricksTotal = bricks.bricksTotal;
+    stats.bricksUsed = bricks.bricksUsed;
+    stats.lod = bricks.coarsestLevel;
     stats.lodReason = out.gpu.lodReason;
     s.inTarget = desc;
     s.inTarget->volume = &s.volume;

@@ -1,13 +1,16 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
 #include "core/scene/RenderDescription.h"
 #include "core/scene/Renderer.h"
+#include "core/volume/BrickLevels.h"
 #include "core/volume/VolumePart.h"
 
 namespace lucent {
@@ -24,6 +27,17 @@ struct GpuOptions {
     // one texel instead of six (nearest and trilinear). Either way the pool
     // holds only what the scene needs.
     bool gradientCache = true;
+    // Under a budget too small for level 0: each brick at the finest level the
+    // budget allows for it, those worth most first (projected voxel size,
+    // visible content, focus), or the whole volume at one level.
+    LodPolicy lodPolicy = LodPolicy::PerBrick;
+    // Bytes a frame may upload beyond what it must show (0: no cap). A brick
+    // over the cap is shown from a coarser level already resident, and the
+    // frame says how many still stream in (GpuFrameStats::pending).
+    std::size_t uploadBytesPerFrame = 0;
+    // Each brick holds only the box of its voxels the scene can show (false:
+    // the whole brick wherever any of it shows; for comparisons).
+    bool tightBricks = true;
 };
 
 // What a GPU frame did beyond the common statistics.
@@ -32,8 +46,17 @@ struct GpuFrameStats {
     std::size_t bytesUploaded = 0;  // this frame
     std::size_t bricksResident = 0;
     std::size_t residentBytes = 0; // GPU memory the resident bricks take (values and gradients)
-    std::size_t poolSlots = 0;
-    std::size_t poolBytes = 0; // GPU memory the pool's textures take, free slots included
+    std::size_t valueBytes = 0;    // ... of that, their values
+    std::size_t gradientBytes = 0; // ... and their cached gradients
+    std::size_t tableBytes = 0;    // the page table, boxes and leaping cells
+    std::size_t poolBytes = 0;     // GPU memory the pool's textures take, free room included
+    std::vector<std::size_t> bricksPerLevel; // bricks shown per level
+    // Per brick of the pool (pages of pageSize voxels a side, x fastest): the
+    // level it is drawn from, -1 where nothing of it is drawn.
+    std::vector<std::int8_t> levelOfBrick;
+    int pageSize = 0;
+    std::size_t pagesShown = 0;
+    std::size_t pending = 0; // bricks shown coarser than planned while they stream in
     std::size_t budgetBytes = 0;
     bool gradientsCached = false;
     std::string budgetSource; // where the budget came from

@@ -9,6 +9,7 @@ namespace {
 GlTexture texture3d(GLenum format, glm::ivec3 size, GLenum clientFormat, GLenum type,
                     const void* data) {
     GlTexture t = makeTexture(GL_TEXTURE_3D);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1); // rows of one-byte codes are not 4-aligned
     glTextureStorage3D(t.get(), 1, format, size.x, size.y, size.z);
     glTextureSubImage3D(t.get(), 0, 0, 0, 0, size.x, size.y, size.z, clientFormat, type, data);
     return t;
@@ -16,42 +17,18 @@ GlTexture texture3d(GLenum format, glm::ivec3 size, GLenum clientFormat, GLenum 
 
 } // namespace
 
-void SceneTextures::updateBricks(const Bricks& b, const std::vector<double>& signature) {
-    auto key = std::tuple(signature, b.plan->bricks, b.plan->leapable, b.slotOrigins);
-    if (bricksKey_ == key) {
+void SceneTextures::updateBricks(const BrickTable& t) {
+    if (bricksKey_ == t) {
         return;
     }
-    const BrickGrid& grid = *b.grid;
-    const BrickGrid& cells = *b.cells;
-    std::vector<glm::u16vec4> page(grid.count(), glm::u16vec4(0));
-    for (std::size_t n = 0; n < b.plan->bricks.size(); ++n) {
-        page[b.plan->bricks[n]] = glm::u16vec4(b.slotOrigins[n], b.plan->leapable[n] != 0 ? 2 : 1);
-    }
-    pageTable_ = texture3d(GL_RGBA16UI, grid.bricksPerAxis(), GL_RGBA_INTEGER, GL_UNSIGNED_SHORT,
-                           page.data());
-
-    const int brickSize = grid.brickSize();
-    std::vector<std::uint8_t> codes(cells.count(), 0);
-    std::vector<glm::vec2> ranges(cells.count());
-#pragma omp parallel for schedule(static)
-    for (std::size_t n = 0; n < cells.count(); ++n) {
-        const Brick& c = cells.bricks()[n];
-        const glm::ivec3 lo = c.first / brickSize, hi = (c.last - 1) / brickSize;
-        const std::uint16_t state = page[grid.idOf(lo)].w;
-        if (lo == hi && (state == 0 || (b.decides && state == 2))) {
-            codes[n] = 2;
-        } else if (b.decides && !b.visible(c.minValue, c.maxValue)) {
-            codes[n] = 1;
-        }
-        const double margin =
-            b.cubic ? 1e-5 * (std::abs(c.minValue) + std::abs(c.maxValue) + 1.0) : 0.0;
-        ranges[n] = glm::vec2(float(c.minValue - margin), float(c.maxValue + margin));
-    }
-    cellsPerAxis_ = cells.bricksPerAxis();
-    cellCode_ = texture3d(GL_R8UI, cellsPerAxis_, GL_RED_INTEGER, GL_UNSIGNED_BYTE, codes.data());
-    cellRange_ = texture3d(GL_RG32F, cellsPerAxis_, GL_RG, GL_FLOAT, ranges.data());
+    pageTable_ = texture3d(GL_RGBA32I, t.bricksPerAxis, GL_RGBA_INTEGER, GL_INT, t.page.data());
+    pageBox_ =
+        texture3d(GL_RGBA32UI, t.bricksPerAxis, GL_RGBA_INTEGER, GL_UNSIGNED_INT, t.box.data());
+    cellsPerAxis_ = t.cellsPerAxis;
+    cellCode_ = texture3d(GL_R8UI, cellsPerAxis_, GL_RED_INTEGER, GL_UNSIGNED_BYTE, t.codes.data());
+    cellRange_ = texture3d(GL_RG32F, cellsPerAxis_, GL_RG, GL_FLOAT, t.ranges.data());
     checkGl("page table and leaping cells");
-    bricksKey_ = std::move(key);
+    bricksKey_ = t;
 }
 
 void SceneTextures::updateTables(const TransferFunction& tf, double lo, double hi, double stepRatio,

@@ -68,6 +68,8 @@ void nameLocalFlags(const QCommandLineParser& p, QTextStream& err) {
         {"gpu-budget", "it sets this computer's GPU"},
         {"gradient-cache", "it sets this computer's GPU"},
         {"no-gradient-cache", "it sets this computer's GPU"},
+        {"lod", "it sets this computer's GPU"},
+        {"upload-cap", "it sets this computer's GPU"},
         {"quality", "it measures this computer's renderer on the volume; give --step and --interp"},
         {"repeat", "one still frame is rendered"},
         {"series", "PATH names the server's series"},

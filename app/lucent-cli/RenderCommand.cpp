@@ -68,6 +68,15 @@ int runRender(const QStringList& args) {
         {"gpu-budget", "GPU memory budget (GPU backend).", "MiB"},
         {"gradient-cache", "GPU: keep each brick's gradient for faster shading (the default)."},
         {"no-gradient-cache", "GPU: compute gradients from six fetches (less memory, slower)."},
+        {"lod",
+         "GPU, under a budget too small for level 0: per-brick (each brick as fine as the budget "
+         "allows, those near the eye, in focus and showing most first; the default) or uniform "
+         "(the whole volume at one level).",
+         "POLICY", "per-brick"},
+        {"upload-cap",
+         "GPU: MiB a frame may upload beyond what it must show; bricks over it are shown from a "
+         "coarser level while they stream in (stats: pending).",
+         "MiB"},
         {"quality",
          "Sampling chosen from this volume's measured front: fast (50 ms a frame), balanced "
          "(250 ms), best (2000 ms) or a time per frame such as 120ms. Excludes --step, --interp, "
@@ -138,6 +147,16 @@ int runRender(const QStringList& args) {
             throw UsageError("--gradient-cache and --no-gradient-cache exclude each other");
         }
         gpuOptions.gradientCache = !parser.isSet("no-gradient-cache");
+        const QString lod = parser.value("lod");
+        if (lod != "per-brick" && lod != "uniform") {
+            throw UsageError("--lod must be per-brick or uniform, not '" + lod.toStdString() + "'");
+        }
+        gpuOptions.lodPolicy = lod == "uniform" ? LodPolicy::Uniform : LodPolicy::PerBrick;
+        const double cap = numberFlag(parser, "upload-cap", 0.0);
+        if (!(cap >= 0.0) || cap > 1e7) {
+            throw UsageError("--upload-cap must be a number of MiB, 0 for none");
+        }
+        gpuOptions.uploadBytesPerFrame = std::size_t(cap * 1024.0 * 1024.0);
     } catch (const UsageError& e) {
         err << "lucent-cli render: " << e.what() << "\n";
         return kUsage;

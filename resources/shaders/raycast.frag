@@ -28,7 +28,7 @@ uniform dvec3 uBoxLo, uBoxHi, uClipLo, uClipHi;
 // sides of every branch, that halves the time).
 const int kMode = LUCENT_MODE, kInterp = LUCENT_INTERP;
 const bool kPreclassify = LUCENT_PRECLASSIFY, kPreintegrate = LUCENT_PREINTEGRATE;
-const bool kShading = LUCENT_SHADING, kLeap = LUCENT_LEAP, kLevel0 = LUCENT_LEVEL0;
+const bool kShading = LUCENT_SHADING, kLeap = LUCENT_LEAP;
 const bool kCellsInOneBrick = LUCENT_CELLS_IN_ONE_BRICK;
 // Each brick's central differences sit in a second pool (nearest, trilinear),
 // or, for int16 voxels, in the pool itself: texel = (gradient xyz, value), so
@@ -51,18 +51,20 @@ uniform vec4 uLight; // ambient, diffuse, specular, specular power
 uniform mat3 uGradientToWorld;
 uniform float uVisibleLo, uVisibleHi;
 
-// The level rendered: p_level = p0 * uLevelScale + uLevelOffset.
-uniform float uLevelScale, uLevelOffset;
-uniform ivec3 uDims;
+// Each level's dimensions (level n's position of level-0 p is
+// (p - (2^n - 1) / 2) / 2^n).
+uniform ivec3 uLevelDims[8];
 
-// Bricks: page table entry xyz = slot (in slots), w = 0 absent, 1 resident,
-// 2 resident only for its neighbours (leapt over, read at the border).
+// Bricks (render/BrickTable.h): page entry xyz = the atlas texel of the
+// level's voxel 0, w = state | level << 2 (state 0 absent, 1 resident, 2
+// resident only for its border: leapt over, read there); box = the level-0
+// samples [lo, hi) it backs (16 bits each) and its gradient unit.
 uniform int uBrickSize;
 uniform float uInvBrickSize;
 uniform ivec3 uBricksPerAxis;
-uniform int uOverlap, uSlotSize;
 uniform vec3 uInvPoolSize;
-uniform usampler3D uPageTable;
+uniform isampler3D uPageTable;
+uniform usampler3D uPageBox;
 uniform sampler3D uPool;
 uniform float uValueScale; // texture value -> data value
 uniform sampler3D uGradientPool;
@@ -79,8 +81,11 @@ uniform float uPreLo, uPreHi;
 // --- the brick a position lies in -------------------------------------------
 
 ivec3 gBrick = ivec3(-1);
-uvec4 gPage = uvec4(0u);
-vec3 gSlotBase = vec3(0.0); // texel of the brick's core origin in the pool
+int gState = 0;             // of the current brick: 0 absent, 1 resident, 2 border only
+vec3 gSlotBase = vec3(0.0); // atlas texel of its level's voxel 0
+vec3 gBoxLo = vec3(1.0e30), gBoxHi = vec3(-1.0e30); // the samples it backs
+float gLevelScale = 1.0, gLevelOffset = 0.0;
+ivec3 gDims = ivec3(1);
 
 ivec3 brickOf(vec3 p) {
     return min(ivec3(p * uInvBrickSize), uBricksPerAxis - 1);
@@ -89,12 +94,32 @@ ivec3 brickOf(vec3 p) {
 void enterBrick(ivec3 b) {
     if (b != gBrick) {
         gBrick = b;
-        gPage = texelFetch(uPageTable, b, 0);
-        gSlotBase = vec3(ivec3(gPage.xyz) * uSlotSize + uOverlap - b * uBrickSize);
+        ivec4 page = texelFetch(uPageTable, b, 0);
+        gState = page.w & 3;
+        gSlotBase = vec3(page.xyz);
+        uvec4 box = texelFetch(uPageBox, b, 0);
+        gBoxLo = vec3(uvec3(box.x & 0xffffu, box.x >> 16, box.y & 0xffffu));
+        gBoxHi = vec3(uvec3(box.y >> 16, box.z & 0xffffu, box.z >> 16));
+        int level = page.w >> 2;
+        gLevelScale = exp2(-float(level));
+        gLevelOffset = 0.5 * (gLevelScale - 1.0);
+        gDims = uLevelDims[level];
     }
 }
 
-// --- filters (positions in the level's index space, inside the current brick's reach)
+// Whether the current brick holds what a sample at p reads. Positions a
+// rounding error outside the volume read its edge (clampToVolume).
+bool backed(vec3 p) {
+    p = clamp(p, vec3(0.0), vec3(uLevelDims[0] - 1));
+    return gState != 0 && all(greaterThanEqual(p, gBoxLo)) && all(lessThan(p, gBoxHi));
+}
+
+// The current brick's level position of level-0 p.
+vec3 toLevel(vec3 p) {
+    return p * gLevelScale + gLevelOffset;
+}
+
+// --- filters (positions q in the current brick's level, inside its box's reach)
 
 // The gradient read with the last value, where they share the pool's texels.
 vec3 gPoolGradient = vec3(0.0);
@@ -116,7 +141,7 @@ float linearAt(vec3 q) {
 }
 
 vec3 clampToVolume(vec3 q) {
-    return clamp(q, vec3(0.0), vec3(uDims - 1));
+    return clamp(q, vec3(0.0), vec3(gDims - 1));
 }
 
 // Cubic B-spline weights folded into two linear fetches per axis (Sigg &
@@ -159,7 +184,7 @@ float cubicValue(vec3 q, out vec3 grad, bool withGradient) {
     return cubicSum(gx, hx, gy, hy, gz, hz);
 }
 
-float valueAt(vec3 q) { // any position: clamped to the volume
+float valueAtLevel(vec3 q) { // any position: clamped to the volume
     if (kInterp == kNearest) {
         return fetchTexel(ivec3(clampToVolume(q) + 0.5));
     }
@@ -170,29 +195,45 @@ float valueAt(vec3 q) { // any position: clamped to the volume
     return cubicValue(q, unused, false);
 }
 
-vec3 gradientAt(vec3 q) {
-    if (kGradientTexture && kInterp == kNearest) {
-        return texelFetch(uGradientPool, ivec3(gSlotBase) + ivec3(clampToVolume(q) + 0.5), 0).xyz *
-               uGradientScale;
-    }
-    if (kGradientTexture && kInterp == kLinear) {
-        return texture(uGradientPool, (gSlotBase + clampToVolume(q) + 0.5) * uInvPoolSize).xyz *
-               uGradientScale;
-    }
+// The gradient per level voxel at level position q (differences, or the spline's).
+vec3 levelGradient(vec3 q) {
     if (kInterp == kNearest) {
-        ivec3 v = ivec3(clampToVolume(q) + 0.5), hi = uDims - 1;
+        ivec3 v = ivec3(clampToVolume(q) + 0.5), hi = gDims - 1;
         return 0.5 * vec3(fetchTexel(min(v + ivec3(1, 0, 0), hi)) - fetchTexel(max(v - ivec3(1, 0, 0), 0)),
                           fetchTexel(min(v + ivec3(0, 1, 0), hi)) - fetchTexel(max(v - ivec3(0, 1, 0), 0)),
                           fetchTexel(min(v + ivec3(0, 0, 1), hi)) - fetchTexel(max(v - ivec3(0, 0, 1), 0)));
     }
     if (kInterp == kLinear) {
-        return 0.5 * vec3(valueAt(q + vec3(1, 0, 0)) - valueAt(q - vec3(1, 0, 0)),
-                          valueAt(q + vec3(0, 1, 0)) - valueAt(q - vec3(0, 1, 0)),
-                          valueAt(q + vec3(0, 0, 1)) - valueAt(q - vec3(0, 0, 1)));
+        return 0.5 * vec3(valueAtLevel(q + vec3(1, 0, 0)) - valueAtLevel(q - vec3(1, 0, 0)),
+                          valueAtLevel(q + vec3(0, 1, 0)) - valueAtLevel(q - vec3(0, 1, 0)),
+                          valueAtLevel(q + vec3(0, 0, 1)) - valueAtLevel(q - vec3(0, 0, 1)));
     }
     vec3 grad;
     cubicValue(q, grad, true);
     return grad;
+}
+
+// Level-0 p in the current brick.
+float valueAt(vec3 p) {
+    return valueAtLevel(toLevel(p));
+}
+
+vec3 decodeGradient(vec3 texel) {
+    return texel * (uGradientScale * gLevelScale);
+}
+
+// The gradient per level-0 voxel at level-0 p in the current brick.
+vec3 gradientAt(vec3 p) {
+    vec3 q = toLevel(p);
+    if (kGradientTexture && kInterp == kNearest) {
+        return decodeGradient(
+            texelFetch(uGradientPool, ivec3(gSlotBase) + ivec3(clampToVolume(q) + 0.5), 0).xyz);
+    }
+    if (kGradientTexture && kInterp == kLinear) {
+        return decodeGradient(
+            texture(uGradientPool, (gSlotBase + clampToVolume(q) + 0.5) * uInvPoolSize).xyz);
+    }
+    return levelGradient(q) * gLevelScale;
 }
 
 // --- transfer function --------------------------------------------------------
@@ -220,8 +261,8 @@ float voxelValue(ivec3 v) {
 }
 
 // Pre-classification: the eight voxels classified, then interpolated.
-vec4 preclassified(vec3 q) {
-    q = clampToVolume(q);
+vec4 preclassified(vec3 p) {
+    vec3 q = clampToVolume(toLevel(p));
     ivec3 base = ivec3(floor(q));
     vec3 f = q - vec3(base);
     vec4 acc = vec4(0.0);
@@ -232,7 +273,7 @@ vec4 preclassified(vec3 q) {
         if (w == 0.0) {
             continue;
         }
-        vec4 k = classify(voxelValue(min(base + o, uDims - 1)), 1);
+        vec4 k = classify(voxelValue(min(base + o, gDims - 1)), 1);
         acc += w * vec4(k.rgb * k.a, k.a);
     }
     if (acc.a <= 0.0) {
@@ -289,16 +330,17 @@ vec3 shadeWith(vec3 base, vec3 gradient, vec3 w) {
     return base * diffuse + vec3(uLight.z * specularTerm(ndotl));
 }
 
-vec3 shade(vec3 base, vec3 q, vec3 w) {
-    return shadeWith(base, gradientAt(q), w);
+vec3 shade(vec3 base, vec3 p, vec3 w) {
+    return shadeWith(base, gradientAt(p), w);
 }
 
-// Shading at q, whose value was the last the pool gave (pre-classification
+// Shading at p, whose value was the last the pool gave (pre-classification
 // reads neighbours after it): the gradient read with it, where it came along.
-vec3 shadeLast(vec3 base, vec3 q, vec3 w) {
-    return kGradientInPool && !kPreclassify ? shadeWith(base, gPoolGradient * uGradientScale, w)
-                                            : shade(base, q, w);
+vec3 shadeLast(vec3 base, vec3 p, vec3 w) {
+    return kGradientInPool && !kPreclassify ? shadeWith(base, decodeGradient(gPoolGradient), w)
+                                            : shade(base, p, w);
 }
+
 
 // --- leaping ------------------------------------------------------------------
 //
@@ -315,9 +357,9 @@ uniform int uCellSize;
 uniform float uInvCellSize;
 uniform ivec3 uCellsPerAxis;
 
-vec3 gEntry, gStride; // the ray in the level's index space: p(n) = gEntry + gStride * n
+vec3 gEntry, gStride; // the ray in level-0 index space: p(n) = gEntry + gStride * n
 
-// The lattice index at which the ray leaves the box [lo, hi) (level space).
+// The lattice index at which the ray leaves the box [lo, hi).
 float exitIndex(vec3 lo, vec3 hi) {
     float e = 1.0e30;
     for (int a = 0; a < 3; ++a) {
@@ -328,10 +370,6 @@ float exitIndex(vec3 lo, vec3 hi) {
         }
     }
     return e;
-}
-
-vec3 levelPosition(vec3 p0) {
-    return kLevel0 ? p0 : p0 * uLevelScale + uLevelOffset;
 }
 
 // --- the ray --------------------------------------------------------------------
@@ -449,8 +487,8 @@ void castRay() {
     }
 
     vec3 entry = vec3(o + d * t0), stride = vec3(d * uDt);
-    gEntry = levelPosition(entry);
-    gStride = kLevel0 ? stride : stride * uLevelScale;
+    gEntry = entry;
+    gStride = stride;
     bool continuity = kPreintegrate || kMode == kIso;
     vec4 acc = vec4(0.0);
     float extreme = kMode == kMinIp ? 3.0e38 : -3.0e38;
@@ -464,7 +502,12 @@ void castRay() {
     uint code = 0u;
 
     for (int n = nFirst; n <= nLast; ++n) {
-        vec3 p = levelPosition(entry + stride * float(n));
+        vec3 p = entry + stride * float(n);
+        if (kInterp == kNearest) {
+            // The voxel the sample reads decides the brick too: where bricks of
+            // different levels meet, the one holding that voxel answers.
+            p = floor(p + 0.5);
+        }
         ivec3 c = min(ivec3(p * uInvCellSize), uCellsPerAxis - 1);
         if (c != cell) {
             cell = c;
@@ -496,14 +539,14 @@ void castRay() {
                 // As on the CPU: sample n and the last one before `resume` are
                 // read, so that crossings and segments at the border survive.
                 enterBrick(brickOf(p));
-                bool known = gPage.w != 0u;
+                bool known = backed(p);
                 float vn = known ? valueAt(p) : prev;
                 ++samples;
                 bool crossing = kMode == kIso && havePrev && known && ((prev < uIso) != (vn < uIso));
                 if (!crossing && resume - 1 > n) {
-                    vec3 pl = levelPosition(entry + stride * float(resume - 1));
+                    vec3 pl = entry + stride * float(resume - 1);
                     enterBrick(brickOf(pl));
-                    havePrev = gPage.w != 0u;
+                    havePrev = backed(pl);
                     prev = havePrev ? valueAt(pl) : 0.0;
                     nPrev = resume - 1;
                     ++samples;
@@ -517,9 +560,9 @@ void castRay() {
             enterBrick(brickOf(p));
         }
         ++samples;
-        if (gPage.w == 0u) {
-            // A brick that is not resident holds nothing that can contribute;
-            // a value read across it is unknown.
+        if (!backed(p)) {
+            // Outside the boxes of resident bricks nothing can contribute; a
+            // value read across it is unknown.
             havePrev = havePrev && !continuity;
             continue;
         }
@@ -546,7 +589,7 @@ void castRay() {
                 float va = prev;
                 for (int it = 0; it < 40 && b - a > 1e-9 * uDt; ++it) {
                     double m = 0.5 * (a + b);
-                    vec3 pm = levelPosition(vec3(o + d * m));
+                    vec3 pm = vec3(o + d * m);
                     enterBrick(brickOf(pm));
                     float vm = valueAt(pm);
                     if ((va < uIso) == (vm < uIso)) {
@@ -556,7 +599,7 @@ void castRay() {
                         b = m;
                     }
                 }
-                vec3 hit = levelPosition(vec3(o + d * (0.5 * (a + b))));
+                vec3 hit = vec3(o + d * (0.5 * (a + b)));
                 enterBrick(brickOf(hit));
                 vec4 k = classify(uIso, 1);
                 outColour = vec4(kShading ? shade(k.rgb, hit, w) : k.rgb, 1.0);

@@ -93,7 +93,7 @@ private slots:
         QTemporaryDir dir;
         const QString vol = writeVolume(dir);
         const test::CliRun r = test::runCli({"render", vol, "-o", dir.filePath("x.png"),
-                                             "--backend", "gl", "--gpu-budget", "0.01"});
+                                             "--backend", "gl", "--gpu-budget", "0.0001"});
         QCOMPARE(r.exitCode, 3);
         QVERIFY2(r.err.contains("budget"), qPrintable(r.err));
         QVERIFY(!QFile::exists(dir.filePath("x.png")));

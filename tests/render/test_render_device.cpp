@@ -57,8 +57,10 @@ private slots:
         QCOMPARE(c.renderer->backend(), std::string("cpu"));
         const RenderResult gpuFrame = g.renderer->render(d);
         const RenderResult cpuFrame = c.renderer->render(d);
+        // The GPU decides what shows from what samples in a cell read (the next
+        // voxel); the CPU's bricks keep a margin of 3 for every filter.
         QVERIFY(gpuFrame.stats.bricksUsed > 0 &&
-                gpuFrame.stats.bricksUsed == cpuFrame.stats.bricksUsed);
+                gpuFrame.stats.bricksUsed <= cpuFrame.stats.bricksUsed);
         const double p =
             comparedPsnr(gpuFrame.image, cpuFrame.image, "device_" + interp.toStdString(), 40.0);
         QVERIFY2(p >= 40.0, qPrintable(QString("GL against CPU: %1 dB").arg(p)));
