@@ -274,7 +274,8 @@ const BrickTable& BrickStreamer::updateWithin(const BrickRequest& r, BrickFrameS
     addLevel(0);
     const bool mayCache = r.shaded && r.gradientCache && !r.cubic && !gradientsRefused_;
     const std::size_t valuesOnly = BrickPool::texelBytes(f, false);
-    if (bytesAt(0, computed, valuesOnly) > budget) {
+    // Coarser levels where level 0 does not fit, or to stand in while bricks stream.
+    if (bytesAt(0, computed, valuesOnly) > budget || r.uploadCap > 0) {
         for (int level = 1; level < levelCount(); ++level) {
             addLevel(level);
         }
@@ -323,7 +324,8 @@ const BrickTable& BrickStreamer::updateWithin(const BrickRequest& r, BrickFrameS
                 }
             }
         }
-        const double content = (shows + 0.1) / (std::pow(double(cellsPerPage), 3.0) + 0.1);
+        const double content =
+            std::sqrt((shows + 0.1) / (std::pow(double(cellsPerPage), 3.0) + 0.1));
         pageWorth[b] = r.worth ? r.worth(glm::dvec3(lo), glm::dvec3(hi - 1), content) : content;
     }
     std::vector<Node> nodes;
@@ -438,7 +440,8 @@ const BrickTable& BrickStreamer::updateWithin(const BrickRequest& r, BrickFrameS
             continue;
         }
         const std::size_t cost = volumeOf(want.size) * BrickPool::texelBytes(f, gradients);
-        if (r.uploadCap > 0 && capped + cost > r.uploadCap) {
+        // Over the cap (but one brick a frame, however large, so that every frame brings some).
+        if (r.uploadCap > 0 && capped > 0 && capped + cost > r.uploadCap) {
             // An ancestor already resident stands in (its pages all lie in it).
             const glm::ivec3 np = nodesPer[std::size_t(node.level)];
             const glm::ivec3 at(int(node.id % std::uint32_t(np.x)),

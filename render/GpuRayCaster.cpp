@@ -594,6 +594,7 @@ GpuRenderResult GpuRayCaster::cast(const RenderDescription& asked, bool countRow
     stats.bricksUsed = bricks.bricksUsed;
     stats.lod = bricks.coarsestLevel;
     stats.lodReason = out.gpu.lodReason;
+    stats.bricksPending = out.gpu.pending;
     s.inTarget = desc;
     s.inTarget->volume = &s.volume;
     s.last = out.gpu;

@@ -136,6 +136,11 @@ bool LocalRenderBackend::renderJob(const FramebufferTarget* target) {
     }
     pending_.reset();
     emit frameReady(frame);
+    if (frame.stats.bricksPending > 0 && !pending_) {
+        // Bricks still stream in: the same frame again, finer, unless a newer one is asked for.
+        pending_ = job;
+        emit renderWanted();
+    }
     return true;
 }
 

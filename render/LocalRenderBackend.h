@@ -88,7 +88,16 @@ private:
     bool drawLast(const FramebufferTarget& target);
 
     RendererKind kind_ = RendererKind::Cpu;
-    GpuOptions gpuOptions_;
+    // The workstation's: a frame uploads at most this beyond what it must
+    // show; the finer bricks stream in over the next frames (kept asking for
+    // while a frame says some are pending), so that a move never waits on
+    // a whole volume's upload.
+    static constexpr std::size_t kStreamBytesPerFrame = std::size_t(64) << 20;
+    GpuOptions gpuOptions_ = [] {
+        GpuOptions o;
+        o.uploadBytesPerFrame = kStreamBytesPerFrame;
+        return o;
+    }();
     std::shared_ptr<const Volume> volume_;
     std::optional<Pending> pending_;
     // The renderer and the volume it renders, kept alive as long as it is.

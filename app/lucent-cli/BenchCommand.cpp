@@ -32,6 +32,9 @@ QString csvLine(const QualityPoint& p) {
 } // namespace
 
 int runBench(const QStringList& args) {
+    if (args.size() > 1 && args[1] == "lod") {
+        return runLodBench(args);
+    }
     QCommandLineParser parser;
     parser.setApplicationDescription("bench quality PATH: time against accuracy for every sampling "
                                      "setting, measured against the reference (double, tricubic, "

@@ -49,6 +49,8 @@ int runCompare(const QStringList& args);
 int runRender(const QStringList& args);
 int runPacs(const QStringList& args); // exit 4: the PACS or the network failed
 int runBench(const QStringList& args);
+// bench lod PATH: PSNR against the GPU budget, per-brick levels and one level.
+int runLodBench(const QStringList& args);
 int runOptions(const QStringList& args); // the render options table
 int runSurface(const QStringList& args); // isosurface meshes and the method of spheres
 

@@ -20,6 +20,8 @@ const char* kUsageText =
     "  options [--markdown]                 every render option: flag, wire key, range, default\n"
     "  bench quality PATH [--backend cpu|gl] [--csv OUT.csv] [--plot OUT.png]\n"
     "                                       time against PSNR/SSIM of every sampling setting\n"
+    "  bench lod PATH [--budgets MIB,...] [--csv OUT.csv] [--plot OUT.png]\n"
+    "                                       PSNR against the GPU budget, per-brick and one level\n"
     "PATH: a DICOM folder (searched recursively), a DICOM file, a DICOMDIR,\n"
     "      or a .mhd/.mha, .nii/.nii.gz or InVesalius .inv3 volume.\n"
     "  pacs echo|find|get --pacs AET@HOST:PORT ...  C-ECHO, C-FIND, C-GET into the study store\n"

@@ -25,6 +25,10 @@ struct RenderStats {
     std::size_t bricksUsed = 0;  // bricks visible under the transfer function and clip box
     int lod = 0;                 // level of detail rendered (0: full resolution)
     std::string lodReason;       // why a coarser level, when one was used
+    // Bricks drawn from a coarser level than planned while the finer ones
+    // stream in (the GPU renderer under an upload cap): another frame of the
+    // same view shows more.
+    std::size_t bricksPending = 0;
 };
 
 struct RenderResult {

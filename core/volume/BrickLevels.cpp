@@ -70,16 +70,25 @@ LevelChoice chooseLevels(const std::vector<LodNode>& nodes, const std::vector<st
             }
         }
     }
-    // From the coarsest level, the refinement worth most first while it fits
-    // (a level's voxel is twice the size of the next finer one's).
+    // From the coarsest level, the refinement worth most for its bytes first
+    // while it fits: a node's error goes with its voxel size (twice the next
+    // finer level's) times its worth, and refining it halves that.
     std::vector<char> drawn(nodes.size(), 0);
     out.bytes = coarse;
     using Step = std::pair<double, std::size_t>; // worth of refining, node
     std::priority_queue<Step> queue;
+    const auto gain = [&](std::size_t n) {
+        std::size_t children = 0;
+        for (const std::size_t c : nodes[n].children) {
+            children += nodes[c].bytes;
+        }
+        const double extra = double(children > nodes[n].bytes ? children - nodes[n].bytes : 0);
+        return nodes[n].worth * std::ldexp(1.0, 2 * nodes[n].level) / (extra + 1.0);
+    };
     for (const std::size_t n : top) {
         drawn[n] = 1;
         if (coarsest > 0) {
-            queue.push({nodes[n].worth * std::ldexp(1.0, coarsest), n});
+            queue.push({gain(n), n});
         }
     }
     std::vector<Step> deferred; // did not fit; may once a refinement frees bytes
@@ -106,7 +115,7 @@ LevelChoice chooseLevels(const std::vector<LodNode>& nodes, const std::vector<st
         for (const std::size_t c : nodes[n].children) {
             drawn[c] = 1;
             if (nodes[c].level > 0) {
-                queue.push({nodes[c].worth * std::ldexp(1.0, nodes[c].level), c});
+                queue.push({gain(c), c});
             }
         }
     }

@@ -2,10 +2,10 @@
 // Which level of detail each part of a volume is drawn from under a memory
 // budget: an octree of bricks, where a brick of level n covers 2x2x2 bricks
 // of level n - 1 (the same number of its own, coarser, voxels). Starting from
-// the coarsest level, the refinement worth most (projected voxel size, what
-// the brick shows, how near the centre of the image it is) comes first while
-// it fits, so that a tight budget coarsens the bricks that matter least
-// instead of the whole volume.
+// the coarsest level, the refinement worth most for the bytes it adds
+// (projected voxel size, what the brick shows, how near the centre of the
+// image it is) comes first while it fits, so that a tight budget coarsens the
+// bricks that matter least instead of the whole volume.
 
 #include <cstddef>
 #include <string>

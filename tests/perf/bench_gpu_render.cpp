@@ -28,6 +28,20 @@
 #include "tests/perf/BenchScenes.h"
 
 using namespace lucent;
+
+namespace {
+
+// Bricks drawn per level, "0:n0,1:n1,...".
+std::string levelsOf(const GpuFrameStats& g) {
+    std::string out;
+    for (std::size_t l = 0; l < g.bricksPerLevel.size(); ++l) {
+        out += (out.empty() ? "" : ",") + std::to_string(l) + ":" +
+               std::to_string(g.bricksPerLevel[l]);
+    }
+    return out;
+}
+
+} // namespace
 using Clock = std::chrono::steady_clock;
 
 namespace {
@@ -232,13 +246,14 @@ private slots:
                      ("bench_gpu_" + std::string(QTest::currentDataTag()) + ".png"));
         qInfo("gpu_beyond_memory: %dx%dx%d int16 (%.2f GB, tiled in %.0f ms) budget_mib=%d lod=%d "
               "(%s) first_ms=%.1f render_ms=%.1f (median of 3) resident=%zu "
-              "resident_mib=%.1f pool_mib=%.1f uploaded_mib=%.1f gradients=%s",
+              "resident_mib=%.1f values_mib=%.1f pool_mib=%.1f uploaded_mib=%.1f gradients=%s "
+              "levels=%s",
               big.dims().x, big.dims().y, big.dims().z, double(big.byteCount()) / 1e9, buildMs,
               budgetMib, first.frame.stats.lod, first.gpu.lodReason.c_str(), firstMs,
               bench::median(ms), first.gpu.bricksResident,
-              double(first.gpu.residentBytes) / 1048576.0, double(first.gpu.poolBytes) / 1048576.0,
-              double(first.gpu.bytesUploaded) / 1048576.0,
-              first.gpu.gradientsCached ? "cached" : "computed");
+              double(first.gpu.residentBytes) / 1048576.0, double(first.gpu.valueBytes) / 1048576.0,
+              double(first.gpu.poolBytes) / 1048576.0, double(first.gpu.bytesUploaded) / 1048576.0,
+              first.gpu.gradientsCached ? "cached" : "computed", levelsOf(first.gpu).c_str());
         QVERIFY(first.gpu.bricksResident > 0);
     }
 };

@@ -184,6 +184,9 @@ void VolumeView::updateNotice() {
     if (!frameError_.isEmpty()) {
         line = line.isEmpty() ? frameError_ : line + "; " + frameError_;
     }
+    if (!detailNotice_.isEmpty()) {
+        line = line.isEmpty() ? detailNotice_ : line + "; " + detailNotice_;
+    }
     if (line != notice_) {
         notice_ = line;
         emit noticeChanged(notice_);
@@ -365,8 +368,16 @@ void VolumeView::onFrame(const BackendFrame& frame) {
             frame.interactive ? scaledTo(frame.image, still.width, still.height) : frame.image;
     }
     lastFrameCurrent_ = frame.current;
-    if (!frameError_.isEmpty()) {
+    // What a still frame shows, when it is not the whole volume at full resolution.
+    const QString detail =
+        frame.interactive || (frame.stats.lod == 0 && frame.stats.bricksPending == 0) ? QString()
+        : frame.stats.bricksPending > 0
+            ? tr("Streaming: %n brick(s) still at a coarser level", "",
+                 int(frame.stats.bricksPending))
+            : tr("Coarser level of detail: %1").arg(QString::fromStdString(frame.stats.lodReason));
+    if (!frameError_.isEmpty() || detail != detailNotice_) {
         frameError_.clear();
+        detailNotice_ = detail;
         updateNotice();
     }
     emit renderedFrame(frame.stats, frame.interactive);

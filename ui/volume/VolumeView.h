@@ -181,6 +181,7 @@ private:
     QString notice_;
     QString backendNotice_; // why not the GPU, or the server's status
     QString frameError_;    // the last request that failed, until a frame comes
+    QString detailNotice_;  // a still frame at a coarser level, or bricks still streaming in
     QString glFailure_;
     ImageRGBA8 lastFrame_; // empty for a frame drawn in place until it is read back
     bool lastFrameCurrent_ = false;

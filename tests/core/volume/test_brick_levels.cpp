@@ -274,35 +274,26 @@ private slots:
         QCOMPARE(sorted(t.choose(520, LodPolicy::Uniform).shown), sorted({x00, x01, x10, y0}));
     }
 
-    // A coarser node's voxels are twice the size: its refinement counts
-    // double against a finer node of the same worth (worth x 2^level). X
-    // (level 2, worth 1: 4) refines first; then Y (level 2, 0.9: 3.6) comes
-    // before X's children (level 1, 1.5: 3.0), and only one of them fits.
+    // A refinement's gain is its worth times the square of its voxel size
+    // (4^level: the error of a blurred surface grows faster than its voxel),
+    // over the bytes it adds. R's free refinement first; then P (1 x 16 / 11)
+    // before q (3 x 4 / 11), though q is worth three times as much: the
+    // coarsest voxels go first. By 2^level q would win (6 / 11 against 4 / 11).
     void coarserRefinementsWeighMore() {
         Tree t;
-        const std::size_t xa0 = t.add(0, 30, 1.0), xb0 = t.add(0, 30, 1.0);
-        const std::size_t xa = t.add(1, 10, 1.5, {xa0}), xb = t.add(1, 10, 1.5, {xb0});
-        const std::size_t x = t.root(2, 10, 1.0, {xa, xb});
-        const std::size_t y0 = t.add(0, 60, 1.0);
-        const std::size_t y1 = t.add(1, 25, 1.0, {y0});
-        t.root(2, 10, 0.9, {y1});
-        const LevelChoice c = t.choose(50, LodPolicy::PerBrick);
-        QCOMPARE(sorted(c.shown), sorted({xa, xb, y1}));
-        QCOMPARE(c.bytes, std::size_t(45));
-        (void)x;
-        // Children worth more than twice Y's worth come before Y: X (2: 8),
-        // then its children (3.5: 7, 3: 6) before Y (1: 4); one child fits, then
-        // nothing.
-        Tree u;
-        const std::size_t ua0 = u.add(0, 30, 1.0), ub0 = u.add(0, 30, 1.0);
-        const std::size_t ua = u.add(1, 10, 3.5, {ua0}), ub = u.add(1, 10, 3.0, {ub0});
-        u.root(2, 10, 2.0, {ua, ub});
-        const std::size_t v0 = u.add(0, 60, 1.0);
-        const std::size_t v1 = u.add(1, 25, 1.0, {v0});
-        const std::size_t v = u.root(2, 10, 1.0, {v1});
-        const LevelChoice d = u.choose(50, LodPolicy::PerBrick);
-        QCOMPARE(sorted(d.shown), sorted({ua0, ub, v}));
-        QCOMPARE(d.bytes, std::size_t(50));
+        const std::size_t p0 = t.add(0, 100, 1.0);
+        const std::size_t p1 = t.add(1, 20, 1.0, {p0});
+        const std::size_t p = t.root(2, 10, 1.0, {p1});
+        const std::size_t q0 = t.add(0, 20, 1.0);
+        const std::size_t q = t.add(1, 10, 3.0, {q0});
+        t.root(2, 10, 10.0, {q});
+        const LevelChoice c = t.choose(30, LodPolicy::PerBrick);
+        QCOMPARE(sorted(c.shown), sorted({p1, q}));
+        QCOMPARE(c.bytes, std::size_t(30));
+        (void)p;
+        // With room for both, both.
+        const LevelChoice d = t.choose(40, LodPolicy::PerBrick);
+        QCOMPARE(sorted(d.shown), sorted({p1, q0}));
     }
 
     // Uniform: the finest level whose nodes all fit, for all of them, though
