@@ -253,11 +253,7 @@ const BrickTable& BrickStreamer::updateWithin(const BrickRequest& r, BrickFrameS
                 box.reset();
             }
             if (box && !r.tight) { // the whole page, as bricks were before boxes
-                const glm::ivec3 per = boxes_->bricksPerAxis();
-                const glm::ivec3 index(int(b % std::size_t(per.x)),
-                                       int((b / std::size_t(per.x)) % std::size_t(per.y)),
-                                       int(b / std::size_t(per.x * per.y)));
-                box->lo = index * boxes_->brickSize();
+                box->lo = boxes_->brickIndex(b) * boxes_->brickSize();
                 box->hi = glm::min(box->lo + boxes_->brickSize(), volume_.dims());
             }
         }
@@ -285,11 +281,7 @@ const BrickTable& BrickStreamer::updateWithin(const BrickRequest& r, BrickFrameS
     // The octree: per level, nodes of 2^level pages a side with the union of
     // their pages' boxes; what refining each is worth (its pages' most).
     const glm::ivec3 pages = boxes_->bricksPerAxis();
-    const auto pageIndex = [&](std::uint32_t b) {
-        return glm::ivec3(int(b % std::uint32_t(pages.x)),
-                          int((b / std::uint32_t(pages.x)) % std::uint32_t(pages.y)),
-                          int(b / std::uint32_t(pages.x * pages.y)));
-    };
+    const auto pageIndex = [&](std::uint32_t b) { return boxes_->brickIndex(b); };
     std::vector<double> pageWorth(boxes_->brickCount(), 0.0);
     std::vector<char> anyBox(boxes_->brickCount(), 0);
     const int cellsPerPage = std::max(1, pageSize / kCellSize);

@@ -54,6 +54,11 @@ std::size_t BrickBoxes::brickCount() const {
     return countOf(bricksPer_);
 }
 
+glm::ivec3 BrickBoxes::brickIndex(std::size_t id) const {
+    const std::size_t x = std::size_t(bricksPer_.x), y = std::size_t(bricksPer_.y);
+    return {int(id % x), int((id / x) % y), int(id / (x * y))};
+}
+
 std::uint32_t BrickBoxes::brickOfCell(glm::ivec3 cell) const {
     return std::uint32_t(idOf(glm::min(cell * cellSize_ / brickSize_, bricksPer_ - 1), bricksPer_));
 }

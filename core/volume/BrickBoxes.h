@@ -49,6 +49,8 @@ public:
     glm::ivec3 bricksPerAxis() const { return bricksPer_; }
     std::size_t cellCount() const;
     std::size_t brickCount() const;
+    // A brick's position in the grid of bricks from its id (x fastest).
+    glm::ivec3 brickIndex(std::size_t id) const;
     std::uint32_t brickOfCell(glm::ivec3 cell) const; // of its first voxel
     std::uint32_t brickOfLastVoxel(glm::ivec3 cell) const;
 

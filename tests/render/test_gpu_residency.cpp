@@ -8,25 +8,10 @@
 #include "render/GlObjects_p.h"
 #include "tests/core/raycast/RaycastScenes.h"
 #include "tests/render/GlTestSupport.h"
+#include "tests/render/RealOrMadeCt.h"
 
 using namespace lucent;
 using namespace lucent::test;
-
-namespace {
-
-Volume realOrMade() {
-    if (std::filesystem::exists(philipsCt())) {
-        return loadPath(philipsCt());
-    }
-    return makeVolume(
-        {200, 180, 90},
-        [](int i, int j, int k) {
-            return 8.0 * blobs(i / 5, j / 5, k / 3) - 500.0 + (i > 150 ? 1200.0 : 0.0);
-        },
-        VoxelType::Int16);
-}
-
-} // namespace
 
 class TestGpuResidency : public QObject {
     Q_OBJECT
