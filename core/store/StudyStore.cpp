@@ -15,7 +15,10 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdlib>
+#include <cstring>
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 namespace lucent {
@@ -73,6 +76,30 @@ bool writerAlive(const std::string& name) {
     return pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM);
 }
 
+// Held while a connection sets the index up, across threads and processes:
+// the first to open a new store switches it to WAL and creates the tables
+// while the others wait. Two openers at once otherwise lock each other out in
+// rollback mode, and SQLite answers a WAL switch it could not make with the
+// old mode instead of an error. The kernel drops the lock if a process dies.
+class SetupLock {
+public:
+    explicit SetupLock(const fs::path& file)
+        : fd_(::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644)) {
+        if (fd_ < 0) {
+            throw StoreError(file.string() + ": cannot open the store's lock file (" +
+                             std::strerror(errno) + ")");
+        }
+        while (::flock(fd_, LOCK_EX) != 0 && errno == EINTR) {
+        }
+    }
+    ~SetupLock() { ::close(fd_); }
+    SetupLock(const SetupLock&) = delete;
+    SetupLock& operator=(const SetupLock&) = delete;
+
+private:
+    int fd_;
+};
+
 } // namespace
 
 StudyStore::StudyStore(const fs::path& root) : root_(root) {
@@ -95,13 +122,21 @@ StudyStore::StudyStore(const fs::path& root) : root_(root) {
             fs::remove(e.path(), ec);
         }
     }
+    const SetupLock setup(root_ / "index.lock");
     QSqlDatabase db = QSqlDatabase::addDatabase("QSQLITE", q(connection_));
     db.setDatabaseName(q((root_ / "index.sqlite").string()));
     if (!db.open()) {
         throw StoreError(root_.string() + "/index.sqlite: " + db.lastError().text().toStdString() +
                          " (is the Qt SQLite driver, libqt6sql6-sqlite, installed?)");
     }
-    exec("PRAGMA journal_mode=WAL");
+    QSqlQuery wal(db);
+    run(wal, root_, "PRAGMA journal_mode=WAL");
+    if (!wal.next() || wal.value(0).toString() != "wal") {
+        throw StoreError(root_.string() + "/index.sqlite: cannot switch the index to write-ahead " +
+                         "logging (journal mode '" + wal.value(0).toString().toStdString() +
+                         "'); is the store on a file system without shared memory, such as NFS?");
+    }
+    wal.finish();
     // WAL with NORMAL sync stays consistent after a crash; a power loss can only
     // drop the last few index rows, whose instances the next retrieval fetches
     // again. FULL would fsync for every instance of a retrieval.

@@ -2,8 +2,12 @@
 #include <QTemporaryDir>
 #include <QTest>
 
+#include <QSqlDatabase>
+#include <QSqlQuery>
+
 #include <filesystem>
 #include <fstream>
+#include <thread>
 
 #include "core/store/StudyStore.h"
 
@@ -96,6 +100,30 @@ private slots:
         StudyStore two(b.path().toStdString());
         QVERIFY(one.add(incoming(one, "1"), record("1.2.3.4.1")));
         QVERIFY(!two.contains("1.2.3.4.1"));
+    }
+
+    // The storage SCP's thread and the workstation open a new store at the same
+    // moment. Switching to WAL needs the database alone, and SQLite answers a
+    // switch it could not make with the old mode instead of an error: without
+    // a check the index stayed in rollback mode, where a writer locks readers out.
+    void storesOpenedTogetherShareAWalIndex() {
+        for (int round = 0; round < 40; ++round) {
+            QTemporaryDir dir;
+            const fs::path root = dir.path().toStdString();
+            std::jthread other([&] { StudyStore s(root); });
+            const StudyStore here(root);
+            other.join();
+            const QString name = QStringLiteral("journal-check-%1").arg(round);
+            {
+                QSqlDatabase db = QSqlDatabase::addDatabase("QSQLITE", name);
+                db.setDatabaseName(QString::fromStdString((root / "index.sqlite").string()));
+                QVERIFY(db.open());
+                QSqlQuery mode(db);
+                QVERIFY(mode.exec("PRAGMA journal_mode") && mode.next());
+                QCOMPARE(mode.value(0).toString(), QStringLiteral("wal"));
+            }
+            QSqlDatabase::removeDatabase(name);
+        }
     }
 
     void indexListsPatientsStudiesAndSeries() {
