@@ -77,7 +77,15 @@ void VolumeGlSurface::paintGL() {
     const QSize pixels = size() * devicePixelRatio();
     const FramebufferTarget target{defaultFramebufferObject(), 0, 0, pixels.width(),
                                    pixels.height()};
+    // QOpenGLWidget always renders into its own framebuffer object; none means
+    // the platform could not give it one, and framebuffer 0 is not ours to draw in.
+    if (target.framebuffer == 0 && !failed_) {
+        reportFailure(tr("the OpenGL widget got no framebuffer on this platform"));
+    }
     if (failed_) {
+        if (target.framebuffer == 0) {
+            return;
+        }
         try {
             clearFramebuffer(target, glm::dvec3(0.0));
         } catch (const std::exception&) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <QGuiApplication>
 #include <QKeyEvent>
 #include <QMouseEvent>
 #include <QOpenGLContext>
@@ -19,8 +20,22 @@ namespace lucent {
 
 namespace {
 
+// Qt platforms whose windows can hold a QOpenGLWidget. Others (offscreen,
+// minimal, vnc, linuxfb) may still make a GL context, offscreen through GLX
+// when DISPLAY is set, but their backing store has no texture to compose the
+// widget into and Qt crashes in its flush; the CPU renderer is used there.
+bool platformComposesGlWidgets() {
+    const QString name = QGuiApplication::platformName();
+    return name == "xcb" || name.startsWith("wayland") || name.startsWith("eglfs") ||
+           name == "windows" || name == "cocoa";
+}
+
 // Why a 4.3 core context cannot be made here; empty when it can.
 QString glUnavailableReason() {
+    if (!platformComposesGlWidgets()) {
+        return QObject::tr("the '%1' Qt platform cannot show OpenGL widgets")
+            .arg(QGuiApplication::platformName());
+    }
     QOpenGLContext probe;
     probe.setFormat(VolumeView::surfaceFormat());
     if (!probe.create()) {

@@ -18,6 +18,7 @@
 #include <memory>
 
 #include "core/formats/MetaImage.h"
+#include "tests/support/OffscreenPlatform.h"
 #include "ui/app/MainWindow.h"
 #include "ui/app/ViewLayout.h"
 #include "ui/mpr/SliceView.h"
@@ -394,9 +395,7 @@ void TestMainWindow::studyBrowserListsOpenedSeries() {
 }
 
 int main(int argc, char** argv) {
-    if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) {
-        qputenv("QT_QPA_PLATFORM", "offscreen");
-    }
+    lucent::test::useOffscreenPlatform();
     QApplication app(argc, argv);
     TestMainWindow test;
     return QTest::qExec(&test, argc, argv);

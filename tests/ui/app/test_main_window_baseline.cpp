@@ -16,6 +16,7 @@
 #include <filesystem>
 
 #include "core/image/ImageMetrics.h"
+#include "tests/support/OffscreenPlatform.h"
 #include "ui/app/MainWindow.h"
 #include "ui/study/StudyBrowser.h"
 #include "ui/volume/VolumeView.h"
@@ -77,6 +78,12 @@ private slots:
         auto* view = window.findChild<VolumeView*>();
         QVERIFY(view != nullptr);
         QTRY_VERIFY_WITH_TIMEOUT(!view->lastFrame().empty() && view->lastFrameCurrent(), 60000);
+        // Offscreen cannot show a QOpenGLWidget, even where it could make a
+        // context (DISPLAY set): the CPU renderer, and the notice says why.
+        QCOMPARE(view->backend(), VolumeView::Backend::Cpu);
+        if (!qEnvironmentVariableIsEmpty("DISPLAY")) {
+            QVERIFY2(view->notice().contains("offscreen"), qPrintable(view->notice()));
+        }
 
         // Settled: two grabs a moment apart are the same picture.
         QImage actual = window.grab().toImage();
@@ -123,9 +130,7 @@ private slots:
 };
 
 int main(int argc, char** argv) {
-    if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) {
-        qputenv("QT_QPA_PLATFORM", "offscreen");
-    }
+    lucent::test::useOffscreenPlatform();
     QApplication app(argc, argv);
     TestMainWindowBaseline test;
     return QTest::qExec(&test, argc, argv);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <memory>
 
+#include "tests/support/OffscreenPlatform.h"
 #include "ui/mpr/MprCursor.h"
 #include "ui/mpr/SliceView.h"
 
@@ -206,9 +207,7 @@ void TestSliceView::imageFollowsConventions() {
 }
 
 int main(int argc, char** argv) {
-    if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) {
-        qputenv("QT_QPA_PLATFORM", "offscreen");
-    }
+    lucent::test::useOffscreenPlatform();
     QApplication app(argc, argv);
     TestSliceView test;
     return QTest::qExec(&test, argc, argv);

@@ -12,6 +12,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "tests/support/OffscreenPlatform.h"
 #include "ui/mpr/MprCursor.h"
 #include "ui/mpr/SliceOverlay.h"
 #include "ui/mpr/SliceView.h"
@@ -388,9 +389,7 @@ void TestSliceViewTools::overlayHelpers() {
 }
 
 int main(int argc, char** argv) {
-    if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) {
-        qputenv("QT_QPA_PLATFORM", "offscreen");
-    }
+    lucent::test::useOffscreenPlatform();
     QApplication app(argc, argv);
     TestSliceViewTools test;
     return QTest::qExec(&test, argc, argv);

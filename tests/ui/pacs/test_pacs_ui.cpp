@@ -21,6 +21,7 @@
 
 #include "core/pacs/PacsService.h"
 #include "core/store/StudyStore.h"
+#include "tests/support/OffscreenPlatform.h"
 #include "tests/support/OrthancServer.h"
 #include "tests/support/SyntheticDicom.h"
 #include "ui/pacs/PacsBrowser.h"
@@ -311,9 +312,7 @@ private slots:
 };
 
 int main(int argc, char** argv) {
-    if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) {
-        qputenv("QT_QPA_PLATFORM", "offscreen");
-    }
+    lucent::test::useOffscreenPlatform();
     QApplication app(argc, argv);
     TestPacsUi test;
     return QTest::qExec(&test, argc, argv);

@@ -20,6 +20,7 @@
 #include "core/io/Catalog.h"
 #include "core/mpr/PlaneSampler.h"
 #include "core/store/StudyStore.h"
+#include "tests/support/OffscreenPlatform.h"
 #include "ui/study/StudyBrowser.h"
 
 using namespace lucent;
@@ -193,9 +194,7 @@ private slots:
 };
 
 int main(int argc, char** argv) {
-    if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) {
-        qputenv("QT_QPA_PLATFORM", "offscreen");
-    }
+    lucent::test::useOffscreenPlatform();
     QApplication app(argc, argv);
     TestStudyBrowser test;
     return QTest::qExec(&test, argc, argv);

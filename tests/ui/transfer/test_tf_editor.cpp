@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "core/tf/VolumeHistogram.h"
+#include "tests/support/OffscreenPlatform.h"
 #include "ui/transfer/TransferFunctionCanvas.h"
 #include "ui/transfer/TransferFunctionEditor.h"
 
@@ -215,9 +216,7 @@ void TestTfEditor::editorForwardsDragsAndSavesPresets() {
 }
 
 int main(int argc, char** argv) {
-    if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) {
-        qputenv("QT_QPA_PLATFORM", "offscreen");
-    }
+    lucent::test::useOffscreenPlatform();
     QApplication app(argc, argv);
     TestTfEditor test;
     return QTest::qExec(&test, argc, argv);

@@ -14,6 +14,7 @@
 #include <functional>
 #include <memory>
 
+#include "tests/support/OffscreenPlatform.h"
 #include "tests/ui/volume/BallVolume.h"
 #include "ui/volume/VolumeView.h"
 #include "ui/volume/VolumeViewControls.h"
@@ -187,9 +188,7 @@ private slots:
 };
 
 int main(int argc, char** argv) {
-    if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) {
-        qputenv("QT_QPA_PLATFORM", "offscreen");
-    }
+    lucent::test::useOffscreenPlatform();
     QApplication app(argc, argv);
     TestVolumeViewTools test;
     return QTest::qExec(&test, argc, argv);
