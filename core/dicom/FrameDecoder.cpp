@@ -4,7 +4,7 @@
 #include <memory>
 
 #include <gdcmImage.h>
-#include <gdcmImageReader.h>
+#include <gdcmReader.h>
 
 #include "core/io/LoadControl.h"
 
@@ -16,25 +16,45 @@ RawFormat rawFormatOf(const PixelLayout& layout) {
 
 namespace {
 
-DecodedFrames decodeFramesWithGdcm(const std::string& file, const PixelLayout& expected) {
-    gdcm::ImageReader reader;
+// Only GDCM's codecs see the file, never its ImageReader: that one derives the
+// geometry again with ImageHelper, whose assertions abort the whole process on
+// elements it does not expect (a frame count of another VR, an RT dose grid
+// offset vector shorter than its frames). The geometry comes from the scan,
+// which has validated it already.
+gdcm::Image imageToDecode(const std::string& file, const gdcm::File& parsed,
+                          const PixelLayout& expected, int frames) {
+    const gdcm::Tag pixelData(0x7fe0, 0x0010);
+    const gdcm::DataSet& ds = parsed.GetDataSet();
+    if (!ds.FindDataElement(pixelData) || ds.GetDataElement(pixelData).IsEmpty()) {
+        throw LoadError(file + ": no pixel data (7FE0,0010)");
+    }
+    gdcm::Image image;
+    image.SetNumberOfDimensions(frames > 1 ? 3 : 2);
+    image.SetDimension(0, static_cast<unsigned>(expected.columns));
+    image.SetDimension(1, static_cast<unsigned>(expected.rows));
+    if (frames > 1) {
+        image.SetDimension(2, static_cast<unsigned>(frames));
+    }
+    image.SetPixelFormat(gdcm::PixelFormat(1, static_cast<unsigned short>(expected.bitsAllocated),
+                                           static_cast<unsigned short>(expected.bitsStored),
+                                           static_cast<unsigned short>(expected.highBit),
+                                           expected.isSigned ? 1 : 0));
+    image.SetPhotometricInterpretation(gdcm::PhotometricInterpretation::MONOCHROME2);
+    image.SetTransferSyntax(parsed.GetHeader().GetDataSetTransferSyntax());
+    image.SetDataElement(ds.GetDataElement(pixelData));
+    return image;
+}
+
+DecodedFrames decodeFramesWithGdcm(const std::string& file, const PixelLayout& expected,
+                                   int frames) {
+    gdcm::Reader reader;
     reader.SetFileName(file.c_str());
     if (!reader.Read()) {
         throw LoadError(file +
                         ": GDCM cannot read the image (corrupt file or unsupported encoding)");
     }
-    const gdcm::Image& image = reader.GetImage();
+    const gdcm::Image image = imageToDecode(file, reader.GetFile(), expected, frames);
     const gdcm::PixelFormat& pf = image.GetPixelFormat();
-    if (pf.GetSamplesPerPixel() != 1) {
-        throw LoadError(file + ": decoded to " + std::to_string(pf.GetSamplesPerPixel()) +
-                        " samples per pixel; only greyscale is supported");
-    }
-    if (static_cast<int>(image.GetColumns()) != expected.columns ||
-        static_cast<int>(image.GetRows()) != expected.rows) {
-        throw LoadError(file + ": decoded image is " + std::to_string(image.GetColumns()) + "x" +
-                        std::to_string(image.GetRows()) + ", header says " +
-                        std::to_string(expected.columns) + "x" + std::to_string(expected.rows));
-    }
     DecodedFrames out;
     out.format = {pf.GetBitsAllocated(), pf.GetBitsStored(), pf.GetHighBit(),
                   pf.GetPixelRepresentation() == 1};
@@ -56,7 +76,7 @@ DecodedFrames decodeFramesWithGdcm(const std::string& file, const PixelLayout& e
 
 DecodedFrames decodeFrames(const std::string& file, const PixelLayout& expected, int frames) {
     try {
-        return decodeFramesWithGdcm(file, expected);
+        return decodeFramesWithGdcm(file, expected, frames);
     } catch (const LoadError& gdcmError) {
         if (!isJpegLs(expected.transferSyntax)) {
             throw;

@@ -1,6 +1,7 @@
 // DICOM loading on the real data in ../shared/data: geometry, HU, localizers,
 // tilt and uneven gaps checked against the files, every transfer syntax of
 // NEMA WG04, Enhanced MR multi-frame.
+#include <QTemporaryDir>
 #include <QTest>
 
 #include <filesystem>
@@ -8,6 +9,7 @@
 
 #include "core/io/Catalog.h"
 #include "tests/support/ReferenceDicom.h"
+#include "tests/support/RtDoseFromImage.h"
 
 using namespace lucent;
 namespace fs = std::filesystem;
@@ -215,6 +217,33 @@ private slots:
         QCOMPARE(v.type(), unc.type());
         QVERIFY(std::equal(v.bytes().begin(), v.bytes().end(), unc.bytes().begin()));
         QVERIFY(unc.valueRange().second > unc.valueRange().first);
+    }
+
+    // An RLE RT dose made from the real NEMA MR: GDCM's image helpers assert on
+    // its grid frame offsets, and on a frame count of another VR, and those
+    // assertions aborted the whole process. Each one now loads, pixel for pixel.
+    void rtDoseThatGdcmHelpersAssertOnLoads_data() {
+        QTest::addColumn<int>("flaw");
+        QTest::newRow("valid") << int(test::RtDoseFlaw::None);
+        QTest::newRow("frame count as US") << int(test::RtDoseFlaw::FrameCountAsUS);
+        QTest::newRow("frame count as FD") << int(test::RtDoseFlaw::FrameCountAsFD);
+        QTest::newRow("no grid offsets") << int(test::RtDoseFlaw::NoGridOffsets);
+    }
+    void rtDoseThatGdcmHelpersAssertOnLoads() {
+        QFETCH(int, flaw);
+        REQUIRE_DATA("nema_wg04");
+        const fs::path source = kData / "nema_wg04/MR1/MR1_UNC.dcm";
+        QTemporaryDir dir;
+        const std::string file = test::writeRtDoseFromImage(
+            source.string(), dir.filePath("dose.dcm").toStdString(), test::RtDoseFlaw(flaw));
+        const Volume unc = loadOnly(source);
+        try {
+            const Volume dose = loadOnly(file);
+            QCOMPARE(dose.dims(), unc.dims());
+            QVERIFY(std::equal(dose.bytes().begin(), dose.bytes().end(), unc.bytes().begin()));
+        } catch (const std::exception& e) {
+            QFAIL(e.what());
+        }
     }
 
     void nemaLossyWithinBound_data() {
