@@ -2,7 +2,6 @@
 // trade"): time, samples, PSNR and SSIM of every sampling setting against the
 // reference, the front, a CSV and a plot.
 #include <QCommandLineParser>
-#include <QFile>
 #include <QTextStream>
 
 #include <algorithm>
@@ -11,13 +10,13 @@
 #include <memory>
 #include <tuple>
 
+#include "BenchSetup.h"
 #include "CliCommand.h"
 #include "QualityPlot.h"
 #include "TerminalProgress.h"
 #include "core/io/Catalog.h"
 #include "core/quality/QualityFront.h"
 #include "core/raycast/CpuRayCaster.h"
-#include "core/scene/DefaultPreset.h"
 #include "core/scene/RenderOptions.h"
 #include "render/GlError.h"
 #include "render/RenderDevice.h"
@@ -41,12 +40,9 @@ int runBench(const QStringList& args) {
                                      "step 1/16 voxel, no early termination).");
     parser.addPositionalArgument("quality", "The bench to run (quality).");
     parser.addPositionalArgument("PATH", "DICOM folder, file or DICOMDIR, or a volume file");
+    addVolumeBenchOptions(parser);
     parser.addOptions({
-        {"series", "Series id or UID (default: the largest volume).", "UID"},
-        {"size", "Image size (default 256x256).", "WxH", "256x256"},
-        {"preset", "Transfer function preset (default ct-bone, or mr-default).", "NAME"},
         {"backend", "cpu or gl.", "NAME", "cpu"},
-        {"csv", "Write every point as CSV.", "OUT.csv"},
         {"plot", "Draw time against PSNR with the front.", "OUT.png"},
         {"frames", "Frames timed per setting (median; default 3).", "N", "3"},
         {"steps", "Steps in voxels (default 2,1,0.5,0.25,0.125).", "LIST", "2,1,0.5,0.25,0.125"},
@@ -109,9 +105,7 @@ int runBench(const QStringList& args) {
         base.volume = &volume;
         base.width = width;
         base.height = height;
-        const std::string preset = parser.isSet("preset")
-                                       ? parser.value("preset").toStdString()
-                                       : defaultPresetName(volume.modality, base.mode);
+        const std::string preset = benchPreset(parser, volume, base.mode);
         base.transferFunction = loadPreset(preset);
 
         CpuRayCaster cpu(volume); // the reference, and what a CPU bench measures
@@ -137,28 +131,14 @@ int runBench(const QStringList& args) {
             [&](std::size_t, std::size_t) { err << "." << Qt::flush; });
         err << "\n";
         const QString header = QString::fromStdString(qualityCsvHeader()) + "\n";
-        if (parser.isSet("csv")) {
-            QFile f(parser.value("csv"));
-            if (!f.open(QIODevice::WriteOnly | QIODevice::Truncate)) {
-                err << "lucent-cli bench: cannot write " << parser.value("csv") << "\n";
-                return kBadInput;
-            }
-            QTextStream csv(&f);
-            csv << header;
-            for (const QualityPoint& p : points) {
-                csv << csvLine(p);
-            }
+        QString csv = header;
+        for (const QualityPoint& p : points) {
+            csv += csvLine(p);
         }
+        writeBenchCsv(parser, csv);
         if (parser.isSet("plot")) {
-            writeQualityPlot(
-                points, parser.value("plot"),
-                QStringLiteral("%1, %2, %3x%4, %5")
-                    .arg(QString::fromStdString(volume.description.empty() ? pos[1].toStdString()
-                                                                           : volume.description))
-                    .arg(QString::fromStdString(preset))
-                    .arg(width)
-                    .arg(height)
-                    .arg(backend));
+            writeQualityPlot(points, parser.value("plot"),
+                             benchPlotTitle(pos[1], volume, preset, width, height, backend));
         }
         out << "front ("
             << std::count_if(points.begin(), points.end(),

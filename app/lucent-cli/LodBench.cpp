@@ -4,9 +4,6 @@
 // frame drawn without a budget (PSNR, SSIM), with the bytes it kept resident.
 #include <QCommandLineParser>
 #include <QElapsedTimer>
-#include <QFile>
-#include <QImage>
-#include <QPainter>
 #include <QPainterPath>
 #include <QTextStream>
 
@@ -14,10 +11,11 @@
 #include <cmath>
 #include <map>
 
+#include "BenchSetup.h"
 #include "CliCommand.h"
+#include "PlotCanvas.h"
 #include "core/image/ImageMetrics.h"
 #include "core/io/Catalog.h"
-#include "core/scene/DefaultPreset.h"
 #include "core/scene/RenderOptions.h"
 #include "render/GlError.h"
 #include "render/RenderDevice.h"
@@ -40,52 +38,29 @@ std::string detail(const LodPoint& p, const std::string& key) {
 
 // PSNR against the budget (log 2), a line per policy.
 void writeLodPlot(const std::vector<LodPoint>& points, const QString& path, const QString& title) {
-    constexpr int kW = 900, kH = 600, kLeft = 70, kRight = 20, kTop = 40, kBottom = 60;
-    QImage image(kW, kH, QImage::Format_RGB32);
-    image.fill(Qt::white);
-    QPainter p(&image);
-    p.setRenderHint(QPainter::Antialiasing);
-    double lo = 1e300, hi = 0.0, dbLo = 1e300, dbHi = 0.0;
+    PlotAxes axes;
+    axes.base = 2.0;
+    axes.xLo = 1e300;
+    axes.xHi = 0.0;
+    double dbLo = 1e300, dbHi = 0.0;
     for (const LodPoint& q : points) {
-        lo = std::min(lo, q.budgetMib);
-        hi = std::max(hi, q.budgetMib);
+        axes.xLo = std::min(axes.xLo, q.budgetMib);
+        axes.xHi = std::max(axes.xHi, q.budgetMib);
         if (std::isfinite(q.psnrDb)) {
             dbLo = std::min(dbLo, q.psnrDb);
             dbHi = std::max(dbHi, q.psnrDb);
         }
     }
-    const double xLo = std::floor(std::log2(lo)), xHi = std::max(std::ceil(std::log2(hi)), xLo + 1);
-    const double yMin = std::floor(dbLo / 5.0) * 5.0, yMax = std::ceil(dbHi / 5.0) * 5.0 + 5.0;
-    const auto px = [&](double mib) {
-        return kLeft + (std::log2(mib) - xLo) / (xHi - xLo) * (kW - kLeft - kRight);
-    };
-    const auto py = [&](double db) {
-        const double v = std::clamp(std::isfinite(db) ? db : yMax, yMin, yMax);
-        return kTop + (yMax - v) / (yMax - yMin) * (kH - kTop - kBottom);
-    };
-    p.setPen(QColor(120, 120, 120));
-    for (double d = yMin; d <= yMax; d += 5) {
-        p.drawLine(QPointF(kLeft - 4, py(d)), QPointF(kLeft, py(d)));
-        p.drawText(QRectF(0, py(d) - 8, kLeft - 8, 16), Qt::AlignRight | Qt::AlignVCenter,
-                   QString::number(d));
-    }
-    for (double e = xLo; e <= xHi; e += 1) {
-        const double mib = std::exp2(e);
-        p.drawLine(QPointF(px(mib), kH - kBottom), QPointF(px(mib), kH - kBottom + 4));
-        p.drawText(QRectF(px(mib) - 40, kH - kBottom + 6, 80, 16), Qt::AlignCenter,
-                   QString::number(mib) + " MiB");
-    }
-    p.drawRect(QRectF(QPointF(kLeft, kTop), QPointF(kW - kRight, kH - kBottom)));
-    p.setPen(Qt::black);
-    p.drawText(QRectF(0, 8, kW, 20), Qt::AlignCenter, title);
-    p.drawText(
-        QRectF(0, kH - 28, kW, 20), Qt::AlignCenter,
-        "GPU budget (log 2)   |   red: per-brick levels   |   blue: one level for the volume");
-    p.save();
-    p.translate(16, kH / 2.0);
-    p.rotate(-90);
-    p.drawText(QRectF(-120, -10, 240, 20), Qt::AlignCenter, "PSNR (dB) vs no budget");
-    p.restore();
+    axes.xUnit = " MiB";
+    axes.yMin = std::floor(dbLo / 5.0) * 5.0;
+    axes.yMax = std::ceil(dbHi / 5.0) * 5.0 + 5.0;
+    axes.yStep = 5.0;
+    axes.title = title;
+    axes.caption =
+        "GPU budget (log 2)   |   red: per-brick levels   |   blue: one level for the volume";
+    axes.yLabel = "PSNR (dB) vs no budget";
+    PlotCanvas canvas(axes);
+    QPainter& p = canvas.painter();
     for (const auto& [policy, colour] : {std::pair{std::string("per-brick"), QColor(200, 30, 30)},
                                          std::pair{std::string("uniform"), QColor(40, 80, 200)}}) {
         QPainterPath line;
@@ -94,7 +69,7 @@ void writeLodPlot(const std::vector<LodPoint>& points, const QString& path, cons
             if (q.policy != policy) {
                 continue;
             }
-            const QPointF at(px(q.budgetMib), py(q.psnrDb));
+            const QPointF at(canvas.x(q.budgetMib), canvas.y(q.psnrDb));
             first ? line.moveTo(at) : line.lineTo(at);
             first = false;
             p.setPen(Qt::NoPen);
@@ -105,10 +80,7 @@ void writeLodPlot(const std::vector<LodPoint>& points, const QString& path, cons
         p.setBrush(Qt::NoBrush);
         p.drawPath(line);
     }
-    p.end();
-    if (!image.save(path, "PNG")) {
-        throw std::runtime_error("cannot write the plot " + path.toStdString());
-    }
+    canvas.save(path);
 }
 
 } // namespace
@@ -119,12 +91,9 @@ int runLodBench(const QStringList& args) {
                                      "for each GPU budget, per-brick levels and one level.");
     parser.addPositionalArgument("lod", "The bench to run (lod).");
     parser.addPositionalArgument("PATH", "DICOM folder, file or DICOMDIR, or a volume file");
+    addVolumeBenchOptions(parser);
     parser.addOptions({
-        {"series", "Series id or UID (default: the largest volume).", "UID"},
-        {"size", "Image size (default 256x256).", "WxH", "256x256"},
-        {"preset", "Transfer function preset (default ct-bone, or mr-default).", "NAME"},
         {"budgets", "Budgets in MiB (default 1,2,4,8,16,32,64).", "LIST", "1,2,4,8,16,32,64"},
-        {"csv", "Write every point as CSV.", "OUT.csv"},
         {"plot", "Draw PSNR against the budget.", "OUT.png"},
     });
     parser.addHelpOption();
@@ -157,9 +126,7 @@ int runLodBench(const QStringList& args) {
         d.volume = &volume;
         d.width = width;
         d.height = height;
-        const std::string preset = parser.isSet("preset")
-                                       ? parser.value("preset").toStdString()
-                                       : defaultPresetName(volume.modality, d.mode);
+        const std::string preset = benchPreset(parser, volume, d.mode);
         d.transferFunction = loadPreset(preset);
         const std::unique_ptr<RenderDevice> device = RenderDevice::open(RendererKind::Gl);
         if (!device->fallbackReason().empty()) {
@@ -208,23 +175,10 @@ int runLodBench(const QStringList& args) {
                         .arg(QString::fromStdString(detail(p, "pool_mib")))
                         .arg(QString::fromStdString(detail(p, "levels")));
         }
-        if (parser.isSet("csv")) {
-            QFile f(parser.value("csv"));
-            if (!f.open(QIODevice::WriteOnly | QIODevice::Truncate)) {
-                err << "lucent-cli bench: cannot write " << parser.value("csv") << "\n";
-                return kBadInput;
-            }
-            QTextStream(&f) << header << rows;
-        }
+        writeBenchCsv(parser, header + rows);
         if (parser.isSet("plot") && !points.empty()) {
-            writeLodPlot(
-                points, parser.value("plot"),
-                QStringLiteral("%1, %2, %3x%4, gl")
-                    .arg(QString::fromStdString(volume.description.empty() ? pos[1].toStdString()
-                                                                           : volume.description))
-                    .arg(QString::fromStdString(preset))
-                    .arg(width)
-                    .arg(height));
+            writeLodPlot(points, parser.value("plot"),
+                         benchPlotTitle(pos[1], volume, preset, width, height, "gl"));
         }
         out << header << rows;
     } catch (const std::exception& e) {
