@@ -9,9 +9,8 @@ namespace lucent {
 namespace {
 
 constexpr double kDuplicateMm = 1e-3;
-// Below this in-plane drift over the whole stack (in pixels) a tilt changes
-// no voxel measurably, and resampling would only blur.
-constexpr double kTiltPixels = 0.02;
+// Below this in-plane drift (in pixels) there is nothing worth reporting.
+constexpr double kSilentShiftPixels = 0.02;
 
 std::string mm(double v) {
     std::ostringstream s;
@@ -102,18 +101,46 @@ StackPlan planStack(const StackInput& in) {
     const double typical = median(gaps);
     const double minGap = *std::min_element(gaps.begin(), gaps.end());
     const double maxGap = *std::max_element(gaps.begin(), gaps.end());
-    const double tolerance = std::max(0.01, 0.01 * typical);
-    plan.unevenGaps = maxGap - minGap > tolerance;
+    const double tolerance = std::max(0.01, 0.01 * typical); // gaps "equal" in the warning text
+    const double even = extent / static_cast<double>(count - 1);
 
-    double maxDrift = 0.0; // in pixels
-    for (const glm::dvec3& v : f) {
-        maxDrift = std::max({maxDrift, std::abs(v.x) / sx, std::abs(v.y) / sy});
+    // What keeping the acquired grid would cost: each slice's distance from
+    // its place on that grid, in plane (in pixels) and along the normal (in
+    // spacings). Gap variation alone does not bound this: a slow trend of
+    // small variations adds up along the stack.
+    double shiftPixels = 0.0;
+    double gridDeviation = 0.0;
+    for (std::size_t s = 0; s < count; ++s) {
+        shiftPixels = std::max({shiftPixels, std::abs(f[s].x) / sx, std::abs(f[s].y) / sy});
+        gridDeviation = std::max(gridDeviation, std::abs(f[s].z - even * double(s)) / even);
     }
-    const bool tilted = maxDrift > kTiltPixels;
+    const bool tilted = shiftPixels > kShiftTolerancePixels;
+    plan.unevenGaps = gridDeviation > kGridTolerance;
+    plan.shiftPixels = shiftPixels;
+    plan.gridDeviation = gridDeviation;
     plan.tiltDegrees = glm::degrees(std::atan2(glm::length(glm::dvec2(f.back())), extent));
+    if (!tilted) {
+        if (shiftPixels > kSilentShiftPixels) {
+            plan.warnings.push_back("slices drift " + mm(glm::length(glm::dvec2(f.back()))) +
+                                    " mm in plane over " + mm(extent) + " mm (" +
+                                    mm(plan.tiltDegrees) + " deg off the normal; at most " +
+                                    mm(shiftPixels) + " pixel, tolerance " +
+                                    mm(kShiftTolerancePixels) + "): kept the acquired grid");
+        }
+        for (glm::dvec3& v : f) {
+            v.x = v.y = 0.0; // within tolerance: every slice stays on the first one's lattice
+        }
+    }
+    if (!tilted && !plan.unevenGaps && maxGap - minGap > tolerance) {
+        plan.warnings.push_back("slice gaps vary from " + mm(minGap) + " to " + mm(maxGap) +
+                                " mm (" + mm(100.0 * (maxGap - minGap) / even) + "% of " +
+                                mm(even) + " mm; every slice within " + mm(100.0 * gridDeviation) +
+                                "% of a spacing of an even " + "grid, tolerance " +
+                                mm(100.0 * kGridTolerance) + "%): kept the acquired grid");
+    }
 
     if (!tilted && !plan.unevenGaps) {
-        g.spacing = {sx, sy, extent / static_cast<double>(count - 1)};
+        g.spacing = {sx, sy, even};
         g.origin = first;
         for (std::size_t s = 0; s < count; ++s) {
             plan.placement.emplace_back(0.0, 0.0, static_cast<double>(s));
@@ -125,7 +152,7 @@ StackPlan planStack(const StackInput& in) {
     // Along the normal: even gaps keep one grid slice per image; uneven gaps
     // take the smallest gap, so no acquired slice is undersampled (bounded
     // so that a near-duplicate cannot blow the grid up).
-    double sz = extent / static_cast<double>(count - 1);
+    double sz = even;
     int nk = static_cast<int>(count);
     if (plan.unevenGaps) {
         sz = std::max(minGap, extent / (4.0 * static_cast<double>(count)));

@@ -10,6 +10,7 @@
 #include "core/io/Catalog.h"
 #include "tests/support/ReferenceDicom.h"
 #include "tests/support/RtDoseFromImage.h"
+#include "tests/support/SyntheticDicom.h"
 
 using namespace lucent;
 namespace fs = std::filesystem;
@@ -106,6 +107,36 @@ std::vector<test::ReferenceImage> readFolder(const fs::path& dir) {
 
 Volume loadOnly(const fs::path& p) {
     return loadPath(p);
+}
+
+// The oblique MR of the defect report, with real MR pixels (NEMA MR1, every
+// other pixel, a different phase per image): 20 images of 256x256 at 0.86 mm,
+// 7 mm apart give or take 0.05 mm, the plane 8 degrees from axial, drifting
+// `drift` mm in plane over the stack. Returns the stored value of (i, j, image).
+std::function<int(int, int, int)> writeObliqueMr(const fs::path& dir, const Volume& mr,
+                                                 double drift) {
+    test::SyntheticSeries s;
+    s.modality = "MR";
+    s.imageType = "ORIGINAL\\PRIMARY\\M";
+    s.columns = s.rows = 256;
+    s.pixelSpacing = {0.86, 0.86};
+    s.bitsStored = 16;
+    s.intercept = 0.0;
+    const double a = glm::radians(8.0);
+    s.colDir = {0.0, std::cos(a), std::sin(a)};
+    s.stored = [&mr](int i, int j, int image) {
+        return int(mr.value(2 * i + image % 2, 2 * j + (image / 2) % 2, 0));
+    };
+    const glm::dvec3 normal = glm::cross(s.rowDir, s.colDir);
+    std::vector<glm::dvec3> positions;
+    double z = 0.0;
+    for (int k = 0; k < 20; ++k) {
+        positions.push_back(glm::dvec3(-110.0, -95.0, -40.0) + normal * z +
+                            s.colDir * (drift * k / 19.0));
+        z += 7.0 + 0.05 * std::sin(1.7 * k);
+    }
+    test::writeSeries(dir.string(), s, positions);
+    return s.stored;
 }
 
 } // namespace
@@ -222,6 +253,55 @@ private slots:
     // An RLE RT dose made from the real NEMA MR: GDCM's image helpers assert on
     // its grid frame offsets, and on a frame count of another VR, and those
     // assertions aborted the whole process. Each one now loads, pixel for pixel.
+    void obliqueMrWithinTolerancesKeepsItsAcquiredGrid() {
+        REQUIRE_DATA("nema_wg04/MR1/MR1_UNC.dcm");
+        const Volume mr = loadOnly(kData / "nema_wg04/MR1/MR1_UNC.dcm");
+        QTemporaryDir dir;
+        // 0.056 mm over 133 mm: 0.024 degrees off the normal, 0.065 pixel.
+        const auto stored = writeObliqueMr(dir.path().toStdString(), mr, 0.056);
+        const Catalog c = scanPath(dir.path().toStdString());
+        QCOMPARE(c.series.size(), std::size_t(1));
+        const SeriesEntry& e = c.series[0];
+        QVERIFY(!e.resampled);
+        QCOMPARE(e.geometry.dims, glm::ivec3(256, 256, 20));
+        QVERIFY(hasWarning(e, "0.024 deg off the normal"));
+        QVERIFY(hasWarning(e, "slice gaps vary"));
+        QVERIFY(std::abs(e.geometry.spacing.z - 7.0) < 0.01);
+        // The acquired pixels, untouched by any interpolation.
+        const Volume v = loadSeries(e);
+        for (int k = 0; k < 20; ++k) {
+            for (int j = 0; j < 256; j += 5) {
+                for (int i = 0; i < 256; i += 3) {
+                    if (v.value(i, j, k) != stored(i, j, k)) {
+                        QFAIL(qPrintable(QString("voxel (%1,%2,%3): %4, the file has %5")
+                                             .arg(i)
+                                             .arg(j)
+                                             .arg(k)
+                                             .arg(v.value(i, j, k))
+                                             .arg(stored(i, j, k))));
+                    }
+                }
+            }
+        }
+    }
+
+    void obliqueMrBeyondTheShiftToleranceIsResampledRight() {
+        REQUIRE_DATA("nema_wg04/MR1/MR1_UNC.dcm");
+        const Volume mr = loadOnly(kData / "nema_wg04/MR1/MR1_UNC.dcm");
+        QTemporaryDir dir;
+        // A third of a pixel over the stack: beyond the quarter-pixel tolerance.
+        writeObliqueMr(dir.path().toStdString(), mr, 0.86 / 3.0);
+        const Catalog c = scanPath(dir.path().toStdString());
+        const SeriesEntry& e = c.series.at(0);
+        QVERIFY(e.resampled);
+        QCOMPARE(e.geometry.dims, glm::ivec3(256, 257, 20));
+        QVERIFY(hasWarning(e, "gantry tilt"));
+        const Volume v = loadSeries(e);
+        const ResampleCheck check = compareWithFiles(v, readFolder(dir.path().toStdString()), 400);
+        QVERIFY(check.compared >= 400);
+        QVERIFY2(check.maxError <= 0.5 + 1e-6, qPrintable(QString::number(check.maxError)));
+    }
+
     void rtDoseThatGdcmHelpersAssertOnLoads_data() {
         QTest::addColumn<int>("flaw");
         QTest::newRow("valid") << int(test::RtDoseFlaw::None);
