@@ -91,6 +91,9 @@ int runPacsSend(const QStringList& args) {
     } catch (const PacsError& e) {
         err << "lucent-cli pacs send: " << e.what() << "\n";
         return kPacsFailure;
+    } catch (const InstanceFileError& e) {
+        err << "lucent-cli pacs send: " << e.what() << "\n";
+        return kBadInput;
     }
 }
 

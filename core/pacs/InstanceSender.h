@@ -9,34 +9,11 @@
 #include <string>
 #include <vector>
 
+#include "core/exchange/InstanceFiles.h"
 #include "core/pacs/DicomWebClient.h"
 #include "core/pacs/PacsNode.h"
 
 namespace lucent {
-
-// What a sender needs of a file: read from its meta header and dataset.
-struct InstanceHeader {
-    std::filesystem::path file;
-    std::string sopClassUid;
-    std::string sopInstanceUid;
-    std::string transferSyntaxUid;
-    std::string studyUid;
-    std::string seriesUid;
-};
-
-// Reads the header of a DICOM file (not its pixels). Throws PacsError naming
-// the file when it is not DICOM or lacks a SOP class, SOP instance or
-// transfer syntax UID.
-InstanceHeader readInstanceHeader(const std::filesystem::path& file);
-
-// The instances under `path` (a file, or a folder searched recursively) in
-// file name order, only those of the series `seriesUid` when it is not empty.
-// Files that are not DICOM instances (DICOMDIRs among them) are passed over:
-// each is named in `passedOver` with the reason. Throws PacsError when `path`
-// does not exist.
-std::vector<InstanceHeader> collectInstances(const std::filesystem::path& path,
-                                             const std::string& seriesUid,
-                                             std::vector<std::string>& passedOver);
 
 struct SentInstance {
     enum class Outcome { Stored, StoredWithWarning, Failed, NotSent };
