@@ -48,6 +48,8 @@ int runConvert(const QStringList& args);
 int runCompare(const QStringList& args);
 int runRender(const QStringList& args);
 int runPacs(const QStringList& args); // exit 4: the PACS or the network failed
+int runPacsSend(const QStringList& args); // pacs send: C-STORE or STOW-RS
+int runExport(const QStringList& args);   // DICOM to a folder or ZIP, de-identified or not
 int runBench(const QStringList& args);
 // bench lod PATH: PSNR against the GPU budget, per-brick levels and one level.
 int runLodBench(const QStringList& args);

@@ -1,4 +1,4 @@
-// lucent-cli pacs echo|find ...: DICOM networking from the command line.
+// lucent-cli pacs echo|find|get ...: DICOM networking from the command line.
 #include <QCommandLineParser>
 #include <QElapsedTimer>
 #include <QJsonArray>
@@ -7,6 +7,7 @@
 #include <QTextStream>
 
 #include "CliCommand.h"
+#include "PacsOptions.h"
 #include <QDir>
 #include <QStandardPaths>
 
@@ -19,49 +20,6 @@
 
 namespace lucent::cli {
 namespace {
-
-constexpr int kPacsFailure = 4;
-
-void addNodeOptions(QCommandLineParser& p) {
-    p.addOptions({
-        {"pacs", "The PACS.", "AET@HOST:PORT"},
-        {"aet", "Our AE title (default LUCENT).", "OUR_AET", "LUCENT"},
-        {"timeout", "Seconds to wait for a connection or a response (default 10).", "S", "10"},
-    });
-    p.addHelpOption();
-}
-
-std::pair<PacsNode, PacsSettings> nodeFrom(const QCommandLineParser& p) {
-    if (!p.isSet("pacs")) {
-        throw std::invalid_argument("--pacs AET@HOST:PORT is required");
-    }
-    bool ok = false;
-    const int timeout = p.value("timeout").toInt(&ok);
-    if (!ok || timeout < 1 || timeout > 3600) {
-        throw std::invalid_argument("--timeout must be a number of seconds from 1 to 3600");
-    }
-    PacsSettings s;
-    s.callingAeTitle = p.value("aet").toStdString();
-    s.connectTimeoutSeconds = timeout;
-    s.responseTimeoutSeconds = std::max(timeout, 30);
-    try {
-        checkAeTitle(s.callingAeTitle, "--aet");
-        return {PacsNode::parse(p.value("pacs").toStdString()), s};
-    } catch (const PacsError& e) {
-        throw std::invalid_argument(e.what()); // a malformed option is a usage error
-    }
-}
-
-DicomWebService serviceFrom(const QCommandLineParser& p) {
-    const QString url = p.value("wado");
-    if (!url.startsWith("http://") && !url.startsWith("https://")) {
-        throw std::invalid_argument("--wado must be an http:// or https:// DICOMweb base URL");
-    }
-    DicomWebService s;
-    s.baseUrl = url.endsWith('/') ? url.chopped(1).toStdString() : url.toStdString();
-    s.timeoutSeconds = std::max(p.value("timeout").toInt(), 1);
-    return s;
-}
 
 QJsonObject toJson(const QueryMatch& m) {
     QJsonObject o{{"level", QString(queryLevelName(m.level)).toLower()},
@@ -312,7 +270,7 @@ int getCommand(const QStringList& args) {
 int runPacs(const QStringList& args) {
     QTextStream err(stderr);
     if (args.size() < 2) {
-        err << "usage: lucent-cli pacs echo|find|get ... (--help after the verb lists its "
+        err << "usage: lucent-cli pacs echo|find|get|send ... (--help after the verb lists its "
                "options)\n";
         return kUsage;
     }
@@ -327,7 +285,10 @@ int runPacs(const QStringList& args) {
     if (verb == "get") {
         return getCommand(rest);
     }
-    err << "lucent-cli pacs: unknown verb '" << verb << "' (echo, find, get)\n";
+    if (verb == "send") {
+        return runPacsSend(rest);
+    }
+    err << "lucent-cli pacs: unknown verb '" << verb << "' (echo, find, get, send)\n";
     return kUsage;
 }
 

@@ -25,6 +25,10 @@ const char* kUsageText =
     "PATH: a DICOM folder (searched recursively), a DICOM file, a DICOMDIR,\n"
     "      or a .mhd/.mha, .nii/.nii.gz or InVesalius .inv3 volume.\n"
     "  pacs echo|find|get --pacs AET@HOST:PORT ...  C-ECHO, C-FIND, C-GET into the study store\n"
+    "  pacs send (--pacs AET@HOST:PORT | --stow URL) PATH [--series UID]\n"
+    "                                       C-STORE or STOW-RS of the instances under PATH\n"
+    "  export PATH -o OUT|OUT.zip [--series UID] [--anonymize] [--dicomdir]\n"
+    "                                       copy instances out, de-identified or not\n"
     "Exit status: 0 ok, 2 usage, 3 nothing loadable or bad input, 4 PACS or network failure.\n";
 
 } // namespace
@@ -60,6 +64,9 @@ int main(int argc, char** argv) {
     }
     if (command == "convert") {
         return lucent::cli::runConvert(args);
+    }
+    if (command == "export") {
+        return lucent::cli::runExport(args);
     }
     if (command == "pacs") {
         return lucent::cli::runPacs(args);

@@ -135,6 +135,19 @@ std::string Deidentifier::replacementUid(const std::string& uid) {
     return it->second;
 }
 
+std::string Deidentifier::replacementPatientId(const std::string& id) {
+    if (patientIdPrefix_.empty()) {
+        return {};
+    }
+    auto [it, inserted] = patientIds_.try_emplace(id);
+    if (inserted) {
+        char number[16];
+        std::snprintf(number, sizeof number, "%04zu", patientIds_.size());
+        it->second = patientIdPrefix_ + number;
+    }
+    return it->second;
+}
+
 namespace {
 
 // Applies the profile to one data set and, recursively, to its sequences' items.
@@ -148,10 +161,20 @@ void protect(const gdcm::File& file, gdcm::DataSet& ds, Deidentifier& deidentifi
         case Action::Remove:
             ds.Remove(rule.tag);
             break;
-        case Action::Empty:
-            de.Empty();
+        case Action::Empty: {
+            std::string dummy;
+            if (rule.tag == gdcm::Tag(0x0010, 0x0020)) {
+                dummy = deidentifier.replacementPatientId(valueOf(de));
+            }
+            if (dummy.empty()) {
+                de.Empty();
+            } else {
+                dummy.resize(dummy.size() + dummy.size() % 2, ' ');
+                de.SetByteValue(dummy.data(), gdcm::VL(uint32_t(dummy.size())));
+            }
             ds.Replace(de);
             break;
+        }
         case Action::ReplaceUid: {
             const std::string old = valueOf(de);
             setUid(de, old.empty() ? generateUid() : deidentifier.replacementUid(old));

@@ -32,8 +32,17 @@ public:
     // The replacement of a UID: new, and the same every time for the same UID.
     std::string replacementUid(const std::string& uid);
 
+    // From now on Patient ID (0010,0020) becomes a dummy value, prefix and a
+    // number, the same for the same original ID, instead of empty: the profile
+    // allows either, and media whose DICOMDIR groups files by patient need one.
+    void usePatientIdPseudonyms(std::string prefix) { patientIdPrefix_ = std::move(prefix); }
+    // The dummy for an original Patient ID; empty unless pseudonyms are on.
+    std::string replacementPatientId(const std::string& id);
+
 private:
     std::map<std::string, std::string> uids_;
+    std::map<std::string, std::string> patientIds_;
+    std::string patientIdPrefix_;
 };
 
 // A new UID (GDCM's root and a random part).

@@ -57,7 +57,8 @@ void prepareDcmtk() {
 DimseAssociation::DimseAssociation(const PacsNode& node, const PacsSettings& settings,
                                    const std::vector<std::string>& abstractSyntaxes,
                                    std::unique_ptr<DcmSCU> customScu,
-                                   const std::vector<std::string>& storageClasses)
+                                   const std::vector<std::string>& storageClasses,
+                                   const std::vector<ProposedContext>& contexts)
     : node_(node), settings_(settings),
       scu_(customScu ? std::move(customScu) : std::make_unique<DcmSCU>()) {
     prepareDcmtk();
@@ -79,6 +80,13 @@ DimseAssociation::DimseAssociation(const PacsNode& node, const PacsSettings& set
     }
     for (const std::string& sop : storageClasses) {
         scu.addPresentationContext(sop.c_str(), syntaxes, ASC_SC_ROLE_SCP);
+    }
+    for (const ProposedContext& pc : contexts) {
+        OFList<OFString> own;
+        for (const std::string& ts : pc.transferSyntaxes) {
+            own.push_back(ts.c_str());
+        }
+        scu.addPresentationContext(pc.abstractSyntax.c_str(), own);
     }
     if (const OFCondition c = scu.initNetwork(); c.bad()) {
         fail("cannot start networking", c);

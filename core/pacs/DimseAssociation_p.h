@@ -26,16 +26,25 @@ template <class Response> struct OwnedResponses {
     }
 };
 
+// A presentation context proposed as it is (the sender's: a SOP class with
+// the transfer syntaxes its files are in).
+struct ProposedContext {
+    std::string abstractSyntax;
+    std::vector<std::string> transferSyntaxes;
+};
+
 class DimseAssociation {
 public:
     // Proposes the abstract syntaxes (SOP class UIDs) with the uncompressed
     // little-endian transfer syntaxes, and the storage classes in the SCP role
     // (C-GET sends the instances back on this association). scu may be a
-    // subclass that handles incoming instances. Throws PacsError naming the node.
+    // subclass that handles incoming instances; `contexts` are proposed as
+    // they are. Throws PacsError naming the node.
     DimseAssociation(const PacsNode& node, const PacsSettings& settings,
                      const std::vector<std::string>& abstractSyntaxes,
                      std::unique_ptr<DcmSCU> scu = nullptr,
-                     const std::vector<std::string>& storageClasses = {});
+                     const std::vector<std::string>& storageClasses = {},
+                     const std::vector<ProposedContext>& contexts = {});
     ~DimseAssociation();
     DimseAssociation(const DimseAssociation&) = delete;
     DimseAssociation& operator=(const DimseAssociation&) = delete;
@@ -43,6 +52,7 @@ public:
     DcmSCU& scu() { return *scu_; }
     // The accepted presentation context for a SOP class; PacsError when the PACS refused it.
     T_ASC_PresentationContextID context(const std::string& abstractSyntax, const std::string& what);
+    const PacsNode& node() const { return node_; }
     // A PacsError for a failed operation on this association.
     [[noreturn]] void fail(const std::string& operation, const OFCondition& condition) const;
 

@@ -48,6 +48,12 @@ public:
     void query(const PacsNodeConfig& node, const QueryFilter& filter);
     // Queues the series for retrieval by the node's method.
     void retrieve(const PacsNodeConfig& node, const QList<SeriesRequest>& series);
+    // Queues files for sending to the node: C-STORE, or STOW-RS for a DICOMweb
+    // node. Progress and the end come as the retrieval signals, keyed by `key`
+    // (one row of the transfers list); each instance the node did not store
+    // also as instanceNotStored. Cancel stops it between instances.
+    void send(const PacsNodeConfig& node, const QString& key, const QString& label,
+              const QStringList& files);
     void cancelRetrievals();
     int pendingRetrievals() const { return pending_; }
 
@@ -61,9 +67,12 @@ signals:
     // A series is complete in the store: its folder, ready to open.
     void seriesArrived(const QString& folder, const QString& seriesUid);
     void allRetrievalsFinished();
+    void instanceNotStored(const QString& key, const QString& file, const QString& message);
 
 private:
     void post(std::function<void()> f); // runs f on the GUI thread, if this still exists
+    std::stop_token stopToken();
+    void finishOne(const QString& key, bool ok, const QString& message);
     QString ensureStorageScp();
 
     PacsConfig config_;

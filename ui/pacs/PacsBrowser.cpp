@@ -1,6 +1,7 @@
 #include "ui/pacs/PacsBrowser.h"
 
 #include <QAction>
+#include <QDirIterator>
 #include <QDockWidget>
 #include <QMainWindow>
 #include <QMenu>
@@ -11,6 +12,7 @@
 #include <QVBoxLayout>
 
 #include "core/pacs/PacsService.h"
+#include "ui/pacs/ExportDialog.h"
 #include "ui/pacs/PacsNodeSettings.h"
 #include "ui/pacs/PacsQueryPanel.h"
 #include "ui/pacs/RetrievalProgress.h"
@@ -43,6 +45,8 @@ PacsBrowser::PacsBrowser(const QString& settingsFile, QWidget* parent)
     connect(service_, &PacsService::seriesArrived, this, &PacsBrowser::openSeries);
     connect(service_, &PacsService::retrievalFinished, store_, &StoreBrowser::refresh);
     connect(store_, &StoreBrowser::openSeries, this, &PacsBrowser::openSeries);
+    connect(store_, &StoreBrowser::sendRequested, this, &PacsBrowser::sendSeries);
+    connect(store_, &StoreBrowser::exportRequested, this, &PacsBrowser::exportSeries);
     setConfig(PacsConfig::load(*settings_));
 }
 
@@ -53,6 +57,38 @@ void PacsBrowser::setConfig(const PacsConfig& config) {
     service_->setConfig(config_);
     query_->setNodes(config_.nodes);
     store_->setStoreFolder(config_.storeFolder);
+    QStringList names;
+    for (const PacsNodeConfig& n : config_.nodes) {
+        names << n.name;
+    }
+    store_->setNodeNames(names);
+}
+
+QString PacsBrowser::sendSeries(int node, const QStringList& folders, const QString& label) {
+    if (node < 0 || node >= config_.nodes.size()) {
+        return {};
+    }
+    QStringList files;
+    for (const QString& folder : folders) {
+        QDirIterator it(folder, QDir::Files, QDirIterator::Subdirectories);
+        while (it.hasNext()) {
+            files << it.next();
+        }
+    }
+    files.sort();
+    const PacsNodeConfig& target = config_.nodes[node];
+    const QString key = QStringLiteral("send-%1").arg(++sends_);
+    tabs_->setCurrentIndex(0); // the transfers list is on the PACS page
+    service_->send(target, key, tr("%1 to %2").arg(label, target.name), files);
+    return key;
+}
+
+ExportDialog* PacsBrowser::exportSeries(const QStringList& folders, const QString& label) {
+    auto* dialog = new ExportDialog(folders, label, this);
+    dialog->setWindowFlag(Qt::Dialog);
+    dialog->setAttribute(Qt::WA_DeleteOnClose);
+    dialog->show();
+    return dialog;
 }
 
 PacsNodeSettings* PacsBrowser::showNodeSettings() {

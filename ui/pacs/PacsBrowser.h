@@ -16,6 +16,7 @@ class QTabWidget;
 
 namespace lucent {
 
+class ExportDialog;
 class PacsNodeSettings;
 class PacsQueryPanel;
 class PacsService;
@@ -43,6 +44,11 @@ public:
     PacsQueryPanel* queryPanel() const { return query_; }
     RetrievalProgress* progress() const { return progress_; }
     StoreBrowser* store() const { return store_; }
+    // Sends the instances of stored series to the node at `node` in the config;
+    // the transfer shows in the progress list. Returns its key there.
+    QString sendSeries(int node, const QStringList& folders, const QString& label);
+    // The export dialog for stored series (non-modal, deleted when closed).
+    ExportDialog* exportSeries(const QStringList& folders, const QString& label);
 
 signals:
     void openSeries(const QString& folder, const QString& seriesUid);
@@ -56,6 +62,7 @@ private:
     RetrievalProgress* progress_;
     StoreBrowser* store_;
     PacsNodeSettings* nodeSettings_ = nullptr;
+    int sends_ = 0;
 };
 
 } // namespace lucent

@@ -16,7 +16,7 @@ RetrievalProgress::RetrievalProgress(PacsService* service, QWidget* parent)
     list_->setObjectName(QStringLiteral("retrievalList"));
     list_->setHeaderLabels(
         {tr("Series"), tr("Completed"), tr("Remaining"), tr("Failed"), tr("Status")});
-    list_->setRootIsDecorated(false);
+    list_->setRootIsDecorated(true); // a transfer's instances that were not stored, below it
     list_->header()->setSectionResizeMode(Series, QHeaderView::Stretch);
     cancel_->setObjectName(QStringLiteral("cancelRetrievals"));
     cancel_->setEnabled(false);
@@ -34,6 +34,16 @@ RetrievalProgress::RetrievalProgress(PacsService* service, QWidget* parent)
     connect(service_, &PacsService::retrievalQueued, this, &RetrievalProgress::queued);
     connect(service_, &PacsService::retrievalProgress, this, &RetrievalProgress::progress);
     connect(service_, &PacsService::retrievalFinished, this, &RetrievalProgress::finished);
+    connect(service_, &PacsService::instanceNotStored, this,
+            [this](const QString& key, const QString& file, const QString& message) {
+                if (QTreeWidgetItem* parent = row(key)) {
+                    auto* item = new QTreeWidgetItem(parent);
+                    item->setText(Series, file);
+                    item->setText(Status, message);
+                    item->setToolTip(Status, message);
+                    parent->setExpanded(true);
+                }
+            });
     connect(service_, &PacsService::allRetrievalsFinished, this,
             [this] { cancel_->setEnabled(false); });
 }
@@ -69,7 +79,8 @@ void RetrievalProgress::progress(const QString& seriesUid, int completed, int re
         item->setText(Remaining, QString::number(remaining));
         item->setText(Failed, QString::number(failed));
         if (item->text(Status) == tr("queued")) {
-            item->setText(Status, tr("retrieving"));
+            item->setText(Status, seriesUid.startsWith(QLatin1String("send-")) ? tr("sending")
+                                                                               : tr("retrieving"));
         }
     }
 }

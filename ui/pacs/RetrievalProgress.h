@@ -1,6 +1,7 @@
 #pragma once
-// Progress of the queued and running retrievals, one row per series
-// (completed, remaining, failed, status), with a Cancel button.
+// Progress of the queued and running transfers, one row per retrieved series
+// or per send (completed, remaining, failed, status; below a send, each
+// instance the node did not store, with the reason), with a Cancel button.
 
 #include <QWidget>
 

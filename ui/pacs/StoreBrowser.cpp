@@ -5,6 +5,7 @@
 #include <QDate>
 #include <QLabel>
 #include <QMap>
+#include <QMenu>
 #include <QPushButton>
 #include <QTreeWidget>
 #include <QVBoxLayout>
@@ -26,12 +27,53 @@ StoreBrowser::StoreBrowser(QWidget* parent)
     layout->addWidget(status_);
     layout->addWidget(reload, 0, Qt::AlignRight);
     connect(reload, &QPushButton::clicked, this, &StoreBrowser::refresh);
+    tree_->setContextMenuPolicy(Qt::CustomContextMenu);
+    connect(tree_, &QWidget::customContextMenuRequested, this, [this](const QPoint& at) {
+        QTreeWidgetItem* item = tree_->itemAt(at);
+        if (item == nullptr) {
+            return;
+        }
+        QMenu menu;
+        fillContextMenu(menu, item);
+        menu.exec(tree_->viewport()->mapToGlobal(at));
+    });
     connect(tree_, &QTreeWidget::itemDoubleClicked, this, [this](QTreeWidgetItem* item) {
         const QString folder = item->data(0, kFolderRole).toString();
         if (!folder.isEmpty()) {
             emit openSeries(folder, item->data(0, kSeriesUidRole).toString());
         }
     });
+}
+
+QStringList StoreBrowser::seriesFolders(const QTreeWidgetItem* item) {
+    const QString own = item->data(0, kFolderRole).toString();
+    if (!own.isEmpty()) {
+        return {own};
+    }
+    QStringList out;
+    for (int k = 0; k < item->childCount(); ++k) {
+        out << seriesFolders(item->child(k));
+    }
+    return out;
+}
+
+void StoreBrowser::fillContextMenu(QMenu& menu, QTreeWidgetItem* item) {
+    const QStringList folders = seriesFolders(item);
+    const QString label = item->text(0);
+    if (nodeNames_.isEmpty()) {
+        menu.addAction(tr("Send to PACS (no node configured)"))->setEnabled(false);
+    }
+    for (int k = 0; k < nodeNames_.size(); ++k) {
+        QAction* send = menu.addAction(tr("Send to %1").arg(nodeNames_[k]));
+        send->setObjectName(QStringLiteral("sendTo%1").arg(k));
+        connect(send, &QAction::triggered, this,
+                [this, k, folders, label] { emit sendRequested(k, folders, label); });
+    }
+    menu.addSeparator();
+    QAction* exporting = menu.addAction(tr("&Export..."));
+    exporting->setObjectName(QStringLiteral("export"));
+    connect(exporting, &QAction::triggered, this,
+            [this, folders, label] { emit exportRequested(folders, label); });
 }
 
 void StoreBrowser::setStoreFolder(const QString& folder) {
