@@ -20,6 +20,7 @@
 #include "ui/app/ScreenshotExport.h"
 #include "ui/app/ViewLayout.h"
 #include "ui/mpr/MprCursor.h"
+#include "ui/mpr/CurvedMprView.h"
 #include "ui/mpr/SliceView.h"
 #include "ui/pacs/PacsBrowser.h"
 #include "ui/study/StudyBrowser.h"
@@ -77,6 +78,7 @@ MainWindow::MainWindow(QWidget* parent)
                                                   Orientation::Sagittal};
     for (std::size_t n = 0; n < views_.size(); ++n) {
         views_[n] = new SliceView(orientations[n], cursor_, this);
+        connect(views_[n], &SliceView::curvedPathDrawn, this, &MainWindow::openCurvedMpr);
     }
     volumeView_ = new VolumeView(this);
     layout_ = new ViewLayout({views_[0], views_[1], views_[2], volumeView_}, this);
@@ -243,6 +245,22 @@ void MainWindow::screenshotDialog(ScreenshotScope scope) {
 }
 
 MainWindow::~MainWindow() = default;
+
+void MainWindow::openCurvedMpr(const std::vector<glm::dvec3>& points, const glm::dvec3& up) {
+    if (curvedMpr_ == nullptr) {
+        curvedMpr_ = new CurvedMprView(cursor_, this);
+        curvedMpr_->setWindowFlag(Qt::Window);
+        curvedMpr_->resize(900, 640);
+    }
+    try {
+        curvedMpr_->setPath(volume_, points, up);
+    } catch (const std::invalid_argument& e) {
+        statusBar()->showMessage(QString::fromStdString(e.what()), 8000);
+        return;
+    }
+    curvedMpr_->show();
+    curvedMpr_->raise();
+}
 
 SliceView* MainWindow::view(Orientation orientation) const {
     return views_[static_cast<std::size_t>(orientation)];

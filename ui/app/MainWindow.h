@@ -13,6 +13,7 @@ class QLabel;
 
 namespace lucent {
 
+class CurvedMprView;
 class MprCursor;
 class SliceView;
 class TransferFunctionEditor;
@@ -44,6 +45,8 @@ public:
     VolumeView* volumeView() const { return volumeView_; }
     ViewLayout* viewLayout() const { return layout_; }
     MprCursor* cursor() const { return cursor_; }
+    // The curved MPR window of the last path drawn (P on an MPR view); nullptr before.
+    CurvedMprView* curvedMpr() const { return curvedMpr_; }
 
     enum class ScreenshotScope { ActiveView, Layout };
     // Writes a PNG of the active view or of the whole view area; on failure
@@ -67,6 +70,7 @@ private:
     void openFolderDialog();
     void openFileDialog();
     void screenshotDialog(ScreenshotScope scope);
+    void openCurvedMpr(const std::vector<glm::dvec3>& points, const glm::dvec3& up);
 
     MprCursor* cursor_;
     std::array<SliceView*, 3> views_{};
@@ -78,6 +82,7 @@ private:
     VolumeLoader* loader_ = nullptr;
     QString lastFolder_;
     std::shared_ptr<const Volume> volume_;
+    CurvedMprView* curvedMpr_ = nullptr;
 };
 
 } // namespace lucent

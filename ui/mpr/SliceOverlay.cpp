@@ -88,6 +88,8 @@ void paintCrosshair(QPainter& painter, const QRect& rect, const SliceOverlay& o)
     }
 }
 
+} // namespace
+
 void paintScaleBar(QPainter& painter, const QRect& rect, double pixelSize) {
     const double mm = scaleBarLengthMm(pixelSize, rect.width() / 4.0);
     if (mm <= 0.0) {
@@ -106,7 +108,25 @@ void paintScaleBar(QPainter& painter, const QRect& rect, double pixelSize) {
     painter.drawText(QRectF(x0, y - 20.0, length, 16.0), Qt::AlignCenter, text);
 }
 
-} // namespace
+void paintCurvedPath(QPainter& painter, const SlicePlane& plane,
+                     const std::vector<glm::dvec3>& points) {
+    if (points.empty()) {
+        return;
+    }
+    QPolygonF line;
+    for (const glm::dvec3& p : points) {
+        const glm::dvec2 at = plane.pixelOf(p);
+        line << QPointF(at.x, at.y);
+    }
+    painter.setRenderHint(QPainter::Antialiasing);
+    painter.setPen(QPen(QColor(80, 200, 255), 1.5));
+    painter.drawPolyline(line);
+    painter.setBrush(QColor(80, 200, 255));
+    for (const QPointF& p : line) {
+        painter.drawEllipse(p, 2.5, 2.5);
+    }
+    painter.setBrush(Qt::NoBrush);
+}
 
 void paintSliceOverlay(QPainter& painter, const QRect& rect, const SliceOverlay& o) {
     paintCrosshair(painter, rect, o);

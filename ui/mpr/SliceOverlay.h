@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <vector>
 
 #include <QColor>
 #include <QRect>
@@ -35,6 +36,13 @@ QColor orientationColour(Orientation orientation);
 // Crosshair lines, a frame, orientation letters (A/P/R/L/S/I from the plane's axes),
 // the corner texts and a scale bar.
 void paintSliceOverlay(QPainter& painter, const QRect& rect, const SliceOverlay& overlay);
+
+// A horizontal scale bar centred at the bottom of rect for pixels of pixelSize mm.
+void paintScaleBar(QPainter& painter, const QRect& rect, double pixelSize);
+
+// The curved path being clicked: its points projected on the plane, joined.
+void paintCurvedPath(QPainter& painter, const SlicePlane& plane,
+                     const std::vector<glm::dvec3>& points);
 
 // The scale bar's length in mm: 1, 2 or 5 times a power of ten, the longest that
 // spans at most maxPixels pixels of pixelSize mm.

@@ -148,6 +148,7 @@ void SliceView::setSlab(double thicknessMm, SlabMode mode) {
 void SliceView::setTool(Tool tool) {
     tool_ = tool;
     measurements_.cancel();
+    path_.clear();
     setCursor(tool == Tool::Crosshair ? Qt::ArrowCursor : Qt::CrossCursor);
     update();
 }
@@ -257,6 +258,24 @@ void SliceView::paintEvent(QPaintEvent*) {
     paintSliceOverlay(painter, rect(), overlay);
     const QString unit = volume_->modality == "CT" ? QStringLiteral("HU") : QString();
     measurements_.paint(painter, p, 0.5 * sliceStep() + 0.5 * slabThickness_, unit);
+    paintCurvedPath(painter, p, path_);
+}
+
+void SliceView::finishPath() {
+    if (path_.size() >= 2) {
+        const std::vector<glm::dvec3> points = std::move(path_);
+        emit curvedPathDrawn(points, plane().normal());
+    }
+    setTool(Tool::Crosshair);
+}
+
+void SliceView::mouseDoubleClickEvent(QMouseEvent* event) {
+    if (tool_ == Tool::CurvedPath && event->button() == Qt::LeftButton) {
+        finishPath(); // the double-click's first press added its point
+        event->accept();
+        return;
+    }
+    QWidget::mouseDoubleClickEvent(event);
 }
 
 void SliceView::wheelEvent(QWheelEvent* event) {
@@ -298,6 +317,9 @@ void SliceView::mousePressEvent(QMouseEvent* event) {
              {Orientation::Axial, Orientation::Coronal, Orientation::Sagittal}) {
             dragRotations_[static_cast<std::size_t>(o)] = cursor_->rotation(o);
         }
+    } else if (event->button() == Qt::LeftButton && tool_ == Tool::CurvedPath && canMeasure) {
+        path_.push_back(plane().pointAt(event->position().x(), event->position().y()));
+        update();
     } else if (event->button() == Qt::LeftButton && tool_ != Tool::Crosshair && canMeasure) {
         drag_ = Drag::Measure;
         const glm::dvec3 p = plane().pointAt(event->position().x(), event->position().y());

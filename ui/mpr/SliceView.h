@@ -30,14 +30,15 @@ class MprCursor;
 // plane's normal.
 // Keys: 1-8 window presets (brain, subdural, stroke, lung, mediastinum, abdomen, liver,
 // bone) for all linked views; S = slab mode (thin, MIP, MinIP, average); [ and ] = slab
-// thickness; D = distance tool; E = ellipse ROI tool; Esc = crosshair tool; Delete =
+// thickness; D = distance tool; E = ellipse ROI tool; P = curved path tool (clicks add
+// points, a double-click or Enter ends the path); Esc = crosshair tool; Delete =
 // clear measurements; C = cine on/off; R = reset zoom and pan; O = reset obliquity;
 // Menu = the context menu.
 class SliceView : public QWidget {
     Q_OBJECT
 
 public:
-    enum class Tool { Crosshair, Distance, Ellipse };
+    enum class Tool { Crosshair, Distance, Ellipse, CurvedPath };
 
     SliceView(Orientation orientation, MprCursor* cursor, QWidget* parent = nullptr);
 
@@ -77,6 +78,10 @@ public:
     void setTool(Tool tool);
     const SliceMeasurements& measurements() const { return measurements_; }
     void clearMeasurements();
+    // The points of the curved path being clicked (patient mm); finishPath()
+    // hands two or more on as curvedPathDrawn and goes back to the crosshair.
+    const std::vector<glm::dvec3>& pathPoints() const { return path_; }
+    void finishPath();
 
     bool cineRunning() const;
     void setCineRunning(bool running);
@@ -88,12 +93,18 @@ public:
     QSize sizeHint() const override { return {400, 400}; }
     QSize minimumSizeHint() const override { return {120, 120}; }
 
+signals:
+    // A curved path clicked on this view, and the view's normal (the up of a
+    // stretched reformation: the path is seen as it was drawn).
+    void curvedPathDrawn(const std::vector<glm::dvec3>& points, const glm::dvec3& viewNormal);
+
 protected:
     void paintEvent(QPaintEvent* event) override;
     void wheelEvent(QWheelEvent* event) override;
     void mousePressEvent(QMouseEvent* event) override;
     void mouseMoveEvent(QMouseEvent* event) override;
     void mouseReleaseEvent(QMouseEvent* event) override;
+    void mouseDoubleClickEvent(QMouseEvent* event) override;
     void keyPressEvent(QKeyEvent* event) override;
 
 private:
@@ -128,6 +139,7 @@ private:
     SlabMode slabMode_ = SlabMode::Mip;
     Tool tool_ = Tool::Crosshair;
     SliceMeasurements measurements_;
+    std::vector<glm::dvec3> path_;
     QTimer* cine_;
 
     enum class Drag { None, Crosshair, Window, Pan, Rotate, Measure };

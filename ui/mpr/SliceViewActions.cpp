@@ -102,6 +102,10 @@ void SliceView::keyPressEvent(QKeyEvent* event) {
         setTool(Tool::Distance);
     } else if (key == Qt::Key_E) {
         setTool(Tool::Ellipse);
+    } else if (key == Qt::Key_P) {
+        setTool(Tool::CurvedPath);
+    } else if ((key == Qt::Key_Return || key == Qt::Key_Enter) && tool_ == Tool::CurvedPath) {
+        finishPath();
     } else if (key == Qt::Key_Escape) {
         setTool(Tool::Crosshair);
     } else if (key == Qt::Key_Delete || key == Qt::Key_Backspace) {
@@ -170,6 +174,7 @@ void SliceView::fillContextMenu(QMenu& menu) {
     tool(QStringLiteral("Crosshair\tEsc"), Tool::Crosshair);
     tool(QStringLiteral("Measure distance\tD"), Tool::Distance);
     tool(QStringLiteral("Ellipse ROI\tE"), Tool::Ellipse);
+    tool(QStringLiteral("Curved path (curved MPR)\tP"), Tool::CurvedPath);
     connect(menu.addAction(QStringLiteral("Clear measurements\tDel")), &QAction::triggered, this,
             &SliceView::clearMeasurements);
     menu.addSeparator();
