@@ -139,8 +139,10 @@ private slots:
         QVERIFY_THROWS_EXCEPTION(std::invalid_argument, checkMesh(m));
     }
 
-    // About a million triangles in well under a few seconds: sort-based, no map.
-    void largeMeshIsQuick() {
+    // About a million triangles: the sort-based check holds at that size. Its
+    // time is printed, not asserted (a sanitizer build or a busy machine is
+    // slower; speed belongs to the benchmarks).
+    void largeMeshIsChecked() {
         const Volume noise = test::gaussianNoise(76, 4);
         IsosurfaceOptions o;
         const TriangleMesh mesh = extractIsosurface(noise, o).mesh;
@@ -151,7 +153,6 @@ private slots:
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         qInfo("%zu triangles checked in %.2f s", r.triangles, s);
         QVERIFY(r.closedManifold());
-        QVERIFY(s < 5.0);
     }
 };
 
