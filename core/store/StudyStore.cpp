@@ -221,8 +221,29 @@ bool StudyStore::add(const fs::path& file, const InstanceRecord& r) {
     fs::rename(file, target, ec); // same file system: atomic
     if (ec) {
         fs::remove(file, ec);
-        throw StoreError(target.string() + ": cannot move the received file into the store");
+        throw StoreError(target.string() + ": cannot move the received file into the store (" +
+                         ec.message() + ")");
     }
+    if (batchDepth_ > 0) {
+        uncommitted_.push_back(target);
+    }
+    try {
+        indexInstance(target, r);
+    } catch (const StoreError& e) {
+        // Not indexed (or its batch rolled back): the file goes too.
+        fs::remove(target, ec);
+        dropUncommitted(true);
+        throw writeError(root_ / "index.sqlite", e.what());
+    }
+    // A long retrieval commits now and then, so that other connections (the
+    // storage SCP, the study browser) are not kept waiting for the write lock.
+    if (batchDepth_ > 0 && ++batchAdds_ % 32 == 0) {
+        commitBatch(true);
+    }
+    return true;
+}
+
+void StudyStore::indexInstance(const fs::path& target, const InstanceRecord& r) {
     QSqlQuery series =
         prepared(connection_,
                  "INSERT INTO series (series_uid, study_uid, patient_id, patient_name, study_date, "
@@ -244,13 +265,61 @@ bool StudyStore::add(const fs::path& file, const InstanceRecord& r) {
                              safeComponent(r.series.seriesUid) / target.filename())
                                 .string()));
     run(instance, root_);
-    // A long retrieval commits now and then, so that other connections (the
-    // storage SCP, the study browser) are not kept waiting for the write lock.
-    if (batchDepth_ > 0 && ++batchAdds_ % 32 == 0) {
+}
+
+void StudyStore::commitBatch(bool batchGoesOn) {
+    try {
         exec("COMMIT");
+    } catch (const StoreError& e) {
+        dropUncommitted(batchGoesOn);
+        throw writeError(root_ / "index.sqlite", e.what());
+    }
+    uncommitted_.clear();
+    if (batchGoesOn) {
         exec("BEGIN IMMEDIATE");
     }
-    return true;
+}
+
+void StudyStore::dropUncommitted(bool batchGoesOn) {
+    if (batchDepth_ == 0) {
+        return;
+    }
+    QSqlQuery rollback(QSqlDatabase::database(q(connection_)));
+    (void)rollback.exec("ROLLBACK"); // fails harmlessly when SQLite already rolled back
+    std::error_code ec;
+    for (const fs::path& file : uncommitted_) {
+        fs::remove(file, ec);
+    }
+    uncommitted_.clear();
+    if (batchGoesOn) {
+        QSqlQuery begin(QSqlDatabase::database(q(connection_)));
+        (void)begin.exec("BEGIN IMMEDIATE"); // its end commits
+    }
+}
+
+void StudyStore::requireSpace(std::uintmax_t bytes) const {
+    std::error_code ec;
+    const fs::space_info space = fs::space(root_, ec);
+    if (ec) {
+        return; // unknown: the write itself will tell
+    }
+    if (space.available < bytes + kSpaceReserveBytes) {
+        throw StoreError(root_.string() + ": no space left on the store's file system (" +
+                         std::to_string(space.available / 1024) + " KiB free; an instance of " +
+                         std::to_string((bytes + 1023) / 1024) + " KiB needs that plus " +
+                         std::to_string(kSpaceReserveBytes / 1024) +
+                         " KiB kept for the index); nothing half-written was kept");
+    }
+}
+
+StoreError StudyStore::writeError(const fs::path& file, const std::string& cause) const {
+    try {
+        requireSpace(0);
+    } catch (const StoreError& full) {
+        return StoreError(full.what() + std::string(" (writing ") + file.filename().string() +
+                          ": " + cause + ")");
+    }
+    return StoreError(cause);
 }
 
 void StudyStore::remove(const std::string& sop) {
@@ -361,13 +430,14 @@ StudyStore::Batch::Batch(StudyStore& store) : store_(store) {
 }
 
 StudyStore::Batch::~Batch() {
-    if (--store_.batchDepth_ == 0) {
+    if (store_.batchDepth_ == 1) {
         try {
-            store_.exec("COMMIT");
+            store_.commitBatch(false);
         } catch (const StoreError&) {
-            // Rows lost here only make their files be fetched again; never throw from here.
+            // Rows lost here (and their files, removed) are fetched again; never throw from here.
         }
     }
+    --store_.batchDepth_;
 }
 
 int StudyStore::expected(const std::string& seriesUid) const {
