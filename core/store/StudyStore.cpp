@@ -304,9 +304,12 @@ void StudyStore::requireSpace(std::uintmax_t bytes) const {
         return; // unknown: the write itself will tell
     }
     if (space.available < bytes + kSpaceReserveBytes) {
+        const std::string need = bytes > 0
+                                     ? "an instance of " + std::to_string((bytes + 1023) / 1024) +
+                                           " KiB needs that plus the "
+                                     : "less than the ";
         throw StoreError(root_.string() + ": no space left on the store's file system (" +
-                         std::to_string(space.available / 1024) + " KiB free; an instance of " +
-                         std::to_string((bytes + 1023) / 1024) + " KiB needs that plus " +
+                         std::to_string(space.available / 1024) + " KiB free, " + need +
                          std::to_string(kSpaceReserveBytes / 1024) +
                          " KiB kept for the index); nothing half-written was kept");
     }
