@@ -267,64 +267,6 @@ void StudyStore::indexInstance(const fs::path& target, const InstanceRecord& r) 
     run(instance, root_);
 }
 
-void StudyStore::commitBatch(bool batchGoesOn) {
-    try {
-        exec("COMMIT");
-    } catch (const StoreError& e) {
-        dropUncommitted(batchGoesOn);
-        throw writeError(root_ / "index.sqlite", e.what());
-    }
-    uncommitted_.clear();
-    if (batchGoesOn) {
-        exec("BEGIN IMMEDIATE");
-    }
-}
-
-void StudyStore::dropUncommitted(bool batchGoesOn) {
-    if (batchDepth_ == 0) {
-        return;
-    }
-    QSqlQuery rollback(QSqlDatabase::database(q(connection_)));
-    (void)rollback.exec("ROLLBACK"); // fails harmlessly when SQLite already rolled back
-    std::error_code ec;
-    for (const fs::path& file : uncommitted_) {
-        fs::remove(file, ec);
-    }
-    uncommitted_.clear();
-    if (batchGoesOn) {
-        QSqlQuery begin(QSqlDatabase::database(q(connection_)));
-        (void)begin.exec("BEGIN IMMEDIATE"); // its end commits
-    }
-}
-
-void StudyStore::requireSpace(std::uintmax_t bytes) const {
-    std::error_code ec;
-    const fs::space_info space = fs::space(root_, ec);
-    if (ec) {
-        return; // unknown: the write itself will tell
-    }
-    if (space.available < bytes + kSpaceReserveBytes) {
-        const std::string need = bytes > 0
-                                     ? "an instance of " + std::to_string((bytes + 1023) / 1024) +
-                                           " KiB needs that plus the "
-                                     : "less than the ";
-        throw StoreError(root_.string() + ": no space left on the store's file system (" +
-                         std::to_string(space.available / 1024) + " KiB free, " + need +
-                         std::to_string(kSpaceReserveBytes / 1024) +
-                         " KiB kept for the index); nothing half-written was kept");
-    }
-}
-
-StoreError StudyStore::writeError(const fs::path& file, const std::string& cause) const {
-    try {
-        requireSpace(0);
-    } catch (const StoreError& full) {
-        return StoreError(full.what() + std::string(" (writing ") + file.filename().string() +
-                          ": " + cause + ")");
-    }
-    return StoreError(cause);
-}
-
 void StudyStore::remove(const std::string& sop) {
     QSqlQuery path = prepared(connection_, "SELECT path FROM instances WHERE sop_uid = ?");
     path.addBindValue(q(sop));
@@ -424,23 +366,6 @@ std::vector<StoredSeries> StudyStore::listSeries() const {
         out.push_back(std::move(s));
     }
     return out;
-}
-
-StudyStore::Batch::Batch(StudyStore& store) : store_(store) {
-    if (store_.batchDepth_++ == 0) {
-        store_.exec("BEGIN IMMEDIATE");
-    }
-}
-
-StudyStore::Batch::~Batch() {
-    if (store_.batchDepth_ == 1) {
-        try {
-            store_.commitBatch(false);
-        } catch (const StoreError&) {
-            // Rows lost here (and their files, removed) are fetched again; never throw from here.
-        }
-    }
-    --store_.batchDepth_;
 }
 
 int StudyStore::expected(const std::string& seriesUid) const {
