@@ -44,8 +44,10 @@ ClientConnection::ClientConnection(quint64 id, QWebSocket* socket, RenderServer&
     ownView_->addMember(this);
     ownView_->setPacer(this);
     // Qt closes the connection itself beyond this; below it the protocol's
-    // own limit answers with an error message first.
-    socket->setMaxAllowedIncomingMessageSize(4 * kMaxMessageBytes);
+    // own limit answers with an error message first. The frame limit makes
+    // Qt refuse a huge frame from its header instead of buffering it whole.
+    socket->setMaxAllowedIncomingFrameSize(kMaxIncomingWebSocketBytes);
+    socket->setMaxAllowedIncomingMessageSize(kMaxIncomingWebSocketBytes);
     connect(socket, &QWebSocket::textMessageReceived, this, &ClientConnection::onText);
     connect(socket, &QWebSocket::binaryMessageReceived, this, &ClientConnection::onBinary);
     connect(socket, &QWebSocket::bytesWritten, this, &ClientConnection::onBytesWritten);
@@ -108,7 +110,10 @@ void ClientConnection::sendError(const std::string& code, const std::string& mes
     if (fatal) {
         closing_ = true;
         socket_->flush();
-        socket_->close(QWebSocketProtocol::CloseCodePolicyViolated, QString::fromStdString(code));
+        // 1009 for a message too large, 1008 for any other broken rule.
+        socket_->close(code == "too-large" ? QWebSocketProtocol::CloseCodeTooMuchData
+                                           : QWebSocketProtocol::CloseCodePolicyViolated,
+                       QString::fromStdString(code));
     }
 }
 

@@ -25,6 +25,10 @@ class ViewStream;
 // Camera updates: a burst of this many, then this many per second.
 inline constexpr double kCameraBurst = 60.0;
 inline constexpr double kCameraPerSecond = 60.0;
+// Qt closes a connection (code 1009) whose incoming frame or message is larger
+// than this, before buffering it; messages between kMaxMessageBytes and this
+// get the protocol's "too-large" error first, and then the same close code.
+inline constexpr qint64 kMaxIncomingWebSocketBytes = 4 * qint64(kMaxMessageBytes);
 // A client must authenticate within this time.
 inline constexpr int kAuthTimeoutMs = 10000;
 // The prefix of the subprotocol that carries a client's token (browsers cannot

@@ -98,6 +98,8 @@ QByteArray reasonPhrase(int status) {
         return "Not Found";
     case 405:
         return "Method Not Allowed";
+    case 408:
+        return "Request Timeout";
     case 431:
         return "Request Header Fields Too Large";
     case 507:
@@ -282,7 +284,8 @@ void HttpFrontDoor::onPendingConnection() {
         auto* deadline = new QTimer(socket);
         deadline->setObjectName(kHeadTimerName);
         deadline->setSingleShot(true);
-        connect(deadline, &QTimer::timeout, socket, &QTcpSocket::abort);
+        connect(deadline, &QTimer::timeout, socket,
+                [this, socket, deadline] { onDeadline(socket, *deadline); });
         deadline->start(kRequestHeadTimeoutMs);
         connect(socket, &QTcpSocket::readyRead, this, [this, socket] { onReadable(socket); });
         connect(socket, &QTcpSocket::disconnected, this, [socket] { socket->deleteLater(); });
@@ -290,6 +293,21 @@ void HttpFrontDoor::onPendingConnection() {
             onReadable(socket);
         }
     }
+}
+
+void HttpFrontDoor::onDeadline(QTcpSocket* socket, QTimer& deadline) {
+    if (!waitingForHead_.contains(socket)) {
+        socket->abort(); // no answer, no body, or a 408 not taken: dropped
+        return;
+    }
+    // A slow (or stalled) client: told why, then dropped if it does not go.
+    waitingForHead_.remove(socket);
+    disconnect(socket, &QTcpSocket::readyRead, this, nullptr);
+    deadline.start(kClosingGraceMs);
+    respond(socket, 408, "text/plain; charset=utf-8",
+            "the request head did not arrive within " +
+                QByteArray::number(kRequestHeadTimeoutMs / 1000) + " s\n",
+            true);
 }
 
 void HttpFrontDoor::onReadable(QTcpSocket* socket) {

@@ -2,8 +2,9 @@
 // The render server's one port. Reads the head of each incoming HTTP request:
 // a WebSocket upgrade goes to the QWebSocketServer, a GET of / or of a file of
 // the browser client is answered from the files embedded from resources/web/,
-// anything else is refused (404, 405, 400; 431 for an oversized head). With a
-// TLS certificate the same port speaks https:// and wss:// (QSslServer).
+// anything else is refused (404, 405, 400; 431 for an oversized head, 408 for
+// one that does not arrive in time). With a TLS certificate the same port
+// speaks https:// and wss:// (QSslServer).
 
 #include <QByteArray>
 #include <QHostAddress>
@@ -20,6 +21,7 @@
 
 class QTcpServer;
 class QTcpSocket;
+class QTimer;
 class QWebSocketServer;
 
 namespace lucent::remote {
@@ -51,8 +53,11 @@ std::optional<HttpRequestHead> parseHttpRequestHead(const QByteArray& head);
 
 // Request heads larger than this are refused with 431.
 inline constexpr qsizetype kMaxRequestHeadBytes = 16 * 1024;
-// A connection that has not sent a whole request head by then is closed.
+// A connection that has not sent a whole request head by then (counted from
+// its start, however slowly its bytes trickle in) is answered 408 and closed.
 inline constexpr int kRequestHeadTimeoutMs = 10000;
+// A connection told 408 that does not close is dropped this much later.
+inline constexpr int kClosingGraceMs = 2000;
 // Once its head is read, a request's connection is closed after this long
 // without an answer or (uploads) without a byte of body.
 inline constexpr int kAnswerTimeoutMs = 60000;
@@ -116,6 +121,8 @@ public:
 private:
     void onPendingConnection();
     void onReadable(QTcpSocket* socket);
+    // The timer of kHeadTimerName went off: 408 while waiting for the head, else abort.
+    void onDeadline(QTcpSocket* socket, QTimer& deadline);
     void answer(QTcpSocket* socket, const HttpRequestHead& request);
     void receiveUpload(QTcpSocket* socket, const HttpRequestHead& request);
     // Reads `length` bytes of body, each chunk to `consume` (which answers and

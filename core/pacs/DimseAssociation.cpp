@@ -1,5 +1,6 @@
 #include "core/pacs/DimseAssociation_p.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <mutex>
 
@@ -38,7 +39,13 @@ std::string reason(const OFCondition& c, const PacsSettings& s, const PacsNode& 
     if (c == DUL_PEERABORTEDASSOCIATION || c == DUL_NETWORKCLOSED) {
         return "the PACS closed the connection";
     }
-    return c.text();
+    if (mentions(c, "Broken pipe") || mentions(c, "Connection reset") ||
+        mentions(c, "TCP I/O Error")) {
+        return "the connection to the PACS was lost (it closed or stopped)";
+    }
+    std::string text = c.text(); // DCMTK's, on one line
+    std::replace(text.begin(), text.end(), '\n', ' ');
+    return text;
 }
 
 void prepareDcmtk() {
@@ -113,9 +120,11 @@ T_ASC_PresentationContextID DimseAssociation::context(const std::string& abstrac
     return id;
 }
 
-void DimseAssociation::fail(const std::string& operation, const OFCondition& condition) const {
+void DimseAssociation::fail(const std::string& operation, const OFCondition& condition,
+                            const std::string& consequence) const {
     throw PacsError(node_.describe() + ": " + operation + ": " +
-                    reason(condition, settings_, node_));
+                    reason(condition, settings_, node_) +
+                    (consequence.empty() ? std::string() : "; " + consequence));
 }
 
 } // namespace lucent

@@ -53,8 +53,10 @@ public:
     // The accepted presentation context for a SOP class; PacsError when the PACS refused it.
     T_ASC_PresentationContextID context(const std::string& abstractSyntax, const std::string& what);
     const PacsNode& node() const { return node_; }
-    // A PacsError for a failed operation on this association.
-    [[noreturn]] void fail(const std::string& operation, const OFCondition& condition) const;
+    // A PacsError for a failed operation on this association: the node, the
+    // operation, why, and (when given) what it means for the user.
+    [[noreturn]] void fail(const std::string& operation, const OFCondition& condition,
+                           const std::string& consequence = {}) const;
 
 private:
     PacsNode node_;

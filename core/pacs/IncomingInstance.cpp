@@ -27,15 +27,19 @@ bool storeIncoming(DcmDataset& dataset, StudyStore& store) {
     Sint32 number = 0;
     dataset.findAndGetSint32(DCM_SeriesNumber, number);
     r.seriesNumber = number;
+    const E_TransferSyntax original = dataset.getOriginalXfer();
+    const E_TransferSyntax xfer = original == EXS_Unknown ? EXS_LittleEndianExplicit : original;
+    // The dataset, its meta header and preamble: refused before a byte is
+    // written when the store's file system cannot take it.
+    store.requireSpace(dataset.calcElementLength(xfer, EET_ExplicitLength) + 1024);
     const std::filesystem::path temp = store.temporaryFile();
     DcmFileFormat file(&dataset);
-    const E_TransferSyntax xfer = dataset.getOriginalXfer();
-    const OFCondition c =
-        file.saveFile(temp.c_str(), xfer == EXS_Unknown ? EXS_LittleEndianExplicit : xfer);
+    const OFCondition c = file.saveFile(temp.c_str(), xfer);
     if (c.bad()) {
         std::error_code ec;
         std::filesystem::remove(temp, ec);
-        throw StoreError(temp.string() + ": cannot write a received instance (" + c.text() + ")");
+        throw store.writeError(temp, temp.string() + ": cannot write a received instance (" +
+                                         c.text() + ")");
     }
     return store.add(temp, r);
 }

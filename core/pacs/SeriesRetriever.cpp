@@ -224,7 +224,12 @@ RetrieveResult retrieveSeries(const PacsNode& node, const PacsSettings& settings
             throw StoreError(receiver->storeError);
         }
         if (c.bad()) {
-            a.fail("C-GET failed after " + std::to_string(result.received) + " instance(s)", c);
+            a.fail("C-GET of series " + seriesUid + " interrupted after " +
+                       std::to_string(result.received) + " of " + std::to_string(missing.size()) +
+                       " instance(s)",
+                   c,
+                   "what arrived whole is stored, the series stays incomplete: retrieve it "
+                   "again for the rest");
         }
     }
     result.complete = store.isComplete(seriesUid);

@@ -5,6 +5,8 @@
 // listing (slow on some servers) is skipped and the series fetched at once.
 #include "core/pacs/DicomWebClient.h"
 
+#include <cerrno>
+#include <cstring>
 #include <exception>
 #include <memory>
 #include <optional>
@@ -41,18 +43,24 @@ public:
 
     void begin() {
         discard();
+        store_.requireSpace(0);
         temp_ = store_.temporaryFile();
         fd_ = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
         if (fd_ < 0) {
-            throw StoreError(temp_.string() + ": cannot create a file for a received instance");
+            throw store_.writeError(temp_, temp_.string() +
+                                               ": cannot create a file for a received instance (" +
+                                               std::strerror(errno) + ")");
         }
     }
     void data(const char* p, qsizetype n) {
+        // The part's size is not known ahead: the reserve is checked as it grows.
+        store_.requireSpace(static_cast<std::uintmax_t>(n));
         while (n > 0) {
             const ssize_t w = ::write(fd_, p, static_cast<std::size_t>(n));
             if (w <= 0) {
-                throw StoreError(temp_.string() +
-                                 ": cannot write a received instance (disk full?)");
+                throw store_.writeError(temp_, temp_.string() +
+                                                   ": cannot write a received instance (" +
+                                                   std::strerror(errno) + ")");
             }
             p += w;
             n -= w;
@@ -62,7 +70,8 @@ public:
         const bool closed = ::close(fd_) == 0;
         fd_ = -1;
         if (!closed) {
-            throw StoreError(temp_.string() + ": cannot write a received instance");
+            throw store_.writeError(temp_, temp_.string() + ": cannot write a received instance (" +
+                                               std::strerror(errno) + ")");
         }
         // Only the header is parsed, up to the pixel data.
         DcmFileFormat file;
@@ -82,6 +91,11 @@ public:
         if (control_.onProgress) {
             control_.onProgress(++done_, toFetch_);
         }
+    }
+
+    // "k of n instance(s)" handled so far.
+    std::string progress() const {
+        return std::to_string(done_) + " of " + std::to_string(toFetch_) + " instance(s)";
     }
 
 private:
@@ -181,13 +195,28 @@ void fetch(const DicomWebService& s, const QUrl& url, PartWriter& writer,
     if (failure) {
         std::rethrow_exception(failure);
     }
+    // The answer had begun: the server went away in the middle of it (a
+    // connection lost, or closed before the last part ended).
+    const auto interrupted = [&](const std::string& cause) {
+        return PacsError(s.baseUrl + ": WADO-RS retrieval of series " + seriesUid +
+                         " interrupted after " + writer.progress() + " (" + cause +
+                         "); what arrived whole is stored, the series stays incomplete: "
+                         "retrieve it again for the rest");
+    };
+    if (parts && reply->error() != QNetworkReply::NoError) {
+        throw interrupted(reply->errorString().toStdString());
+    }
     if (dicomweb::checkReply(*reply, where) == 204) {
         return;
     }
     if (!parts) {
         throw PacsError(where + ": the answer has no instances");
     }
-    parts->finish();
+    try {
+        parts->finish();
+    } catch (const PacsError& e) {
+        throw interrupted(e.what());
+    }
 }
 
 } // namespace

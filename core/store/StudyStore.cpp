@@ -221,8 +221,29 @@ bool StudyStore::add(const fs::path& file, const InstanceRecord& r) {
     fs::rename(file, target, ec); // same file system: atomic
     if (ec) {
         fs::remove(file, ec);
-        throw StoreError(target.string() + ": cannot move the received file into the store");
+        throw StoreError(target.string() + ": cannot move the received file into the store (" +
+                         ec.message() + ")");
     }
+    if (batchDepth_ > 0) {
+        uncommitted_.push_back(target);
+    }
+    try {
+        indexInstance(target, r);
+    } catch (const StoreError& e) {
+        // Not indexed (or its batch rolled back): the file goes too.
+        fs::remove(target, ec);
+        dropUncommitted(true);
+        throw writeError(root_ / "index.sqlite", e.what());
+    }
+    // A long retrieval commits now and then, so that other connections (the
+    // storage SCP, the study browser) are not kept waiting for the write lock.
+    if (batchDepth_ > 0 && ++batchAdds_ % 32 == 0) {
+        commitBatch(true);
+    }
+    return true;
+}
+
+void StudyStore::indexInstance(const fs::path& target, const InstanceRecord& r) {
     QSqlQuery series =
         prepared(connection_,
                  "INSERT INTO series (series_uid, study_uid, patient_id, patient_name, study_date, "
@@ -244,13 +265,6 @@ bool StudyStore::add(const fs::path& file, const InstanceRecord& r) {
                              safeComponent(r.series.seriesUid) / target.filename())
                                 .string()));
     run(instance, root_);
-    // A long retrieval commits now and then, so that other connections (the
-    // storage SCP, the study browser) are not kept waiting for the write lock.
-    if (batchDepth_ > 0 && ++batchAdds_ % 32 == 0) {
-        exec("COMMIT");
-        exec("BEGIN IMMEDIATE");
-    }
-    return true;
 }
 
 void StudyStore::remove(const std::string& sop) {
@@ -352,22 +366,6 @@ std::vector<StoredSeries> StudyStore::listSeries() const {
         out.push_back(std::move(s));
     }
     return out;
-}
-
-StudyStore::Batch::Batch(StudyStore& store) : store_(store) {
-    if (store_.batchDepth_++ == 0) {
-        store_.exec("BEGIN IMMEDIATE");
-    }
-}
-
-StudyStore::Batch::~Batch() {
-    if (--store_.batchDepth_ == 0) {
-        try {
-            store_.exec("COMMIT");
-        } catch (const StoreError&) {
-            // Rows lost here only make their files be fetched again; never throw from here.
-        }
-    }
 }
 
 int StudyStore::expected(const std::string& seriesUid) const {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <set>
@@ -47,6 +48,8 @@ struct StoredSeries {
 // tmp/ folder and renamed into place, then indexed. No instance is stored
 // twice. Each series remembers how many instances the PACS said it has, so an
 // interrupted retrieval shows as incomplete and a new one fetches only the rest.
+// A file in files/ is always indexed: when an index write fails (a full disk),
+// the files whose rows it lost are removed again, to be fetched another time.
 class StudyStore {
 public:
     // Opens or creates the store; removes leftovers of interrupted writes (of
@@ -60,6 +63,17 @@ public:
     const std::filesystem::path& root() const { return root_; }
     // A new, unused file name in tmp/ for writing an incoming instance.
     std::filesystem::path temporaryFile();
+
+    // Free space kept for the index: an instance is refused rather than
+    // written when it would leave less than this on the store's file system,
+    // so that the index can always record (or roll back) what is stored.
+    static constexpr std::uintmax_t kSpaceReserveBytes = 256 * 1024;
+    // Throws StoreError naming the store and "no space" when its file system
+    // cannot take `bytes` more and still keep kSpaceReserveBytes free.
+    void requireSpace(std::uintmax_t bytes) const;
+    // The error for a failed write of `file` (a temporary file of this store):
+    // "no space" naming the store when its file system is full, else `cause`.
+    StoreError writeError(const std::filesystem::path& file, const std::string& cause) const;
 
     bool contains(const std::string& sopInstanceUid) const;
     std::set<std::string> instancesOf(const std::string& seriesUid) const;
@@ -98,9 +112,17 @@ public:
 private:
     void exec(const std::string& sql) const;
     void upsertStudy(const InstanceRecord& r);
+    void indexInstance(const std::filesystem::path& target, const InstanceRecord& r);
+    // Commits the batch's rows (and begins anew when it goes on); on failure
+    // rolls back and removes their files.
+    void commitBatch(bool batchGoesOn);
+    // After a failed index write: the transaction's rows are gone (SQLite may
+    // roll back on its own when the disk is full), so are their files.
+    void dropUncommitted(bool batchGoesOn);
 
     int batchDepth_ = 0;
     std::uint64_t batchAdds_ = 0;
+    std::vector<std::filesystem::path> uncommitted_; // files of the open batch's rows
 
     std::filesystem::path root_;
     std::string connection_;

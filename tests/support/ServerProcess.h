@@ -137,6 +137,8 @@ public:
     }
 
     bool started() const { return error_.isEmpty() && port_ > 0; }
+    // The process id of the running server; 0 when none runs.
+    qint64 pid() const { return process_ ? process_->processId() : 0; }
     QString startError() const { return error_; }
     quint16 port() const { return port_; }
     QUrl url() const { return QUrl(QString("ws://127.0.0.1:%1/").arg(port_)); }
