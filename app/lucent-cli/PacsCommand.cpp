@@ -243,7 +243,10 @@ int getCommand(const QStringList& args) {
             const RetrieveResult r =
                 wado ? wadoRetrieveSeries(serviceFrom(p), study, uid, target) : [&] {
                     const auto [node, settings] = nodeFrom(p);
-                    return retrieveSeries(node, settings, study, uid, target);
+                    return method == "cmove"
+                               ? moveSeries(node, settings, p.value("aet").toStdString(), study,
+                                            uid, target)
+                               : retrieveSeries(node, settings, study, uid, target);
                 }();
             allComplete = allComplete && r.complete;
             out << "series " << QString::fromStdString(uid) << ": " << r.received

@@ -456,6 +456,14 @@ private slots:
              "LUCENT", "--port", QString::number(scpPort_), "--store", moved.path()});
         QVERIFY2(move.exitCode == 0 && move.out.count("complete") == 2,
                  qPrintable(move.out + move.err));
+        // C-MOVE, not C-GET: to a destination the PACS does not know, nothing moves.
+        QTemporaryDir stranger;
+        const test::CliRun unknownDestination = test::runCli(
+            {"pacs", "get", "--pacs", pacs, "--study", kStudyA, "--method", "cmove", "--aet",
+             "STRANGER", "--port", QString::number(test::OrthancServer::freePort()), "--store",
+             stranger.path()});
+        QVERIFY2(unknownDestination.exitCode == 4 && unknownDestination.err.contains("STRANGER"),
+                 qPrintable(unknownDestination.out + unknownDestination.err));
         QCOMPARE(test::runCli({"pacs", "get", "--pacs", pacs}).exitCode, 2);
         QCOMPARE(
             test::runCli({"pacs", "get", "--pacs", pacs, "--study", kStudyA, "--method", "wado"})
