@@ -81,6 +81,8 @@ for deb in "$lucent" "$server"; do
     fail "$(basename "$deb") Depends lacks the libraries dpkg-shlibdeps finds: '$depends'"
   fi
   grep -q 'lucent-common (= ' <<<"$depends" || fail "$(basename "$deb") does not depend on lucent-common"
+  # Qt loads its SQLite driver (the study store's index) at run time.
+  grep -q 'libqt6sql6-sqlite' <<<"$depends" || fail "$(basename "$deb") does not depend on libqt6sql6-sqlite"
 done
 [ "$(dpkg-deb -f "$common" Architecture)" = all ] || fail "lucent-common is not Architecture: all"
 grep -q 'adduser' <<<"$(dpkg-deb -f "$server" Depends)" || fail "lucent-server does not depend on adduser"
