@@ -3,15 +3,17 @@
 # cpack and checks what they hold, their control data, the systemd unit and
 # what lintian says. Every tool it needs is required: a missing one fails the
 # test with its name (packaging/install-deps.sh installs them all).
-# Usage: check-packages.sh BUILD_DIR OUT_DIR
+# Usage: check-packages.sh BUILD_DIR OUT_DIR [GUI]
+#   GUI: OFF for a build with LUCENT_BUILD_GUI=OFF (no workstation, no desktop entry).
 set -euo pipefail
 
-if [ $# -ne 2 ]; then
-  echo "usage: $0 BUILD_DIR OUT_DIR" >&2
+if [ $# -lt 2 ] || [ $# -gt 3 ]; then
+  echo "usage: $0 BUILD_DIR OUT_DIR [GUI]" >&2
   exit 2
 fi
 build=$(realpath "$1")
 out=$2
+gui=${3:-ON}
 failures=0
 fail() { echo "FAIL: $*" >&2; failures=$((failures + 1)); }
 pass() { echo "ok: $*"; }
@@ -61,10 +63,12 @@ expect_files() {
     fi
   done
 }
-expect_files "$lucent" usr/bin/lucent usr/bin/lucent-cli \
-  usr/share/man/man1/lucent.1.gz usr/share/man/man1/lucent-cli.1.gz \
-  usr/share/applications/lucent.desktop usr/share/icons/hicolor/scalable/apps/lucent.svg \
+expect_files "$lucent" usr/bin/lucent-cli usr/share/man/man1/lucent-cli.1.gz \
   usr/share/doc/lucent/copyright usr/share/doc/lucent/changelog.gz
+if [ "$gui" != OFF ]; then
+  expect_files "$lucent" usr/bin/lucent usr/share/man/man1/lucent.1.gz \
+    usr/share/applications/lucent.desktop usr/share/icons/hicolor/scalable/apps/lucent.svg
+fi
 expect_files "$server" usr/bin/lucent-server usr/share/man/man1/lucent-server.1.gz \
   lib/systemd/system/lucent-server.service etc/lucent/lucent-server.conf \
   usr/share/doc/lucent-server/copyright usr/share/doc/lucent-server/changelog.gz
@@ -97,10 +101,13 @@ for script in postinst prerm postrm; do
   [ -x "$control/$script" ] || fail "lucent-server has no executable $script"
 done
 grep -q 'adduser --system' "$control/postinst" || fail "lucent-server's postinst makes no system user"
-if grep -q '^MimeType=application/dicom;' <(dpkg-deb --fsys-tarfile "$lucent" | tar -xO ./usr/share/applications/lucent.desktop); then
-  pass "lucent.desktop opens application/dicom"
-else
-  fail "lucent.desktop has no MimeType=application/dicom;"
+if [ "$gui" != OFF ]; then
+  desktop=$(dpkg-deb --fsys-tarfile "$lucent" | tar -xO ./usr/share/applications/lucent.desktop)
+  if grep -q '^MimeType=application/dicom;' <<<"$desktop"; then
+    pass "lucent.desktop opens application/dicom"
+  else
+    fail "lucent.desktop has no MimeType=application/dicom;"
+  fi
 fi
 
 # The unit, in the package's tree beside the host's units (for the targets

@@ -141,9 +141,17 @@ page=$(chroot "$root" curl -sS --max-time 10 -w '\nHTTP %{http_code} %{content_t
   "http://127.0.0.1:$port/")
 grep -m1 -i '<title>' <<<"$page" || true
 tail -n 1 <<<"$page"
+grep -q '^HTTP 200 text/html' <<<"$(tail -n 1 <<<"$page")" || { echo "FAIL: no page"; exit 1; }
+echo "== a frame of the demo CT rendered by the server for lucent-cli (WebSocket, the token)"
+echo "+ lucent-cli render .../Cranium.inv3 --backend ws://127.0.0.1:$port --token (the token)" \
+  "--size 256x256 --preset ct-bone -o /tmp/frame.png"
+chroot "$root" lucent-cli render /usr/share/doc/invesalius-examples/examples/Cranium.inv3 \
+  --backend "ws://127.0.0.1:$port" --token "$(cat "$root/etc/lucent/tokens")" --size 256x256 \
+  --preset ct-bone -o /tmp/frame.png
+cp "$root/tmp/frame.png" /var/tmp/lucent-try-frame.png
+echo "frame: /var/tmp/lucent-try-frame.png, $(stat -c %s /var/tmp/lucent-try-frame.png) bytes"
 kill "$server"
 wait "$server" || true
-grep -q '^HTTP 200 text/html' <<<"$(tail -n 1 <<<"$page")" || { echo "FAIL: no page"; exit 1; }
 INSIDE
 unshare --mount --propagation private bash "$work/inside.sh" "$root"
 
