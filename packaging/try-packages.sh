@@ -152,6 +152,14 @@ cp "$root/tmp/frame.png" /var/tmp/lucent-try-frame.png
 echo "frame: /var/tmp/lucent-try-frame.png, $(stat -c %s /var/tmp/lucent-try-frame.png) bytes"
 kill "$server"
 wait "$server" || true
+
+echo "== purge: /etc/lucent goes, the study store and the user stay"
+chroot "$root" env DEBIAN_FRONTEND=noninteractive apt-get purge -y -q lucent-server |
+  grep -E "^(Removing|Purging) "
+in_root ls -ld /var/lib/lucent/store
+in_root getent passwd lucent
+[ ! -e "$root/etc/lucent" ] || { echo "FAIL: /etc/lucent is still there after purge"; exit 1; }
+echo "/etc/lucent: gone; statoverrides left: $(chroot "$root" dpkg-statoverride --list | wc -l)"
 INSIDE
 unshare --mount --propagation private bash "$work/inside.sh" "$root"
 
@@ -161,4 +169,5 @@ dpkg-deb -x "${packages[1]}" "$unit_root"
 cp -an /lib/systemd/system/. "$unit_root/lib/systemd/system/"
 systemd-analyze verify --man=no --root="$unit_root" lucent-server.service && say "verify: no complaint"
 systemd-analyze security --offline=true --root="$unit_root" lucent-server.service | tail -n 1
-say "done: the packages install, lucent-cli reads the demo CT, lucent-server serves its page"
+say "done: the packages install, lucent-cli reads the demo CT, lucent-server serves its page" \
+  "and renders it, purge leaves the study store"
