@@ -26,6 +26,9 @@ packages=(
   libmeshoptimizer-dev python3-vtk9
   # the web test: headless Chromium driven through chromedriver; openssl makes the TLS test's certificate
   chromium chromium-driver openssl
+  # packages: cpack's DEB generator with dpkg-shlibdeps (dpkg-dev), lintian on the .debs,
+  # systemd-analyze for the unit, mmdebstrap and curl for packaging/try-packages.sh
+  dpkg-dev lintian systemd mmdebstrap curl
 )
 
 missing=()

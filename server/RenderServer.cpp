@@ -6,6 +6,8 @@
 
 #include <stdexcept>
 
+#include <sys/stat.h>
+
 #include "server/ClientConnection.h"
 #include "server/LocalFrameSource.h"
 #include "server/TeachingSession.h"
@@ -29,6 +31,31 @@ bool sameToken(const std::string& a, const std::string& b) {
     return difference == 0;
 }
 
+// "0644" for a file's permission bits.
+std::string octalMode(mode_t mode) {
+    return QString::number(mode & 07777, 8).rightJustified(4, '0').toStdString();
+}
+
+// Throws unless only the file's owner may read or write it: tokens are
+// passwords, and a token file that its group or others can read has leaked.
+void checkOwnerOnly(const QFile& file) {
+    struct stat info {};
+    if (fstat(file.handle(), &info) != 0) {
+        throw std::runtime_error("token file " + file.fileName().toStdString() +
+                                 ": its mode cannot be read");
+    }
+    const mode_t shared = info.st_mode & (S_IRWXG | S_IRWXO);
+    if (shared == 0) {
+        return;
+    }
+    const std::string who = (shared & S_IRWXG) && (shared & S_IRWXO) ? "its group and others"
+                            : (shared & S_IRWXG)                     ? "its group"
+                                                                     : "others";
+    const std::string path = file.fileName().toStdString();
+    throw std::runtime_error("token file " + path + " has mode " + octalMode(info.st_mode) + ": " +
+                             who + " may use it; only its owner may (chmod 600 " + path + ")");
+}
+
 } // namespace
 
 std::vector<std::string> readTokenFile(const QString& path) {
@@ -36,6 +63,7 @@ std::vector<std::string> readTokenFile(const QString& path) {
     if (!file.open(QIODevice::ReadOnly | QIODevice::Text)) {
         throw std::runtime_error("token file " + path.toStdString() + " cannot be read");
     }
+    checkOwnerOnly(file);
     std::vector<std::string> tokens;
     while (!file.atEnd()) {
         const QByteArray line = file.readLine().trimmed();

@@ -54,7 +54,9 @@ struct ServerOptions {
 };
 
 // The tokens of a token file: one per line, blank lines and lines starting
-// with '#' ignored. Throws std::runtime_error when it cannot be read or holds none.
+// with '#' ignored. Throws std::runtime_error when it cannot be read, when its
+// group or others may read, write or run it (mode 0600 or stricter is needed),
+// or when it holds no token.
 std::vector<std::string> readTokenFile(const QString& path);
 
 class RenderServer : public QObject {

@@ -162,7 +162,6 @@ private slots:
         const QStringList common = {
             "--store",       dir.filePath("store"), "--data", dir.filePath("none"),
             "--distributed", "--backend",           "cpu"};
-        QFile(dir.filePath("tokens")).open(QIODevice::WriteOnly);
         job.start(launch.front(), launch.mid(1) +
                                       QStringList{server, "--token-file", dir.filePath("missing")} +
                                       common);
@@ -171,10 +170,7 @@ private slots:
         const QString err = QString::fromUtf8(job.readAllStandardError());
         QVERIFY2(err.contains("missing") && err.contains("token file"), qPrintable(err));
 
-        QFile tokens(dir.filePath("tokens"));
-        QVERIFY(tokens.open(QIODevice::WriteOnly));
-        tokens.write("t0ken\n");
-        tokens.close();
+        QVERIFY(writeTokenFile(dir.filePath("tokens"), "t0ken\n"));
         writeMetaImage(syntheticCt(), dir.filePath("none").toStdString() + ".mhd");
         QStringList check = common;
         check[3] = dir.filePath("none.mhd");

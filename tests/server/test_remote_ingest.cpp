@@ -143,10 +143,7 @@ private slots:
 
     void badDicomListenIsRefused() {
         QTemporaryDir dir;
-        QFile tokens(dir.filePath("tokens"));
-        QVERIFY(tokens.open(QIODevice::WriteOnly));
-        tokens.write("t\n");
-        tokens.close();
+        QVERIFY(writeTokenFile(dir.filePath("tokens"), "t\n"));
         QProcess process;
         process.start(QString(LUCENT_BIN_DIR) + "/lucent-server",
                       {"--store", dir.filePath("store"), "--token-file", dir.filePath("tokens"),

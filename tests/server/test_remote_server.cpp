@@ -3,7 +3,10 @@
 // messages, coalescing of a camera burst, the sampling message of version 2 and
 // version 1 peers.
 #include <QJsonArray>
+#include <QProcess>
 #include <QTest>
+
+#include <sys/stat.h>
 
 #include "RemoteTestFixture.h"
 #include "core/image/ImageMetrics.h"
@@ -68,6 +71,44 @@ private slots:
         QVERIFY(wrong.waitDisconnected());
         QVERIFY(wrong.frames.isEmpty());
         QVERIFY2(!server.log().contains("not-the-token"), "a token reached the log");
+    }
+
+    // A token file that its group or others may read has leaked: the server
+    // does not start on it, and says which file and which mode; at 0600 the
+    // same file serves.
+    void refusesATokenFileOthersCanRead_data() {
+        QTest::addColumn<int>("mode");
+        QTest::addColumn<QString>("who");
+        QTest::newRow("0644") << 0644 << "its group and others";
+        QTest::newRow("0640") << 0640 << "its group";
+        QTest::newRow("0604") << 0604 << "others";
+        QTest::newRow("0660") << 0660 << "its group";
+    }
+    void refusesATokenFileOthersCanRead() {
+        QFETCH(int, mode);
+        QFETCH(QString, who);
+        const QTemporaryDir dir;
+        const QString tokens = dir.filePath("tokens");
+        QVERIFY(writeTokenFile(tokens, QByteArray(kToken) + "\n"));
+        QVERIFY(::chmod(QFile::encodeName(tokens).constData(), mode_t(mode)) == 0);
+        const QString server = QString(LUCENT_BIN_DIR) + "/lucent-server";
+        const QStringList arguments = {"--store", dir.filePath("store"), "--token-file", tokens,
+                                       "--check"};
+        QProcess process;
+        process.start(server, arguments);
+        QVERIFY(process.waitForFinished(30000));
+        const QString err = QString::fromUtf8(process.readAllStandardError());
+        QCOMPARE(process.exitCode(), 3);
+        const QString modeText = QString::number(mode, 8).rightJustified(4, '0');
+        QVERIFY2(err.contains("token file " + tokens + " has mode " + modeText), qPrintable(err));
+        QVERIFY2(err.contains(who + " may use it"), qPrintable(err));
+        QVERIFY2(err.contains("chmod 600 " + tokens), qPrintable(err));
+
+        QVERIFY(::chmod(QFile::encodeName(tokens).constData(), 0600) == 0);
+        process.start(server, arguments);
+        QVERIFY(process.waitForFinished(30000));
+        QVERIFY2(process.exitCode() == 0, qPrintable(process.readAllStandardError()));
+        QVERIFY(QString::fromUtf8(process.readAllStandardOutput()).contains("0 series"));
     }
 
     void listHoldsNoPatientData() {

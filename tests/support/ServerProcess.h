@@ -23,6 +23,15 @@ inline constexpr char kToken[] = "s3cret-token-for-tests";
 // separators): the browser client sends it in the first message instead.
 inline constexpr char kTokenNotASubprotocol[] = "b64/token+for=tests==";
 
+// Writes a token file as lucent-server wants it: only its owner may read it
+// (mode 0600; the server refuses one that its group or others can read).
+inline bool writeTokenFile(const QString& path, const QByteArray& contents) {
+    QFile file(path);
+    return file.open(QIODevice::WriteOnly, QFileDevice::ReadOwner | QFileDevice::WriteOwner) &&
+           file.setPermissions(QFileDevice::ReadOwner | QFileDevice::WriteOwner) &&
+           file.write(contents) == contents.size();
+}
+
 // A 48 x 40 x 36 CT (HU, int16): air, an off-centre bone ball and a soft
 // tissue block, so that the camera's turn shows in the image.
 inline Volume syntheticCt() {
@@ -68,13 +77,11 @@ public:
         volumeFile_ = dir_.filePath("ct.mhd");
         writeMetaImage(syntheticCt(), volumeFile_.toStdString());
         data_ = data.isEmpty() ? volumeFile_ : data;
-        QFile tokens(tokenFile());
-        if (!tokens.open(QIODevice::WriteOnly)) {
+        if (!writeTokenFile(tokenFile(), QByteArray("# test tokens\n") + kToken + "\n" +
+                                             kTokenNotASubprotocol + "\n")) {
             error_ = "cannot write the token file " + tokenFile();
             return;
         }
-        tokens.write(QByteArray("# test tokens\n") + kToken + "\n" + kTokenNotASubprotocol + "\n");
-        tokens.close();
         if (when == Start::Now && !start().isEmpty()) {
             QTest::qVerify(false, "server.started()", qPrintable(error_), __FILE__, __LINE__);
         }
