@@ -25,6 +25,8 @@
 #include "ui/pacs/PacsBrowser.h"
 #include "ui/study/StudyBrowser.h"
 #include "ui/study/VolumeLoader.h"
+#include "ui/theme/Theme.h"
+#include "ui/theme/ThemeMenu.h"
 #include "ui/transfer/TransferFunctionEditor.h"
 #include "ui/volume/RenderServerSettings.h"
 #include "ui/volume/SurfacePanel.h"
@@ -74,6 +76,8 @@ QString folderOf(const QString& path) {
 MainWindow::MainWindow(QWidget* parent)
     : QMainWindow(parent), cursor_(new MprCursor(this)), info_(new QLabel(this)) {
     setWindowTitle(QStringLiteral("Lucent"));
+    // The saved look (dark unless the user chose light) before any widget is polished.
+    applyTheme(*qApp, savedTheme());
     const std::array<Orientation, 3> orientations{Orientation::Axial, Orientation::Coronal,
                                                   Orientation::Sagittal};
     for (std::size_t n = 0; n < views_.size(); ++n) {
@@ -180,6 +184,7 @@ void MainWindow::addViewMenu() {
                         }
                     });
     addRenderBackendMenu(menu, volumeView_); // this computer or a render server
+    addThemeMenu(menu);                      // dark or light, saved at once
     menu->addSeparator();
     for (QDockWidget* dock : findChildren<QDockWidget*>()) {
         menu->addAction(dock->toggleViewAction());
@@ -194,6 +199,7 @@ void MainWindow::saveSettings() const {
     settings.setValue(QStringLiteral("view/layout"), ViewLayout::name(layout_->arrangement()));
     settings.setValue(QStringLiteral("view/active"), layout_->activeIndex());
     settings.setValue(QStringLiteral("files/lastFolder"), lastFolder_);
+    saveTheme(currentTheme());
 }
 
 void MainWindow::restoreSettings() {

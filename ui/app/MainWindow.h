@@ -26,7 +26,9 @@ class VolumeView;
 // and window, a status bar describing the volume, the series opened in this
 // session in a dock (StudyBrowser, "studyDock"), screenshots (File menu) and
 // settings that persist (QSettings of the application: layout, last folder,
-// window geometry and dock state; restored by the constructor, saved on close).
+// window geometry and dock state; restored by the constructor, saved on close),
+// and the look: the saved theme (dark by default; View > Theme) is applied to
+// the application by the constructor.
 class MainWindow : public QMainWindow {
     Q_OBJECT
 

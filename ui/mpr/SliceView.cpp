@@ -10,6 +10,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "ui/mpr/DevicePlane.h"
 #include "ui/mpr/MprCursor.h"
 #include "ui/mpr/SliceOverlay.h"
 
@@ -159,10 +160,13 @@ void SliceView::clearMeasurements() {
 }
 
 QImage SliceView::image() {
-    const SlicePlane p = plane();
-    if (!volume_ || volume_->empty() || p.width <= 0 || p.height <= 0) {
+    const SlicePlane logical = plane();
+    if (!volume_ || volume_->empty() || logical.width <= 0 || logical.height <= 0) {
         return {};
     }
+    // At device pixels: sharp on a high-DPI screen, drawn at the widget's logical size.
+    const double ratio = std::max(1.0, devicePixelRatioF());
+    const SlicePlane p = devicePlane(logical, ratio);
     if (!samplesValid_ || !samePlane(p, sampledPlane_)) {
         samples_ = sampleImage(*volume_, p);
         sampledPlane_ = p;
@@ -172,7 +176,7 @@ QImage SliceView::image() {
     const double center = cursor_->windowCenter();
     const double width = cursor_->windowWidth();
     if (!imageValid_ || center != imageCenter_ || width != imageWidth_ ||
-        image_.size() != QSize(p.width, p.height)) {
+        image_.size() != QSize(p.width, p.height) || image_.devicePixelRatio() != ratio) {
         image_ = QImage(p.width, p.height, QImage::Format_Grayscale8);
         for (int y = 0; y < p.height; ++y) {
             uchar* line = image_.scanLine(y);
@@ -181,6 +185,7 @@ QImage SliceView::image() {
                 line[x] = windowToGrey(row[x], center, width);
             }
         }
+        image_.setDevicePixelRatio(ratio);
         imageCenter_ = center;
         imageWidth_ = width;
         imageValid_ = true;
@@ -192,8 +197,9 @@ double SliceView::valueAt(const QPointF& pos) {
     if (image().isNull()) {
         return std::nan("");
     }
-    const int x = static_cast<int>(std::floor(pos.x()));
-    const int y = static_cast<int>(std::floor(pos.y()));
+    const QPoint device = devicePixelAt(pos, devicePixelRatioF());
+    const int x = device.x();
+    const int y = device.y();
     if (x < 0 || y < 0 || x >= sampledPlane_.width || y >= sampledPlane_.height) {
         return std::nan("");
     }

@@ -53,9 +53,11 @@ public:
     double sliceStep() const;
     // The plane's position along the patient axis closest to its normal, mm (x, y or z).
     double slicePosition() const;
-    // The grey image of the current plane and window, as painted under the overlays.
+    // The grey image of the current plane and window, as painted under the overlays:
+    // sampled at device pixels (devicePlane), its devicePixelRatio the widget's.
     QImage image();
-    // The resliced value (HU for CT) at a widget position; NaN outside the volume.
+    // The resliced value (HU for CT) of the device pixel at a widget position; NaN
+    // outside the volume.
     double valueAt(const QPointF& pos);
 
     // Zoom: 1 fits the volume; each ctrl+wheel notch multiplies it by zoomStepFactor().

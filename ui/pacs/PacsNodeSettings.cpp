@@ -14,6 +14,7 @@
 #include <QVBoxLayout>
 
 #include "core/pacs/PacsService.h"
+#include "ui/theme/Theme.h"
 
 namespace lucent {
 namespace {
@@ -60,7 +61,7 @@ PacsNodeSettings::PacsNodeSettings(PacsService* service, QSettings* settings, QW
     echoResult_->setWordWrap(true);
     echoResult_->setTextInteractionFlags(Qt::TextSelectableByMouse);
     error_->setWordWrap(true);
-    error_->setStyleSheet(QStringLiteral("color: red"));
+    error_->setStyleSheet(statusStyleSheet(StatusTone::Error));
     ourAeTitle_->setText(config.callingAeTitle);
     storagePort_->setValue(config.storagePort);
     storeFolder_->setText(config.storeFolder);
@@ -120,8 +121,7 @@ PacsNodeSettings::PacsNodeSettings(PacsService* service, QSettings* settings, QW
     connect(buttons, &QDialogButtonBox::rejected, this, &QDialog::reject);
     connect(service_, &PacsService::echoFinished, this, [this](bool ok, const QString& message) {
         echo_->setEnabled(true);
-        echoResult_->setStyleSheet(ok ? QStringLiteral("color: darkgreen")
-                                      : QStringLiteral("color: red"));
+        echoResult_->setStyleSheet(statusStyleSheet(ok ? StatusTone::Ok : StatusTone::Error));
         echoResult_->setText((ok ? tr("OK: ") : tr("Failed: ")) + message);
     });
     loadNode(nodes_.isEmpty() ? -1 : 0);
@@ -211,7 +211,7 @@ void PacsNodeSettings::echoCurrent() {
     }
     const PacsNodeConfig& n = nodes_[current_];
     if (const QString problem = n.validate(); !problem.isEmpty()) {
-        echoResult_->setStyleSheet(QStringLiteral("color: red"));
+        echoResult_->setStyleSheet(statusStyleSheet(StatusTone::Error));
         echoResult_->setText(tr("Failed: ") + problem);
         return;
     }

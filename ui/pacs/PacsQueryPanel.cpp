@@ -1,5 +1,6 @@
 #include "ui/pacs/PacsQueryPanel.h"
 
+#include "ui/theme/Theme.h"
 #include <QComboBox>
 #include <QDateEdit>
 #include <QFormLayout>
@@ -243,7 +244,7 @@ void PacsQueryPanel::showResults(const std::vector<PacsStudyResult>& results) {
 void PacsQueryPanel::showError(const QString& message) {
     searching_ = false;
     search_->setEnabled(true);
-    status_->setStyleSheet(QStringLiteral("color: red"));
+    status_->setStyleSheet(statusStyleSheet(StatusTone::Error));
     status_->setText(message);
 }
 

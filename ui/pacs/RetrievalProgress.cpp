@@ -7,6 +7,7 @@
 #include <QVBoxLayout>
 
 #include "core/pacs/PacsService.h"
+#include "ui/theme/Theme.h"
 
 namespace lucent {
 
@@ -89,7 +90,8 @@ void RetrievalProgress::finished(const QString& seriesUid, bool ok, const QStrin
     if (QTreeWidgetItem* item = row(seriesUid)) {
         item->setText(Status, message);
         item->setToolTip(Status, message);
-        item->setForeground(Status, ok ? palette().text() : QBrush(Qt::red));
+        item->setForeground(Status, ok ? palette().text()
+                                       : QBrush(statusColour(StatusTone::Error, palette())));
     }
 }
 

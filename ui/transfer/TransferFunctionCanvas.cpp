@@ -310,7 +310,8 @@ void TransferFunctionCanvas::paintColourStrip(QPainter& painter, const QRectF& s
 
 void TransferFunctionCanvas::paintEvent(QPaintEvent*) {
     QPainter painter(this);
-    painter.fillRect(rect(), QColor(30, 30, 34));
+    // Around the plot the dock's own colour; the plot itself stays dark, like an image.
+    painter.fillRect(rect(), palette().window());
     const QRectF area = opacityArea();
     painter.fillRect(area, QColor(20, 20, 22));
     paintHistogram(painter, area);

@@ -11,6 +11,7 @@
 #include <QVBoxLayout>
 
 #include "core/tf/VolumeHistogram.h"
+#include "ui/theme/Theme.h"
 #include "ui/transfer/TransferFunctionCanvas.h"
 
 namespace lucent {
@@ -183,7 +184,7 @@ void TransferFunctionEditor::exportFile() {
 
 void TransferFunctionEditor::showStatus(const QString& text, bool error) {
     status_->setText(text);
-    status_->setStyleSheet(error ? "color: #e05050" : QString());
+    status_->setStyleSheet(error ? statusStyleSheet(StatusTone::Error) : QString());
 }
 
 } // namespace lucent

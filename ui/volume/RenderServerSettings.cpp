@@ -10,6 +10,7 @@
 #include <QSettings>
 #include <QVBoxLayout>
 
+#include "ui/theme/Theme.h"
 #include "ui/volume/VolumeView.h"
 
 namespace lucent {
@@ -60,7 +61,7 @@ RenderServerSettings::RenderServerSettings(const RemoteServerSettings& initial,
     };
     connect(series_, &QComboBox::currentTextChanged, this, describe);
     describe();
-    problem_->setStyleSheet(QStringLiteral("color: #c04000"));
+    problem_->setStyleSheet(statusStyleSheet(StatusTone::Warning));
     problem_->setWordWrap(true);
     auto* form = new QFormLayout;
     form->addRow(tr("Server &URL:"), url_);

@@ -426,6 +426,9 @@ void VolumeView::paintFrame(QPainter& painter) {
         if (clipHandlesShown_) {
             paintClipBox(painter);
         }
+        if (orientationMarkerShown_) {
+            paintOrientationMarker(painter);
+        }
         if (surfaceDisplay_ && local_->surfaceShown() && backend_ == Backend::Gpu) {
             paintSurfaceColourBar(painter, area, *surfaceDisplay_, surfaceRadius_);
         }

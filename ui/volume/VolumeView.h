@@ -17,6 +17,7 @@
 #include "render/LocalRenderBackend.h"
 #include "render/RemoteRenderBackend.h"
 #include "ui/volume/ClipBoxHandles.h"
+#include "ui/volume/OrientationCube.h"
 
 class QPainter;
 
@@ -71,6 +72,11 @@ public:
     bool clipHandlesShown() const { return clipHandlesShown_; }
     ClipHandles clipHandles() const;
     void setInteractiveQuality(const InteractiveQuality& quality) { quality_ = quality; }
+    // The orientation cube in the bottom-left corner (shown by default), turned
+    // by the camera; where it is on the view now (VolumeViewMarker.cpp).
+    bool orientationMarkerShown() const { return orientationMarkerShown_; }
+    void setOrientationMarkerShown(bool shown);
+    OrientationCube orientationMarker() const;
 
     // What a still frame renders now, at this size in device pixels (the view's
     // size when not given).
@@ -154,6 +160,7 @@ private:
     void updateNotice();
     void updateSurface();
     void paintClipBox(QPainter& painter) const;
+    void paintOrientationMarker(QPainter& painter) const;
     // Millimetres at the point looked at per view pixel.
     double mmPerPixel(const Camera& camera) const;
 
@@ -172,6 +179,7 @@ private:
     SamplingSettings sampling_;
     InteractiveQuality quality_;
     bool clipHandlesShown_ = false;
+    bool orientationMarkerShown_ = true;
 
     std::shared_ptr<const SurfaceDisplay> surfaceDisplay_;
     double surfaceRadius_ = 0.0;

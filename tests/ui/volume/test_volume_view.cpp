@@ -108,6 +108,8 @@ void TestVolumeView::init() {
     frames_.clear();
     localFrames_.clear();
     view_ = std::make_unique<VolumeView>();
+    // These compare what the screen shows with frames: no orientation cube over them.
+    view_->setOrientationMarkerShown(false);
     QObject::connect(&view_->localBackend(), &RenderBackend::frameReady, view_.get(),
                      [this](const BackendFrame& f) { localFrames_.push_back(f); });
     view_->resize(160, 128);
