@@ -24,7 +24,7 @@ packages=(
   libmeshoptimizer-dev python3-vtk9
   # the web test: headless Chromium driven through chromedriver; openssl makes the TLS test's certificate
   chromium chromium-driver openssl
-  clang libfuzzer-14-dev  # fuzzing: LUCENT_FUZZ=ON, packaging/fuzz.sh
+  clang libfuzzer-14-dev libomp-14-dev  # fuzzing: LUCENT_FUZZ=ON, packaging/fuzz.sh (OpenMP for clang)
 )
 
 missing=()
