@@ -1,10 +1,12 @@
 #include "core/dicom/FrameDecoder.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 
 #include <gdcmImage.h>
 #include <gdcmReader.h>
+#include <gdcmSequenceOfFragments.h>
 
 #include "core/io/LoadControl.h"
 
@@ -15,6 +17,98 @@ RawFormat rawFormatOf(const PixelLayout& layout) {
 }
 
 namespace {
+
+// The JPEG (ISO 10918) transfer syntaxes, decoded by GDCM's JPEG codec.
+bool isJpegProcess(const std::string& transferSyntax) {
+    return transferSyntax == "1.2.840.10008.1.2.4.50" ||
+           transferSyntax == "1.2.840.10008.1.2.4.51" ||
+           transferSyntax == "1.2.840.10008.1.2.4.57" || transferSyntax == "1.2.840.10008.1.2.4.70";
+}
+
+// The header of one JPEG frame (a fragment that starts with SOI) up to its
+// scan: every marker segment inside the fragment, a start-of-frame whose size
+// and component count are the image's. Empty when it is sound, else why not.
+std::string jpegFrameHeaderProblem(const unsigned char* p, std::size_t n,
+                                   const PixelLayout& expected) {
+    std::size_t at = 2; // after SOI
+    bool sawFrame = false;
+    while (at + 4 <= n) {
+        if (p[at] != 0xff) {
+            return "no marker at byte " + std::to_string(at) + " of the JPEG header";
+        }
+        const unsigned marker = p[at + 1];
+        if (marker == 0xff) {
+            ++at; // fill byte
+            continue;
+        }
+        const std::size_t length = std::size_t(p[at + 2]) << 8 | p[at + 3];
+        if (length < 2 || at + 2 + length > n) {
+            return "a JPEG marker segment runs past its fragment";
+        }
+        const bool startOfFrame =
+            marker >= 0xc0 && marker <= 0xcf && marker != 0xc4 && marker != 0xc8 && marker != 0xcc;
+        if (startOfFrame) {
+            if (length < 8) {
+                return "a JPEG start-of-frame segment is too short";
+            }
+            const int rows = p[at + 5] << 8 | p[at + 6];
+            const int columns = p[at + 7] << 8 | p[at + 8];
+            const int components = p[at + 9];
+            if (rows != expected.rows || columns != expected.columns || components != 1) {
+                return "the JPEG frame is " + std::to_string(columns) + "x" + std::to_string(rows) +
+                       " with " + std::to_string(components) + " component(s), the header says " +
+                       std::to_string(expected.columns) + "x" + std::to_string(expected.rows) +
+                       " with 1";
+            }
+            sawFrame = true;
+        }
+        if (marker == 0xda) { // start of scan: entropy-coded data follow
+            return sawFrame ? std::string() : "a JPEG scan without a start-of-frame";
+        }
+        at += 2 + length;
+    }
+    return "a JPEG header without a scan";
+}
+
+// GDCM's JPEG codec leaks its decompressor (up to about 750 KB) when it gives
+// up on a stream: one that ends before its end-of-image marker, or whose size
+// is not the image's. Such streams are refused first: each frame starts with
+// SOI and a sound header, and ends with EOI (FF D9; an odd-length fragment is
+// padded with 00), the last fragment included.
+void checkJpegFrames(const std::string& file, const gdcm::DataElement& pixels,
+                     const PixelLayout& expected, int frames) {
+    const gdcm::SequenceOfFragments* fragments = pixels.GetSequenceOfFragments();
+    if (fragments == nullptr || fragments->GetNumberOfFragments() == 0) {
+        throw LoadError(file + ": JPEG pixel data (7FE0,0010) holds no fragments");
+    }
+    const std::string where = file + ": JPEG pixel data (7FE0,0010): ";
+    std::size_t starts = 0;
+    std::size_t ends = 0;
+    bool lastEnds = false;
+    const std::size_t count = fragments->GetNumberOfFragments();
+    for (std::size_t i = 0; i < count; ++i) {
+        const gdcm::ByteValue* bv = fragments->GetFragment(static_cast<unsigned>(i)).GetByteValue();
+        const auto* p = bv ? reinterpret_cast<const unsigned char*>(bv->GetPointer()) : nullptr;
+        std::size_t n = bv ? static_cast<std::size_t>(bv->GetLength()) : std::size_t(0);
+        if (n >= 2 && p[0] == 0xff && p[1] == 0xd8) {
+            if (const std::string why = jpegFrameHeaderProblem(p, n, expected); !why.empty()) {
+                throw LoadError(where + "frame " + std::to_string(starts + 1) + ": " + why);
+            }
+            ++starts;
+        }
+        if (n > 0 && p[n - 1] == 0x00) {
+            --n;
+        }
+        lastEnds = n >= 2 && p[n - 2] == 0xff && p[n - 1] == 0xd9;
+        ends += lastEnds ? 1 : 0;
+    }
+    if (!lastEnds || starts < static_cast<std::size_t>(frames) ||
+        ends < static_cast<std::size_t>(frames)) {
+        throw LoadError(where + "cut short: " + std::to_string(std::min(starts, ends)) + " of " +
+                        std::to_string(frames) +
+                        " frame(s) start with start-of-image and end with end-of-image");
+    }
+}
 
 // Only GDCM's codecs see the file, never its ImageReader: that one derives the
 // geometry again with ImageHelper, whose assertions abort the whole process on
@@ -27,6 +121,9 @@ gdcm::Image imageToDecode(const std::string& file, const gdcm::File& parsed,
     const gdcm::DataSet& ds = parsed.GetDataSet();
     if (!ds.FindDataElement(pixelData) || ds.GetDataElement(pixelData).IsEmpty()) {
         throw LoadError(file + ": no pixel data (7FE0,0010)");
+    }
+    if (isJpegProcess(expected.transferSyntax)) {
+        checkJpegFrames(file, ds.GetDataElement(pixelData), expected, frames);
     }
     gdcm::Image image;
     image.SetNumberOfDimensions(frames > 1 ? 3 : 2);
@@ -75,18 +172,14 @@ DecodedFrames decodeFramesWithGdcm(const std::string& file, const PixelLayout& e
 } // namespace
 
 DecodedFrames decodeFrames(const std::string& file, const PixelLayout& expected, int frames) {
-    try {
-        return decodeFramesWithGdcm(file, expected, frames);
-    } catch (const LoadError& gdcmError) {
-        if (!isJpegLs(expected.transferSyntax)) {
-            throw;
-        }
-        try {
-            return decodeJpegLsWithDcmtk(file, expected, frames);
-        } catch (const LoadError&) {
-            throw gdcmError; // GDCM's reason is the one to report
-        }
+    // JPEG-LS goes to DCMTK alone: GDCM's JPEG-LS codec leaks its copy of the
+    // stream whenever CharLS fails on it (fuzz_dicom found it), so every load
+    // of a damaged file would cost a long-running server memory. The child
+    // process costs time instead, and gives everything back when it exits.
+    if (isJpegLs(expected.transferSyntax)) {
+        return decodeJpegLsWithDcmtk(file, expected, frames);
     }
+    return decodeFramesWithGdcm(file, expected, frames);
 }
 
 void readNativeFrame(const std::string& file, std::uint64_t offset, std::size_t bytes, void* dst) {
