@@ -114,7 +114,13 @@ MetaHeader parseHeader(const fs::path& path) {
         throw LoadError(h.file + ": cannot open (" +
                         (fs::exists(path) ? "permission denied?" : "no such file") + ")");
     }
-    std::string text(maxHeaderBytes, '\0');
+    // The header is read up to 1 MiB; a small file costs its own size, not that.
+    std::error_code sizeError;
+    const std::uintmax_t fileSize = fs::file_size(path, sizeError);
+    std::string text(
+        sizeError ? maxHeaderBytes
+                  : static_cast<std::size_t>(std::min<std::uintmax_t>(fileSize, maxHeaderBytes)),
+        '\0');
     in.read(text.data(), static_cast<std::streamsize>(text.size()));
     text.resize(static_cast<std::size_t>(in.gcount()));
     std::size_t pos = 0;
