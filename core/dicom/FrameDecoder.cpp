@@ -73,8 +73,8 @@ std::string jpegFrameHeaderProblem(const unsigned char* p, std::size_t n,
 // GDCM's JPEG codec leaks its decompressor (up to about 750 KB) when it gives
 // up on a stream: one that ends before its end-of-image marker, or whose size
 // is not the image's. Such streams are refused first: each frame starts with
-// SOI and a sound header, and ends with EOI (FF D9; an odd-length fragment is
-// padded with 00), the last fragment included.
+// SOI and a sound header, and ends with EOI (FF D9, then perhaps padding),
+// the last fragment included.
 void checkJpegFrames(const std::string& file, const gdcm::DataElement& pixels,
                      const PixelLayout& expected, int frames) {
     const gdcm::SequenceOfFragments* fragments = pixels.GetSequenceOfFragments();
@@ -96,8 +96,8 @@ void checkJpegFrames(const std::string& file, const gdcm::DataElement& pixels,
             }
             ++starts;
         }
-        if (n > 0 && p[n - 1] == 0x00) {
-            --n;
+        while (n > 2 && (p[n - 1] == 0x00 || p[n - 1] == 0xff)) {
+            --n; // padding (00 by the standard; FF from some encoders: NEMA CT2_JPLL)
         }
         lastEnds = n >= 2 && p[n - 2] == 0xff && p[n - 1] == 0xd9;
         ends += lastEnds ? 1 : 0;
