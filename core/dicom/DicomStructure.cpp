@@ -81,7 +81,8 @@ struct Walker {
 
     struct Header {
         std::uint16_t group, element;
-        bool sequence; // SQ, or undefined length that must be walked as items
+        std::string_view vr; // empty in implicit VR
+        bool sequence;       // SQ, or undefined length that must be walked as items
         std::uint32_t length;
         std::size_t valueAt;
     };
@@ -126,6 +127,7 @@ struct Walker {
                 return fail(at, "unknown value representation '" + shown + "' of element (" +
                                     hex(h.group) + "," + hex(h.element) + ")");
             }
+            h.vr = vr;
             if (isLong) {
                 if (at + 12 > size) {
                     bigEndian = saveBig;
@@ -213,6 +215,11 @@ struct Walker {
             const std::size_t start = at;
             at = h.valueAt;
             const bool pixelData = depth == 0 && h.group == 0x7fe0 && h.element == 0x0010;
+            if (pixelData && !h.vr.empty() && h.vr != "OB" && h.vr != "OW" && h.vr != "UN") {
+                // GDCM asserts on Pixel Data of another VR (SQ in big endian).
+                return fail(start, "Pixel Data (7FE0,0010) has VR '" + std::string(h.vr) +
+                                       "', not OB or OW");
+            }
             if (pixelData) {
                 out.hasPixelData = true;
                 out.pixelOffset = at;

@@ -1,5 +1,5 @@
 // Inputs that fuzz_dicom (fuzz/DicomFuzzer.cpp) found, each once a runaway
-// allocation or a leak inside GDCM (fuzz-regressions/README.md says which), fed
+// allocation, an assertion or a leak inside GDCM (fuzz-regressions/README.md says which), fed
 // through the same scan and load as any file: each must end in a reason that
 // names the file or the element and what is wrong.
 #include <QTest>
@@ -60,6 +60,13 @@ private slots:
         const QString reason = skipReason(regressionInput("nested-element-huge-length.dcm"));
         QVERIFY2(reason.contains("corrupt DICOM file"), qPrintable(reason));
         QVERIFY2(reason.contains("runs past the end of its item"), qPrintable(reason));
+    }
+
+    void pixelDataOfAnotherVrIsRefusedBeforeGdcmAsserts() {
+        const QString reason = skipReason(regressionInput("pixel-data-of-vr-sq-big-endian.dcm"));
+        QVERIFY2(reason.contains("corrupt DICOM file: Pixel Data (7FE0,0010) has VR 'SQ', not OB "
+                                 "or OW"),
+                 qPrintable(reason));
     }
 
     void corruptDeflatedDataSetIsRefused() {
