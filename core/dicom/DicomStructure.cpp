@@ -215,6 +215,12 @@ struct Walker {
             const std::size_t start = at;
             at = h.valueAt;
             const bool pixelData = depth == 0 && h.group == 0x7fe0 && h.element == 0x0010;
+            if (h.length == kUndefined && !h.vr.empty() && h.vr != "SQ" && h.vr != "UN" &&
+                !(pixelData && (h.vr == "OB" || h.vr == "OW"))) {
+                // GDCM asserts on an undefined length of any other VR.
+                return fail(start, "element (" + hex(h.group) + "," + hex(h.element) + ") of VR '" +
+                                       std::string(h.vr) + "' has an undefined length");
+            }
             if (pixelData && !h.vr.empty() && h.vr != "OB" && h.vr != "OW" && h.vr != "UN") {
                 // GDCM asserts on Pixel Data of another VR (SQ in big endian).
                 return fail(start, "Pixel Data (7FE0,0010) has VR '" + std::string(h.vr) +

@@ -69,6 +69,13 @@ private slots:
                  qPrintable(reason));
     }
 
+    void undefinedLengthOfAnOdElementIsRefusedBeforeGdcmAsserts() {
+        const QString reason = skipReason(regressionInput("undefined-length-of-vr-od.dcm"));
+        QVERIFY2(reason.contains("corrupt DICOM file"), qPrintable(reason));
+        QVERIFY2(reason.contains("element (0020,9113) of VR 'OD' has an undefined length"),
+                 qPrintable(reason));
+    }
+
     void corruptDeflatedDataSetIsRefused() {
         const QString reason = skipReason(regressionInput("deflated-corrupt.dcm"));
         QVERIFY2(reason.contains("corrupt DICOM file: deflated data set"), qPrintable(reason));
