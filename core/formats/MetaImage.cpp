@@ -302,6 +302,15 @@ void openData(const fs::path& mhd, DataFile& f) {
                         std::to_string(expected) + " bytes of voxel data, found " +
                         std::to_string(available));
     }
+    // Deflate expands at most 1032 to 1: less data than that cannot hold the
+    // volume, which is refused before it is allocated (fuzz_metaimage: 11 GB
+    // for a header of a few hundred bytes).
+    constexpr std::uint64_t kMaxInflateRatio = 1032;
+    if (layout.compressed && available < (expected + kMaxInflateRatio - 1) / kMaxInflateRatio) {
+        throw LoadError(h.file + ": CompressedData: " + std::to_string(available) +
+                        " bytes of zlib data in " + dataPath.string() + " cannot inflate to the " +
+                        std::to_string(expected) + " bytes that DimSize and ElementType need");
+    }
     f.in.open(dataPath, std::ios::binary);
     f.in.seekg(static_cast<std::streamoff>(start));
     if (!f.in) {
