@@ -337,6 +337,11 @@ DicomStructure checkDicomStructure(const std::string& file) {
                 out.problem = "truncated file meta information at byte " + std::to_string(at);
                 return out;
             }
+            if (h.vr == "SQ") { // GDCM asserts on a sequence here
+                out.problem = "file meta information element (0002," + Walker::hex(h.element) +
+                              ") is a sequence, at byte " + std::to_string(at);
+                return out;
+            }
             if (h.element == 0x0000 && h.length == 4) {
                 metaEnd = h.valueAt + 4 + std::uint64_t(w.u32(h.valueAt));
             }

@@ -76,6 +76,13 @@ private slots:
                  qPrintable(reason));
     }
 
+    void metaInformationSequenceIsRefusedBeforeGdcmAsserts() {
+        const QString reason = skipReason(regressionInput("meta-element-of-vr-sq.dcm"));
+        QVERIFY2(reason.contains("corrupt DICOM file: file meta information element (0002,0001) "
+                                 "is a sequence"),
+                 qPrintable(reason));
+    }
+
     void corruptDeflatedDataSetIsRefused() {
         const QString reason = skipReason(regressionInput("deflated-corrupt.dcm"));
         QVERIFY2(reason.contains("corrupt DICOM file: deflated data set"), qPrintable(reason));
