@@ -110,6 +110,48 @@ void checkJpegFrames(const std::string& file, const gdcm::DataElement& pixels,
     }
 }
 
+// GDCM's RLE codec trusts each frame's 64-byte header: a segment count or an
+// offset past the fragment makes it read out of bounds (fuzz_dicom: SEGV). So
+// every frame's header is checked first (PS3.5 G.5: one fragment per frame,
+// one segment per byte of a sample, the first at offset 64, offsets rising
+// within the fragment).
+void checkRleFrames(const std::string& file, const gdcm::DataElement& pixels,
+                    const PixelLayout& expected, int frames) {
+    const std::string where = file + ": RLE pixel data (7FE0,0010): ";
+    const gdcm::SequenceOfFragments* fragments = pixels.GetSequenceOfFragments();
+    if (fragments == nullptr || fragments->GetNumberOfFragments() < std::size_t(frames)) {
+        throw LoadError(where + "fewer fragments than its " + std::to_string(frames) + " frame(s)");
+    }
+    const std::uint32_t segments = static_cast<std::uint32_t>(expected.bitsAllocated / 8);
+    for (std::size_t i = 0; i < fragments->GetNumberOfFragments(); ++i) {
+        const gdcm::ByteValue* bv = fragments->GetFragment(static_cast<unsigned>(i)).GetByteValue();
+        const std::size_t n = bv ? static_cast<std::size_t>(bv->GetLength()) : std::size_t(0);
+        const std::string frame = "frame " + std::to_string(i + 1) + ": ";
+        if (n < 64) {
+            throw LoadError(where + frame + "shorter than its 64-byte RLE header");
+        }
+        const auto* p = reinterpret_cast<const unsigned char*>(bv->GetPointer());
+        const auto word = [p](std::size_t k) {
+            return std::uint32_t(p[4 * k]) | std::uint32_t(p[4 * k + 1]) << 8 |
+                   std::uint32_t(p[4 * k + 2]) << 16 | std::uint32_t(p[4 * k + 3]) << 24;
+        };
+        if (word(0) != segments) {
+            throw LoadError(where + frame + "the RLE header declares " + std::to_string(word(0)) +
+                            " segment(s), BitsAllocated " + std::to_string(expected.bitsAllocated) +
+                            " needs " + std::to_string(segments));
+        }
+        for (std::uint32_t s = 0; s < segments; ++s) {
+            const std::uint32_t offset = word(1 + s);
+            const std::uint32_t previous = s == 0 ? 0 : word(s);
+            if ((s == 0 && offset != 64) || (s > 0 && offset <= previous) || offset >= n) {
+                throw LoadError(where + frame + "RLE segment " + std::to_string(s + 1) +
+                                " starts at " + std::to_string(offset) +
+                                ", outside its fragment or out of order");
+            }
+        }
+    }
+}
+
 // Only GDCM's codecs see the file, never its ImageReader: that one derives the
 // geometry again with ImageHelper, whose assertions abort the whole process on
 // elements it does not expect (a frame count of another VR, an RT dose grid
@@ -124,6 +166,9 @@ gdcm::Image imageToDecode(const std::string& file, const gdcm::File& parsed,
     }
     if (isJpegProcess(expected.transferSyntax)) {
         checkJpegFrames(file, ds.GetDataElement(pixelData), expected, frames);
+    }
+    if (expected.transferSyntax == "1.2.840.10008.1.2.5") {
+        checkRleFrames(file, ds.GetDataElement(pixelData), expected, frames);
     }
     gdcm::Image image;
     image.SetNumberOfDimensions(frames > 1 ? 3 : 2);

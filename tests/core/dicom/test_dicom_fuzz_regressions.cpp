@@ -98,6 +98,13 @@ private slots:
         QVERIFY2(what.contains("dcmdjpls could not decode the JPEG-LS data"), qPrintable(what));
     }
 
+    void rleHeaderOutOfRangeIsALoadError() {
+        const QString what = loadError(regressionInput("rle-segment-count-out-of-range.dcm"));
+        QVERIFY2(what.contains("RLE pixel data (7FE0,0010): frame 1: the RLE header declares "
+                               "16775682 segment(s), BitsAllocated 16 needs 2"),
+                 qPrintable(what));
+    }
+
     void jpegFrameOfAnotherSizeIsALoadError() {
         const QString what = loadError(regressionInput("jpeg-size-not-the-image.dcm"));
         QVERIFY2(what.contains("JPEG pixel data (7FE0,0010): frame 1: the JPEG frame is "
