@@ -29,6 +29,7 @@ packages=(
   # packages: cpack's DEB generator with dpkg-shlibdeps (dpkg-dev), lintian on the .debs,
   # systemd-analyze for the unit, mmdebstrap and curl for packaging/try-packages.sh
   dpkg-dev lintian systemd mmdebstrap curl
+  clang libfuzzer-14-dev libomp-14-dev  # fuzzing: LUCENT_FUZZ=ON, packaging/fuzz.sh (OpenMP for clang)
 )
 
 missing=()

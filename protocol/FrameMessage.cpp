@@ -2,6 +2,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "protocol/JsonIntegers.h"
+
 namespace lucent::remote {
 
 using Json = nlohmann::json;
@@ -49,17 +51,20 @@ ParsedFrame parseFrameMessage(std::string_view message) {
     }
     ParsedFrame f;
     try {
-        f.header.width = h.at("width").get<int>();
-        f.header.height = h.at("height").get<int>();
+        f.header.width = jsonInteger<int>(h.at("width"), "frame: header: width");
+        f.header.height = jsonInteger<int>(h.at("height"), "frame: header: height");
         f.header.format = h.at("format").get<std::string>();
-        f.header.seq = h.at("seq").get<std::uint64_t>();
+        f.header.seq = jsonInteger<std::uint64_t>(h.at("seq"), "frame: header: seq");
         f.header.quality = h.at("quality").get<std::string>() == "interactive"
                                ? Quality::Interactive
                                : Quality::Still;
         f.header.renderMs = h.value("render_ms", 0.0);
         f.header.encodeMs = h.value("encode_ms", 0.0);
         f.header.scale = h.value("scale", 1.0);
-        f.header.jpegQuality = h.value("jpeg_quality", 0);
+        f.header.jpegQuality =
+            h.contains("jpeg_quality")
+                ? jsonInteger<int>(h.at("jpeg_quality"), "frame: header: jpeg_quality")
+                : 0;
     } catch (const Json::exception& e) {
         throw malformed(std::string("header: ") + e.what());
     }

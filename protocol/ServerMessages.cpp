@@ -2,6 +2,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "protocol/JsonIntegers.h"
+
 namespace lucent::remote {
 namespace {
 
@@ -12,11 +14,11 @@ Json dims(const glm::ivec3& d) {
 }
 
 glm::ivec3 readDims(const Json& j) {
-    const auto v = j.get<std::vector<int>>();
-    if (v.size() != 3) {
+    if (!j.is_array() || j.size() != 3) {
         throw ProtocolError("malformed", "'dims' must hold three integers", true);
     }
-    return {v[0], v[1], v[2]};
+    return {jsonInteger<int>(j[0], "dims"), jsonInteger<int>(j[1], "dims"),
+            jsonInteger<int>(j[2], "dims")};
 }
 
 template <class T> Json optional(const std::optional<T>& v) {
@@ -25,7 +27,14 @@ template <class T> Json optional(const std::optional<T>& v) {
 
 template <class T> std::optional<T> readOptional(const Json& m, const char* key) {
     const Json& v = m.at(key);
-    return v.is_null() ? std::nullopt : std::optional<T>(v.get<T>());
+    if (v.is_null()) {
+        return std::nullopt;
+    }
+    if constexpr (std::is_integral_v<T>) {
+        return jsonInteger<T>(v, key);
+    } else {
+        return v.get<T>();
+    }
 }
 
 struct Writer {
@@ -72,7 +81,8 @@ struct Writer {
 
 ServerMessage read(const Json& m, const std::string& type) {
     if (type == "hello") {
-        return Hello{m.at("version").get<int>(), m.at("backend").get<std::string>()};
+        return Hello{jsonInteger<int>(m.at("version"), "version"),
+                     m.at("backend").get<std::string>()};
     }
     if (type == "series") {
         SeriesListReply l;
@@ -95,11 +105,18 @@ ServerMessage read(const Json& m, const std::string& type) {
         return SessionCreated{m.at("session").get<std::string>()};
     }
     if (type == "session-state") {
+        std::vector<std::uint64_t> memberIds;
+        if (!m.at("member_ids").is_array()) {
+            throw ProtocolError("malformed", "'member_ids' must be an array of integers", true);
+        }
+        for (const Json& id : m.at("member_ids")) {
+            memberIds.push_back(jsonInteger<std::uint64_t>(id, "member_ids"));
+        }
         return SessionState{m.at("session").get<std::string>(),
-                            m.at("members").get<int>(),
-                            m.at("member_ids").get<std::vector<std::uint64_t>>(),
+                            jsonInteger<int>(m.at("members"), "members"),
+                            std::move(memberIds),
                             readOptional<std::uint64_t>(m, "presenter"),
-                            m.at("you").get<std::uint64_t>(),
+                            jsonInteger<std::uint64_t>(m.at("you"), "you"),
                             m.at("role").get<std::string>(),
                             readOptional<std::string>(m, "series")};
     }

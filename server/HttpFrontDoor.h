@@ -8,12 +8,12 @@
 
 #include <QByteArray>
 #include <QHostAddress>
-#include <QList>
 #include <QObject>
-#include <QPair>
 #include <QSet>
 #include <QSslConfiguration>
 #include <QString>
+
+#include "server/HttpRequestHead.h"
 
 #include <functional>
 #include <memory>
@@ -36,20 +36,6 @@ struct TlsFiles {
 // file when one cannot be read or parsed, or when the key does not belong to the
 // certificate (checked with a TLS handshake over loopback).
 QSslConfiguration loadServerTls(const TlsFiles& files);
-
-// The head of an HTTP/1.x request: request line and header fields.
-struct HttpRequestHead {
-    QByteArray method;
-    QByteArray target; // as sent: path and query
-    QByteArray version;
-    QList<QPair<QByteArray, QByteArray>> fields; // names lower-cased, values trimmed
-
-    QByteArray field(const QByteArray& lowerCaseName) const;
-    bool isWebSocketUpgrade() const;
-};
-
-// Parses a request head that ends with an empty line; nullopt when it is not HTTP/1.x.
-std::optional<HttpRequestHead> parseHttpRequestHead(const QByteArray& head);
 
 // Request heads larger than this are refused with 431.
 inline constexpr qsizetype kMaxRequestHeadBytes = 16 * 1024;

@@ -220,6 +220,13 @@ FileScan scanDicomFile(const std::string& file) {
         const std::uint64_t fileSize = fs::file_size(file);
         std::uint64_t offset = 0;
         if (structure.hasPixelData && !structure.encapsulated) {
+            const std::uint64_t inFile = fileSize - structure.pixelOffset;
+            if (structure.pixelLength > inFile) {
+                // GDCM would allocate the declared length before finding out.
+                return skip("truncated pixel data: Pixel Data (7FE0,0010) declares " +
+                            std::to_string(structure.pixelLength) + " bytes, the file ends " +
+                            std::to_string(inFile) + " bytes after its start");
+            }
             const std::uint64_t expected = frameBytes * static_cast<std::uint64_t>(frames);
             const std::uint64_t available =
                 std::min<std::uint64_t>(structure.pixelLength, fileSize - structure.pixelOffset);

@@ -1,7 +1,11 @@
 #include "core/dicom/DicomStructure.h"
 
+#include <algorithm>
 #include <cstring>
 #include <string_view>
+#include <vector>
+
+#include <zlib.h>
 
 #include <fcntl.h>
 #include <sys/mman.h>
@@ -13,6 +17,8 @@ namespace {
 
 constexpr std::uint32_t kUndefined = 0xffffffffu;
 constexpr int kMaxDepth = 32;
+// A deflated data set is inflated (in memory) to be walked, up to this size.
+constexpr std::size_t kMaxInflatedBytes = std::size_t(1) << 30;
 
 // A read-only view of a whole file, unmapped on destruction.
 class MappedFile {
@@ -75,7 +81,8 @@ struct Walker {
 
     struct Header {
         std::uint16_t group, element;
-        bool sequence; // SQ, or undefined length that must be walked as items
+        std::string_view vr; // empty in implicit VR
+        bool sequence;       // SQ, or undefined length that must be walked as items
         std::uint32_t length;
         std::size_t valueAt;
     };
@@ -98,14 +105,29 @@ struct Walker {
             const std::string_view vr(reinterpret_cast<const char*>(d + at + 4), 2);
             static constexpr std::string_view longVrs[] = {"OB", "OD", "OF", "OL", "OV", "OW", "SQ",
                                                            "SV", "UC", "UN", "UR", "UT", "UV"};
+            // The rest of PS3.5's VRs. Libraries disagree on the length field of
+            // any other (GDCM and DCMTK read 4 bytes, allocating what they say).
+            static constexpr std::string_view shortVrs[] = {
+                "AE", "AS", "AT", "CS", "DA", "DS", "DT", "FD", "FL", "IS", "LO",
+                "LT", "PN", "SH", "SL", "SS", "ST", "TM", "UI", "UL", "US"};
             bool isLong = false;
+            bool known = false;
             for (std::string_view v : longVrs) {
                 isLong = isLong || v == vr;
             }
-            if (vr[0] < 'A' || vr[0] > 'Z' || vr[1] < 'A' || vr[1] > 'Z') {
-                bigEndian = saveBig;
-                return fail(at, "invalid value representation");
+            for (std::string_view v : shortVrs) {
+                known = known || v == vr;
             }
+            if (!isLong && !known) {
+                bigEndian = saveBig;
+                std::string shown;
+                for (const char c : vr) {
+                    shown += c >= 0x20 && c < 0x7f ? std::string(1, c) : "\\x" + hex2(c);
+                }
+                return fail(at, "unknown value representation '" + shown + "' of element (" +
+                                    hex(h.group) + "," + hex(h.element) + ")");
+            }
+            h.vr = vr;
             if (isLong) {
                 if (at + 12 > size) {
                     bigEndian = saveBig;
@@ -123,12 +145,16 @@ struct Walker {
         return true;
     }
 
-    // Walks the items of a sequence (or encapsulated fragments) starting at `at`.
-    bool items(std::size_t& at, std::uint32_t length, int depth) {
-        const std::size_t end = length == kUndefined ? size : at + length;
-        if (end > size) {
-            return fail(at, "sequence runs past the end of the file");
+    // Walks the items of a sequence starting at `at`, within `limit` (the end of
+    // the enclosing item, or of the file), and the elements of each item: GDCM
+    // parses them all. With `fragments` the items are the fragments of
+    // encapsulated pixel data, whose bytes are not elements.
+    bool items(std::size_t& at, std::uint32_t length, std::size_t limit, int depth,
+               bool fragments) {
+        if (length != kUndefined && length > limit - at) {
+            return fail(at, "sequence runs past the end of " + what(limit));
         }
+        const std::size_t end = length == kUndefined ? limit : at + length;
         while (at < end) {
             Header h{};
             if (!header(at, h)) {
@@ -136,6 +162,9 @@ struct Walker {
             }
             if (h.group != 0xfffe) {
                 return fail(at, "expected a sequence item");
+            }
+            if (h.valueAt > end) {
+                return fail(at, "item header runs past the end of its sequence");
             }
             at = h.valueAt;
             if (h.element == 0xe0dd) { // sequence delimiter
@@ -145,20 +174,28 @@ struct Walker {
                 return fail(at, "unexpected delimiter in a sequence");
             }
             if (h.length == kUndefined) {
-                if (!elements(at, size, depth + 1, true)) {
+                if (fragments) {
+                    return fail(at, "pixel data fragment of undefined length");
+                }
+                if (!elements(at, end, depth + 1, true)) {
                     return false;
                 }
             } else {
-                if (h.length > size - at) {
-                    return fail(at, "item runs past the end of the file");
+                if (h.length > end - at) {
+                    return fail(at, "item runs past the end of its sequence or the file");
                 }
-                at += h.length;
+                if (fragments) {
+                    at += h.length;
+                } else if (!elements(at, at + h.length, depth + 1, false)) {
+                    return false;
+                }
             }
         }
         return length != kUndefined || fail(at, "sequence without its delimiter");
     }
 
-    // Walks elements until `end`, an item delimiter (in items), or top-level Pixel Data.
+    // Walks elements until `end` (the end of an item of defined length, or of
+    // the file) or, in items of undefined length, an item delimiter.
     bool elements(std::size_t& at, std::size_t end, int depth, bool inItem) {
         if (depth > kMaxDepth) {
             return fail(at, "sequences nested too deeply");
@@ -168,6 +205,9 @@ struct Walker {
             if (!header(at, h)) {
                 return false;
             }
+            if (h.valueAt > end) {
+                return fail(at, "element header runs past the end of " + what(end));
+            }
             if (h.group == 0xfffe && h.element == 0xe00d) {
                 at = h.valueAt;
                 return inItem || fail(at, "item delimiter outside an item");
@@ -175,38 +215,100 @@ struct Walker {
             const std::size_t start = at;
             at = h.valueAt;
             const bool pixelData = depth == 0 && h.group == 0x7fe0 && h.element == 0x0010;
+            if (h.length == kUndefined && !h.vr.empty() && h.vr != "SQ" && h.vr != "UN" &&
+                !(pixelData && (h.vr == "OB" || h.vr == "OW"))) {
+                // GDCM asserts on an undefined length of any other VR.
+                return fail(start, "element (" + hex(h.group) + "," + hex(h.element) + ") of VR '" +
+                                       std::string(h.vr) + "' has an undefined length");
+            }
+            if (pixelData && !h.vr.empty() && h.vr != "OB" && h.vr != "OW" && h.vr != "UN") {
+                // GDCM asserts on Pixel Data of another VR (SQ in big endian).
+                return fail(start, "Pixel Data (7FE0,0010) has VR '" + std::string(h.vr) +
+                                       "', not OB or OW");
+            }
             if (pixelData) {
                 out.hasPixelData = true;
                 out.pixelOffset = at;
                 out.encapsulated = h.length == kUndefined;
                 out.pixelLength = out.encapsulated ? 0 : h.length;
-                if (!out.encapsulated) {
-                    return true; // the caller compares the length with what the image needs
+                if (out.encapsulated) {
+                    if (!items(at, kUndefined, end, depth, true)) {
+                        return fail(start, "encapsulated pixel data: " + out.problem);
+                    }
+                    continue;
                 }
-                return items(at, kUndefined, depth) ||
-                       fail(start, "encapsulated pixel data: " + out.problem);
+                if (h.length > size - at) {
+                    return true; // the caller reports the pixel data as truncated
+                }
+                // What follows (padding, private trailers) is walked too: GDCM
+                // reads it whole, allocating the lengths it declares.
+                at += h.length;
+                continue;
             }
             if (h.sequence) {
-                if (!items(at, h.length, depth)) {
+                if (!items(at, h.length, end, depth, false)) {
                     return false;
                 }
                 continue;
             }
-            if (h.length > size - at) {
+            if (h.length > end - at) {
                 return fail(start, "element (" + hex(h.group) + "," + hex(h.element) +
-                                       ") runs past the end of the file");
+                                       ") runs past the end of " + what(end));
             }
             at += h.length;
         }
         return !inItem || fail(at, "item without its delimiter");
     }
 
+    std::string what(std::size_t end) const { return end == size ? "the file" : "its item"; }
+
     static std::string hex(std::uint16_t v) {
         char buf[8];
         std::snprintf(buf, sizeof buf, "%04X", v);
         return buf;
     }
+    static std::string hex2(char c) {
+        char buf[4];
+        std::snprintf(buf, sizeof buf, "%02X", static_cast<unsigned char>(c));
+        return buf;
+    }
 };
+
+// The data set of a Deflated Explicit VR Little Endian file: raw deflate (RFC 1951).
+bool inflateDataSet(const unsigned char* d, std::size_t size, std::vector<unsigned char>& out,
+                    std::string& problem) {
+    z_stream z{};
+    if (inflateInit2(&z, -MAX_WBITS) != Z_OK) {
+        problem = "cannot inflate the deflated data set (zlib)";
+        return false;
+    }
+    z.next_in = const_cast<unsigned char*>(d);
+    z.avail_in = static_cast<uInt>(std::min<std::size_t>(size, 1u << 30));
+    out.resize(std::max<std::size_t>(size * 4, 4096));
+    int status = Z_OK;
+    while (status == Z_OK) {
+        if (z.total_out == out.size()) {
+            if (out.size() >= kMaxInflatedBytes) {
+                problem = "deflated data set inflates to more than " +
+                          std::to_string(kMaxInflatedBytes >> 20) + " MiB";
+                inflateEnd(&z);
+                return false;
+            }
+            out.resize(std::min(out.size() * 2, kMaxInflatedBytes));
+        }
+        z.next_out = out.data() + z.total_out;
+        z.avail_out = static_cast<uInt>(out.size() - z.total_out);
+        status = inflate(&z, Z_NO_FLUSH);
+    }
+    out.resize(z.total_out);
+    inflateEnd(&z);
+    if (status != Z_STREAM_END && !(status == Z_BUF_ERROR && z.avail_in == 0)) {
+        problem = std::string("deflated data set is corrupt (zlib: ") +
+                  (z.msg != nullptr ? z.msg : "error " + std::to_string(status)) + ")";
+        return false;
+    }
+    return true;
+}
 
 } // namespace
 
@@ -233,6 +335,11 @@ DicomStructure checkDicomStructure(const std::string& file) {
             Walker::Header h{};
             if (!w.header(at, h, true) || h.length == kUndefined || h.length > size - h.valueAt) {
                 out.problem = "truncated file meta information at byte " + std::to_string(at);
+                return out;
+            }
+            if (h.vr == "SQ") { // GDCM asserts on a sequence here
+                out.problem = "file meta information element (0002," + Walker::hex(h.element) +
+                              ") is a sequence, at byte " + std::to_string(at);
                 return out;
             }
             if (h.element == 0x0000 && h.length == 4) {
@@ -271,7 +378,26 @@ DicomStructure checkDicomStructure(const std::string& file) {
     }
     const std::string& ts = out.transferSyntax;
     if (ts == "1.2.840.10008.1.2.1.99") {
-        out.ok = true; // deflated: the data set is compressed; GDCM inflates and parses it
+        // Deflated: GDCM inflates and parses the data set; it is walked here
+        // first, inflated. Offsets into it mean nothing in the file, so the
+        // pixel data must be whole (nobody compares its length later).
+        std::vector<unsigned char> inflated;
+        if (!inflateDataSet(d + at, size - at, inflated, out.problem)) {
+            return out;
+        }
+        DicomStructure inner;
+        Walker iw{inflated.data(), inflated.size(), true, false, inner};
+        std::size_t innerAt = 0;
+        if (!iw.elements(innerAt, inflated.size(), 0, false)) {
+            out.problem = "deflated data set: " + inner.problem;
+            return out;
+        }
+        if (inner.hasPixelData && !inner.encapsulated &&
+            inner.pixelLength > inflated.size() - inner.pixelOffset) {
+            out.problem = "deflated data set: Pixel Data (7FE0,0010) runs past its end";
+            return out;
+        }
+        out.ok = true;
         return out;
     }
     w.explicitVr = ts != "1.2.840.10008.1.2";

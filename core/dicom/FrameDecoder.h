@@ -1,6 +1,7 @@
 #pragma once
 // Getting the stored pixel values of DICOM frames: read straight from the file
-// for uncompressed little-endian data, decoded by GDCM for everything else.
+// for uncompressed little-endian data, decoded by GDCM's codecs for everything
+// else but JPEG-LS, which DCMTK's dcmdjpls decodes.
 // Private to lucent_io.
 
 #include <cstdint>
@@ -21,14 +22,14 @@ struct RawFormat {
 
 RawFormat rawFormatOf(const PixelLayout& layout);
 
-// Every frame of one file, decoded by GDCM. Throws LoadError naming the file.
+// Every frame of one file, decoded. Throws LoadError naming the file.
 struct DecodedFrames {
     std::vector<char> buffer;
     RawFormat format;
     std::size_t frameBytes = 0;
     const char* frame(int index) const { return buffer.data() + frameBytes * index; }
 };
-// GDCM, and DCMTK's dcmdjpls for JPEG-LS streams that GDCM rejects.
+// GDCM's codecs; JPEG-LS through DCMTK's dcmdjpls (JpegLsDecoder.cpp).
 DecodedFrames decodeFrames(const std::string& file, const PixelLayout& expected, int frames);
 
 bool isJpegLs(const std::string& transferSyntax);

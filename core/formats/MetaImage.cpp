@@ -114,7 +114,13 @@ MetaHeader parseHeader(const fs::path& path) {
         throw LoadError(h.file + ": cannot open (" +
                         (fs::exists(path) ? "permission denied?" : "no such file") + ")");
     }
-    std::string text(maxHeaderBytes, '\0');
+    // The header is read up to 1 MiB; a small file costs its own size, not that.
+    std::error_code sizeError;
+    const std::uintmax_t fileSize = fs::file_size(path, sizeError);
+    std::string text(
+        sizeError ? maxHeaderBytes
+                  : static_cast<std::size_t>(std::min<std::uintmax_t>(fileSize, maxHeaderBytes)),
+        '\0');
     in.read(text.data(), static_cast<std::streamsize>(text.size()));
     text.resize(static_cast<std::size_t>(in.gcount()));
     std::size_t pos = 0;
@@ -295,6 +301,15 @@ void openData(const fs::path& mhd, DataFile& f) {
         throw LoadError(h.file + ": data file " + dataPath.string() + " is truncated: expected " +
                         std::to_string(expected) + " bytes of voxel data, found " +
                         std::to_string(available));
+    }
+    // Deflate expands at most 1032 to 1: less data than that cannot hold the
+    // volume, which is refused before it is allocated (fuzz_metaimage: 11 GB
+    // for a header of a few hundred bytes).
+    constexpr std::uint64_t kMaxInflateRatio = 1032;
+    if (layout.compressed && available < (expected + kMaxInflateRatio - 1) / kMaxInflateRatio) {
+        throw LoadError(h.file + ": CompressedData: " + std::to_string(available) +
+                        " bytes of zlib data in " + dataPath.string() + " cannot inflate to the " +
+                        std::to_string(expected) + " bytes that DimSize and ElementType need");
     }
     f.in.open(dataPath, std::ios::binary);
     f.in.seekg(static_cast<std::streamoff>(start));

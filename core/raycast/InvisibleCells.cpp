@@ -44,11 +44,18 @@ template <class T> struct Classify {
     }
 };
 
+// GCC builds an AVX2 clone of the loop below and picks one at load time; clang
+// (the fuzz build, LUCENT_FUZZ) cannot clone a template and gets the portable loop.
+#if defined(__clang__)
+#define LUCENT_AVX2_CLONE
+#else
+#define LUCENT_AVX2_CLONE __attribute__((target_clones("avx2", "default")))
+#endif
+
 // classify(v) of each voxel of a slice.
 template <class T>
-__attribute__((target_clones("avx2", "default"))) void
-classifySlice(const Classify<T>& classify, const T* __restrict v, std::size_t n,
-              std::uint8_t* __restrict out) {
+LUCENT_AVX2_CLONE void classifySlice(const Classify<T>& classify, const T* __restrict v,
+                                     std::size_t n, std::uint8_t* __restrict out) {
     for (std::size_t i = 0; i < n; ++i) {
         out[i] = classify(v[i]);
     }

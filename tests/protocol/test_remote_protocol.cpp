@@ -6,6 +6,8 @@
 #include <QJsonDocument>
 #include <QJsonObject>
 
+#include <fstream>
+#include <iterator>
 #include <random>
 #include <set>
 
@@ -282,6 +284,52 @@ private slots:
         QCOMPARE(g.header.jpegQuality, 55);
         QVERIFY_THROWS_EXCEPTION(ProtocolError, parseFrameMessage(message.substr(0, 10)));
         QVERIFY_THROWS_EXCEPTION(ProtocolError, parseFrameMessage("\xff\xff"));
+    }
+
+    // fuzz_protocol found a float where an integer belongs (fuzz-regressions/): its
+    // conversion was undefined; any number that is no integer in range is malformed.
+    void integerFieldsOutOfRangeAreMalformed() {
+        std::ifstream in(std::string(LUCENT_SOURCE_DIR) +
+                             "/tests/protocol/fuzz-regressions/frame-width-float-out-of-range.bin",
+                         std::ios::binary);
+        const std::string found((std::istreambuf_iterator<char>(in)), {});
+        QVERIFY(!found.empty());
+        const auto malformed = [](const auto& read, const char* field) {
+            try {
+                read();
+                return QString("accepted");
+            } catch (const ProtocolError& e) {
+                const QString what = e.what();
+                return e.code() == "malformed" && e.fatal() && what.contains(field) &&
+                               what.contains("must be an integer")
+                           ? QString("malformed")
+                           : e.code().c_str() + QString(": ") + what;
+            }
+        };
+        QCOMPARE(malformed([&] { parseFrameMessage(found); }, "width"), QString("malformed"));
+        QCOMPARE(malformed(
+                     [] {
+                         parseServerMessage(R"({"type":"hello","version":1e300,)"
+                                            R"("backend":"cpu"})");
+                     },
+                     "version"),
+                 QString("malformed"));
+        QCOMPARE(malformed(
+                     [] {
+                         parseServerMessage(R"({"type":"opened","series":"s",)"
+                                            R"("dims":[1,2.5,3]})");
+                     },
+                     "dims"),
+                 QString("malformed"));
+        QCOMPARE(malformed(
+                     [] {
+                         parseServerMessage(R"({"type":"session-state","session":"s",)"
+                                            R"("members":1,"member_ids":[-1],)"
+                                            R"("presenter":null,"you":1,)"
+                                            R"("role":"presenter","series":null})");
+                     },
+                     "member_ids"),
+                 QString("malformed"));
     }
 
     void pngEncoderIsLossless() {

@@ -1,5 +1,6 @@
-// JPEG-LS streams that GDCM's CharLS rejects (NEMA WG04 MR1_JLSL is one) are
-// decoded by DCMTK's dcmdjpls in a child process. DCMTK cannot decode in this
+// JPEG-LS is decoded by DCMTK's dcmdjpls in a child process: GDCM's codec
+// rejects some valid streams (NEMA WG04 MR1_JLSL is one) and leaks its copy of
+// every stream it fails on (FrameDecoder.cpp). DCMTK cannot decode in this
 // process: its bundled CharLS and the system CharLS that GDCM uses export the
 // same JpegLs* symbols with different ABIs, so one of them would call the other.
 #include "core/dicom/FrameDecoder.h"

@@ -1,0 +1,117 @@
+// Inputs that fuzz_dicom (fuzz/DicomFuzzer.cpp) found, each once a runaway
+// allocation, an assertion or a leak inside GDCM (fuzz-regressions/README.md says which), fed
+// through the same scan and load as any file: each must end in a reason that
+// names the file or the element and what is wrong.
+#include <QTest>
+
+#include <filesystem>
+#include <string>
+
+#include "core/io/Catalog.h"
+
+namespace fs = std::filesystem;
+using namespace lucent;
+
+namespace {
+
+fs::path regressionInput(const char* name) {
+    return fs::path(LUCENT_SOURCE_DIR) / "tests/core/dicom/fuzz-regressions" / name;
+}
+
+// The reason the scan gives for skipping the file; it must yield no series.
+QString skipReason(const fs::path& file) {
+    const Catalog catalog = scanPath(file);
+    if (!catalog.series.empty() || catalog.skipped.size() != 1) {
+        return "(not skipped as one file)";
+    }
+    return QString::fromStdString(catalog.skipped.front().reason);
+}
+
+// The LoadError of loading the one series the file holds; it must name the file.
+QString loadError(const fs::path& file) {
+    const Catalog catalog = scanPath(file);
+    if (catalog.series.size() != 1) {
+        return "(not one series)";
+    }
+    try {
+        (void)loadSeries(catalog.series.front());
+    } catch (const LoadError& e) {
+        const QString what = e.what();
+        return what.contains(QString::fromStdString(file.string())) ? what
+                                                                    : "(file not named) " + what;
+    }
+    return "(loaded without an error)";
+}
+
+} // namespace
+
+class TestDicomFuzzRegressions : public QObject {
+    Q_OBJECT
+
+private slots:
+    void unknownVrIsRefusedBeforeGdcmAllocatesItsLength() {
+        const QString reason = skipReason(regressionInput("unknown-vr-huge-length.dcm"));
+        QVERIFY2(reason.contains("corrupt DICOM file"), qPrintable(reason));
+        QVERIFY2(reason.contains("unknown value representation 'FS'"), qPrintable(reason));
+        QVERIFY2(reason.contains("(0020,0037)"), qPrintable(reason));
+    }
+
+    void elementInsideAnItemIsWalkedToo() {
+        const QString reason = skipReason(regressionInput("nested-element-huge-length.dcm"));
+        QVERIFY2(reason.contains("corrupt DICOM file"), qPrintable(reason));
+        QVERIFY2(reason.contains("runs past the end of its item"), qPrintable(reason));
+    }
+
+    void pixelDataOfAnotherVrIsRefusedBeforeGdcmAsserts() {
+        const QString reason = skipReason(regressionInput("pixel-data-of-vr-sq-big-endian.dcm"));
+        QVERIFY2(reason.contains("corrupt DICOM file: Pixel Data (7FE0,0010) has VR 'SQ', not OB "
+                                 "or OW"),
+                 qPrintable(reason));
+    }
+
+    void undefinedLengthOfAnOdElementIsRefusedBeforeGdcmAsserts() {
+        const QString reason = skipReason(regressionInput("undefined-length-of-vr-od.dcm"));
+        QVERIFY2(reason.contains("corrupt DICOM file"), qPrintable(reason));
+        QVERIFY2(reason.contains("element (0020,9113) of VR 'OD' has an undefined length"),
+                 qPrintable(reason));
+    }
+
+    void metaInformationSequenceIsRefusedBeforeGdcmAsserts() {
+        const QString reason = skipReason(regressionInput("meta-element-of-vr-sq.dcm"));
+        QVERIFY2(reason.contains("corrupt DICOM file: file meta information element (0002,0001) "
+                                 "is a sequence"),
+                 qPrintable(reason));
+    }
+
+    void corruptDeflatedDataSetIsRefused() {
+        const QString reason = skipReason(regressionInput("deflated-corrupt.dcm"));
+        QVERIFY2(reason.contains("corrupt DICOM file: deflated data set"), qPrintable(reason));
+    }
+
+    void jpegFrameWithoutEndOfImageIsALoadError() {
+        const QString what = loadError(regressionInput("jpeg-without-end-of-image.dcm"));
+        QVERIFY2(what.contains("JPEG pixel data (7FE0,0010): cut short"), qPrintable(what));
+    }
+
+    void jpegLsFrameWithoutScanIsALoadError() {
+        const QString what = loadError(regressionInput("jpegls-without-scan.dcm"));
+        QVERIFY2(what.contains("dcmdjpls could not decode the JPEG-LS data"), qPrintable(what));
+    }
+
+    void rleHeaderOutOfRangeIsALoadError() {
+        const QString what = loadError(regressionInput("rle-segment-count-out-of-range.dcm"));
+        QVERIFY2(what.contains("RLE pixel data (7FE0,0010): frame 1: the RLE header declares "
+                               "16775682 segment(s), BitsAllocated 16 needs 2"),
+                 qPrintable(what));
+    }
+
+    void jpegFrameOfAnotherSizeIsALoadError() {
+        const QString what = loadError(regressionInput("jpeg-size-not-the-image.dcm"));
+        QVERIFY2(what.contains("JPEG pixel data (7FE0,0010): frame 1: the JPEG frame is "
+                               "49416x8 with 1 component(s), the header says 8x8"),
+                 qPrintable(what));
+    }
+};
+
+QTEST_APPLESS_MAIN(TestDicomFuzzRegressions)
+#include "test_dicom_fuzz_regressions.moc"
