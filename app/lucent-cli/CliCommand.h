@@ -47,7 +47,7 @@ int runInfo(const QStringList& args);
 int runConvert(const QStringList& args);
 int runCompare(const QStringList& args);
 int runRender(const QStringList& args);
-int runPacs(const QStringList& args); // exit 4: the PACS or the network failed
+int runPacs(const QStringList& args);     // exit 4: the PACS or the network failed
 int runPacsSend(const QStringList& args); // pacs send: C-STORE or STOW-RS
 int runExport(const QStringList& args);   // DICOM to a folder or ZIP, de-identified or not
 int runBench(const QStringList& args);
