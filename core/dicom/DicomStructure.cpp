@@ -168,7 +168,9 @@ struct Walker {
             }
             at = h.valueAt;
             if (h.element == 0xe0dd) { // sequence delimiter
-                return true;
+                // Its length is 0 (PS3.5 7.5); GDCM allocates any other it reads.
+                return h.length == 0 || fail(at, "sequence delimiter with a length of " +
+                                                     std::to_string(h.length) + " (must be 0)");
             }
             if (h.element != 0xe000) {
                 return fail(at, "unexpected delimiter in a sequence");
@@ -210,6 +212,10 @@ struct Walker {
             }
             if (h.group == 0xfffe && h.element == 0xe00d) {
                 at = h.valueAt;
+                if (h.length != 0) {
+                    return fail(at, "item delimiter with a length of " + std::to_string(h.length) +
+                                        " (must be 0)");
+                }
                 return inItem || fail(at, "item delimiter outside an item");
             }
             const std::size_t start = at;

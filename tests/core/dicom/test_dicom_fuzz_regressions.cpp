@@ -56,6 +56,13 @@ private slots:
         QVERIFY2(reason.contains("(0020,0037)"), qPrintable(reason));
     }
 
+    void delimiterWithALengthIsRefusedBeforeGdcmAllocatesIt() {
+        // An RLE file whose pixel data's sequence delimiter declares 0xBD000000 bytes.
+        const QString reason = skipReason(regressionInput("delimiter-with-a-length.dcm"));
+        QVERIFY2(reason.contains("corrupt DICOM file"), qPrintable(reason));
+        QVERIFY2(reason.contains("sequence delimiter with a length of 3170893824 (must be 0)"),
+                 qPrintable(reason));
+    }
     void elementInsideAnItemIsWalkedToo() {
         const QString reason = skipReason(regressionInput("nested-element-huge-length.dcm"));
         QVERIFY2(reason.contains("corrupt DICOM file"), qPrintable(reason));
