@@ -11,7 +11,8 @@
 #   --ignore-leaks: no leak check (to go on past a known third-party leak); the
 #   table says so
 #
-# Seeds: fuzz/corpus/<name>/ (committed, small and synthetic), plus at run time
+# Seeds: fuzz/corpus/<name>/ (committed, small and synthetic; the DICOM ones are made
+# by fuzz/seeds/make_seeds.py into build-fuzz/fuzz-seeds/dicom), plus at run time
 # the real DICOM of ../shared/data and the presets of resources/presets; what
 # the fuzzer finds goes to build-fuzz/fuzz-corpus/<name>/ and is reused next
 # time. A crashing input is saved under build-fuzz/fuzz-artifacts/<name>/, the
@@ -81,6 +82,10 @@ if [ "$report_only" -eq 0 ]; then
   run_one() {
     local name="$1" corpus="$build/fuzz-corpus/${1#fuzz_}" artifacts="$build/fuzz-artifacts/$1/"
     local log="$build/fuzz-logs/$1.log" seeds="$root/fuzz/corpus/${1#fuzz_}"
+    if [ "$name" = fuzz_dicom ]; then # DICOM seeds are made, never committed
+      python3 "$root/fuzz/seeds/make_seeds.py" --out "$build/fuzz-seeds" dicom
+      seeds="$build/fuzz-seeds/dicom"
+    fi
     mkdir -p "$corpus" "$artifacts" "$(dirname "$log")"
     rm -f "$log.status"
     local args=(-max_len="$(max_len "$name")" -rss_limit_mb=2048 -timeout=20 -print_final_stats=1

@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Writes the committed seed corpora of the fuzz harnesses (fuzz/corpus/<harness>/)
+"""Writes the seed corpora of the fuzz harnesses (fuzz/corpus/<harness>/; the DICOM ones are
+not committed, see main)
 and the protocol dictionary (fuzz/dict/protocol.dict). Everything is made here:
 tiny synthetic images (no patient data), messages from docs/protocol.md. Compressed
 DICOM variants are made from the synthetic image with DCMTK's and GDCM's command
@@ -209,7 +210,7 @@ def dicom_seeds(out):
         "ct_jpeg_lossless.dcm": ["dcmcjpeg", "+el"],
         "ct_jpeg_sv1.dcm": ["dcmcjpeg", "+e1"],
         "ct_jpegls_lossless.dcm": ["dcmcjpls", "+el"],
-        "ct_jpegls_near.dcm": ["dcmcjpls", "+en", "+md", "2"],
+        "ct_jpegls_near.dcm": ["dcmcjpls", "+en", "+md", "2", "+un"],  # +un: the same UID every run
         "ct_deflated.dcm": ["dcmconv", "+td"],
         "ct_j2k.dcm": ["gdcmconv", "--j2k"],
     }
@@ -352,9 +353,18 @@ def main():
     makers = {"dicom": dicom_seeds, "protocol": protocol_seeds, "http_head": http_seeds,
               "upload_parts": upload_seeds, "metaimage": metaimage_seeds, "nifti": nifti_seeds,
               "inv3": inv3_seed}
+    # make_seeds.py [--out DIR] [NAME ...]: the DICOM seeds are not committed (the
+    # repository holds no DICOM files); fuzz.sh and the regression tests make them.
+    args = sys.argv[1:]
+    root = CORPUS
+    if args[:1] == ["--out"]:
+        root = pathlib.Path(args[1])
+        args = args[2:]
     (FUZZ / "dict").mkdir(exist_ok=True)
     for name, make in makers.items():
-        out = CORPUS / name
+        if args and name not in args:
+            continue
+        out = root / name
         shutil.rmtree(out, ignore_errors=True)
         out.mkdir(parents=True)
         make(out)

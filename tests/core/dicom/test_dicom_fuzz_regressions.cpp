@@ -15,7 +15,7 @@ using namespace lucent;
 namespace {
 
 fs::path regressionInput(const char* name) {
-    return fs::path(LUCENT_SOURCE_DIR) / "tests/core/dicom/fuzz-regressions" / name;
+    return fs::path(LUCENT_FUZZ_INPUTS_DIR) / name; // made by fuzz-regressions/make_inputs.py
 }
 
 // The reason the scan gives for skipping the file; it must yield no series.
