@@ -15,7 +15,7 @@
 
 #include <filesystem>
 
-#include "core/image/ImageMetrics.h"
+#include "tests/support/BaselineImage.h"
 #include "tests/support/OffscreenPlatform.h"
 #include "ui/app/MainWindow.h"
 #include "ui/study/StudyBrowser.h"
@@ -27,21 +27,8 @@ namespace {
 
 const std::filesystem::path kStudy =
     std::filesystem::path(LUCENT_TEST_DATA_DIR) / "dcm_qa_ct/Philips_S21570/S2010";
-const QString kBaseline =
-    QStringLiteral(LUCENT_SOURCE_DIR "/tests/ui/app/baselines/main_window_philips_s2010.png");
 constexpr double kMinPsnr = 30.0; // dB
 constexpr double kMinSsim = 0.95;
-
-ImageRGBA8 toRgba(const QImage& image) {
-    const QImage rgba = image.convertToFormat(QImage::Format_RGBA8888);
-    ImageRGBA8 out = ImageRGBA8::filled(rgba.width(), rgba.height(), 0);
-    for (int y = 0; y < rgba.height(); ++y) {
-        const uchar* row = rgba.constScanLine(y);
-        std::copy(row, row + std::size_t(rgba.width()) * 4,
-                  out.pixels.begin() + std::ptrdiff_t(out.offset(0, y)));
-    }
-    return out;
-}
 
 } // namespace
 
@@ -96,36 +83,12 @@ private slots:
             actual = again;
         }
 
-        if (qEnvironmentVariableIsSet("LUCENT_UPDATE_BASELINES")) {
-            QDir().mkpath(QFileInfo(kBaseline).path());
-            QVERIFY(actual.save(kBaseline));
-            QSKIP(qPrintable("baseline written: " + kBaseline));
+        const test::BaselineResult r =
+            test::compareWithBaseline(actual, "main_window_philips_s2010", kMinPsnr, kMinSsim);
+        if (r.written) {
+            QSKIP("baseline written: main_window_philips_s2010");
         }
-        const QImage baseline(kBaseline);
-        QVERIFY2(!baseline.isNull(), qPrintable("no baseline " + kBaseline));
-        const QString saved = QStringLiteral(LUCENT_BIN_DIR "/main_window_actual.png");
-        if (actual.size() != baseline.size()) {
-            actual.save(saved);
-            QFAIL(qPrintable(QString("window %1x%2, baseline %3x%4; actual saved as %5")
-                                 .arg(actual.width())
-                                 .arg(actual.height())
-                                 .arg(baseline.width())
-                                 .arg(baseline.height())
-                                 .arg(saved)));
-        }
-        const ImageRGBA8 a = toRgba(actual), b = toRgba(baseline);
-        const double p = psnr(a, b), s = ssim(a, b);
-        qInfo("main window against the baseline: PSNR %.2f dB, SSIM %.4f", p, s);
-        if (p < kMinPsnr || s < kMinSsim) {
-            actual.save(saved);
-            QFAIL(qPrintable(QString("PSNR %1 dB (at least %2), SSIM %3 (at least %4); actual "
-                                     "saved as %5")
-                                 .arg(p)
-                                 .arg(kMinPsnr)
-                                 .arg(s)
-                                 .arg(kMinSsim)
-                                 .arg(saved)));
-        }
+        QVERIFY2(r.failure.isEmpty(), qPrintable("main window: " + r.failure));
     }
 };
 

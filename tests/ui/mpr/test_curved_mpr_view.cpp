@@ -15,8 +15,8 @@
 #include <filesystem>
 #include <numbers>
 
-#include "core/image/ImageMetrics.h"
 #include "core/io/Catalog.h"
+#include "tests/support/BaselineImage.h"
 #include "tests/support/OffscreenPlatform.h"
 #include "ui/mpr/CurvedMprView.h"
 #include "ui/mpr/MprCursor.h"
@@ -28,20 +28,8 @@ namespace fs = std::filesystem;
 namespace {
 
 const fs::path kSeries = fs::path(LUCENT_TEST_DATA_DIR) / "dcm_qa_ct/Philips_S21570/S2010";
-const QString kBaseline =
-    QStringLiteral(LUCENT_SOURCE_DIR "/tests/ui/mpr/baselines/curved_mpr_philips_s2010.png");
 constexpr double kMinPsnr = 40.0; // dB: the same arithmetic, only rounding may differ
-
-ImageRGBA8 toRgba(const QImage& image) {
-    const QImage rgba = image.convertToFormat(QImage::Format_RGBA8888);
-    ImageRGBA8 out = ImageRGBA8::filled(rgba.width(), rgba.height(), 0);
-    for (int y = 0; y < rgba.height(); ++y) {
-        const uchar* row = rgba.constScanLine(y);
-        std::copy(row, row + std::size_t(rgba.width()) * 4,
-                  out.pixels.begin() + std::ptrdiff_t(out.offset(0, y)));
-    }
-    return out;
-}
+constexpr double kMinSsim = 0.99;
 
 } // namespace
 
@@ -117,29 +105,12 @@ private slots:
         // Rows at true length along the path, one per pixel of the finest spacing.
         const double pixel = view.reformation().pixelSize;
         QCOMPARE(actual.height(), int(std::floor(view.centerline().length() / pixel)) + 1);
-        if (qEnvironmentVariableIsSet("LUCENT_UPDATE_BASELINES")) {
-            QVERIFY(actual.save(kBaseline));
-            QSKIP(qPrintable("baseline written: " + kBaseline));
+        const test::BaselineResult r =
+            test::compareWithBaseline(actual, "curved_mpr_philips_s2010", kMinPsnr, kMinSsim);
+        if (r.written) {
+            QSKIP("baseline written: curved_mpr_philips_s2010");
         }
-        const QImage baseline(kBaseline);
-        QVERIFY2(!baseline.isNull(), qPrintable("no baseline " + kBaseline));
-        const QString saved = QStringLiteral(LUCENT_BIN_DIR "/curved_mpr_actual.png");
-        if (actual.size() != baseline.size()) {
-            actual.save(saved);
-            QFAIL(qPrintable(QString("reformation %1x%2, baseline %3x%4; actual saved as %5")
-                                 .arg(actual.width())
-                                 .arg(actual.height())
-                                 .arg(baseline.width())
-                                 .arg(baseline.height())
-                                 .arg(saved)));
-        }
-        const double p = psnr(toRgba(actual), toRgba(baseline));
-        qInfo("curved MPR against the baseline: PSNR %.2f dB", p);
-        if (p < kMinPsnr) {
-            actual.save(saved);
-            QFAIL(qPrintable(
-                QString("PSNR %1 dB < %2; actual saved as %3").arg(p).arg(kMinPsnr).arg(saved)));
-        }
+        QVERIFY2(r.failure.isEmpty(), qPrintable("curved MPR: " + r.failure));
     }
 
     void movingAlongThePathMovesCrossSectionAndCrosshair() {
