@@ -8,6 +8,7 @@
 #include <random>
 
 #include "core/io/Catalog.h"
+#include "tests/support/RealData.h"
 #include "tests/support/ReferenceDicom.h"
 #include "tests/support/RtDoseFromImage.h"
 #include "tests/support/SyntheticDicom.h"
@@ -17,12 +18,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kData = LUCENT_TEST_DATA_DIR;
-
-#define REQUIRE_DATA(sub)                                                                          \
-    if (!fs::exists(kData / (sub)))                                                                \
-    QSKIP(qPrintable(QString("real test data not found: %1 (see ../shared/data/README.md)")        \
-                         .arg(QString::fromStdString((kData / (sub)).string()))))
+const fs::path kData = test::kRealData;
 
 std::vector<const SeriesEntry*> entriesOfKind(const Catalog& c, SeriesKind kind) {
     std::vector<const SeriesEntry*> out;

@@ -23,18 +23,14 @@
 #include "core/exchange/DicomExport.h"
 #include "core/io/Catalog.h"
 #include "tests/support/CliRunner.h"
+#include "tests/support/RealData.h"
 
 using namespace lucent;
 namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kData = LUCENT_TEST_DATA_DIR;
-
-#define REQUIRE_DATA(sub)                                                                          \
-    if (!fs::exists(kData / (sub)))                                                                \
-    QSKIP(qPrintable(QString("real test data not found: %1 (see ../shared/data/README.md)")        \
-                         .arg(QString::fromStdString((kData / (sub)).string()))))
+const fs::path kData = test::kRealData;
 
 // Text attributes that identify a person, place or study besides every PN,
 // DA, DT and non-standard UI value.

@@ -17,18 +17,14 @@
 #include "core/pacs/InstanceSender.h"
 #include "tests/support/CliRunner.h"
 #include "tests/support/OrthancServer.h"
+#include "tests/support/RealData.h"
 
 using namespace lucent;
 namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kData = LUCENT_TEST_DATA_DIR;
-
-#define REQUIRE_DATA(sub)                                                                          \
-    if (!fs::exists(kData / (sub)))                                                                \
-    QSKIP(qPrintable(QString("real test data not found: %1 (see ../shared/data/README.md)")        \
-                         .arg(QString::fromStdString((kData / (sub)).string()))))
+const fs::path kData = test::kRealData;
 
 // The data set of a file (every element but the file meta group, which each
 // writer makes for itself), written in its own transfer syntax with explicit
