@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "tests/support/OffscreenPlatform.h"
+#include "tests/ui/volume/BallVolume.h"
 #include "ui/volume/VolumeView.h"
 
 using namespace lucent;
@@ -28,32 +29,10 @@ OrientationCube cubeFor(double azimuth, double elevation) {
     return orientationCube(makeViewFrame(g, camera, kSize, kSize), QSizeF(kSize, kSize));
 }
 
-// A ball of 1000 centred on voxel (24, 16, 16) of a 32^3 volume: on the patient's
+// A ball centred on voxel (24, 16, 16) of a 32^3 volume: on the patient's
 // left (+x) of the volume's centre.
 std::shared_ptr<const Volume> makeBallOnTheLeft() {
-    VolumeGeometry g;
-    g.dims = {32, 32, 32};
-    auto volume = std::make_shared<Volume>(g, VoxelType::Int16);
-    auto voxels = volume->voxels<std::int16_t>();
-    for (int k = 0; k < 32; ++k) {
-        for (int j = 0; j < 32; ++j) {
-            for (int i = 0; i < 32; ++i) {
-                const double r = glm::length(glm::dvec3(i, j, k) - glm::dvec3(24, 16, 16));
-                voxels[volume->linearIndex(i, j, k)] = r < 6.0 ? 1000 : 0;
-            }
-        }
-    }
-    volume->modality = "CT";
-    return volume;
-}
-
-TransferFunction whiteBall() {
-    TransferFunction tf;
-    tf.name = "ball";
-    tf.opacity = {{0.0, 0.0}, {400.0, 0.0}, {600.0, 1.0}};
-    tf.colour = {{0.0, {1.0, 1.0, 1.0}}};
-    tf.shading.enabled = false;
-    return tf;
+    return test::makeBall({24.0, 16.0, 16.0}, 5.0);
 }
 
 double brightCentreX(const ImageRGBA8& f) {
@@ -153,7 +132,7 @@ private slots:
         view.show();
         QVERIFY(QTest::qWaitForWindowExposed(&view));
         view.setVolume(makeBallOnTheLeft());
-        view.setTransferFunction(whiteBall());
+        view.setTransferFunction(test::whiteBall());
         Camera camera = view.camera();
         camera.azimuth = azimuth;
         QSignalSpy frames(&view, &VolumeView::renderedFrame);
@@ -175,7 +154,7 @@ private slots:
         view.show();
         QVERIFY(QTest::qWaitForWindowExposed(&view));
         view.setVolume(makeBallOnTheLeft());
-        view.setTransferFunction(whiteBall());
+        view.setTransferFunction(test::whiteBall());
         QTRY_VERIFY_WITH_TIMEOUT(!view.lastFrame().empty() && view.lastFrameCurrent(), 30000);
         QVERIFY(view.orientationMarkerShown());
         const QRect corner = view.orientationMarker().area.toAlignedRect();

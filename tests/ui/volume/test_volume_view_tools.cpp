@@ -26,15 +26,6 @@ namespace {
 
 constexpr int kSize = 160;
 
-TransferFunction opaqueBall() {
-    TransferFunction tf;
-    tf.name = "ball";
-    tf.opacity = {{0.0, 0.0}, {400.0, 0.0}, {600.0, 1.0}};
-    tf.colour = {{0.0, {1.0, 1.0, 1.0}}};
-    tf.shading.enabled = false;
-    return tf;
-}
-
 // Centre of mass of the frame's brightness (a white ball on black), in pixels.
 QPointF brightCentre(const ImageRGBA8& f) {
     double sum = 0.0, x = 0.0, y = 0.0;
@@ -97,7 +88,7 @@ private slots:
         view_->show();
         QVERIFY(QTest::qWaitForWindowExposed(view_.get()));
         view_->setVolume(makeBall());
-        view_->setTransferFunction(opaqueBall());
+        view_->setTransferFunction(test::whiteBall());
         settledFrame();
     }
     void cleanup() { view_.reset(); }
