@@ -98,7 +98,10 @@ CurvedMprView::CurvedMprView(MprCursor* cursor, QWidget* parent)
     connect(rotation_, &QSpinBox::valueChanged, this, [this] { rebuild(); });
     connect(slab_, &QDoubleSpinBox::valueChanged, this, [this] { rebuild(); });
     connect(slabMode_, &QComboBox::currentIndexChanged, this, [this] { rebuild(); });
-    connect(cursor_, &MprCursor::windowChanged, this, [this] { setArc(arc_); });
+    connect(cursor_, &MprCursor::windowChanged, this, [this] {
+        grey_ = reformationImage();
+        setArc(arc_);
+    });
 }
 
 CurvedMprView::~CurvedMprView() = default;
@@ -153,6 +156,7 @@ void CurvedMprView::rebuild() {
         kind_->setCurrentIndex(0);
         return;
     }
+    grey_ = reformationImage(); // once per reformation and window, not per mouse move
     setArc(arc_);
 }
 
@@ -171,7 +175,7 @@ void CurvedMprView::setArc(double s) {
     const auto at = std::lower_bound(arcs.begin(), arcs.end(), arc_);
     const int row =
         arcs.empty() ? -1 : int(std::min(at - arcs.begin(), std::ptrdiff_t(arcs.size() - 1)));
-    curved_->show(reformationImage(), reformation_.pixelSize, row);
+    curved_->show(grey_, reformation_.pixelSize, row);
     across_->show(crossSectionImage(), pixelSize_, -1);
 }
 

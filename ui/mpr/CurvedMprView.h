@@ -59,6 +59,7 @@ private:
     Centerline centerline_;
     glm::dvec3 up_{0.0, 0.0, 1.0};
     CurvedImage reformation_;
+    QImage grey_; // reformation_ in the window
     std::vector<float> crossSection_;
     int crossSize_ = 160;
     double arc_ = 0.0;
