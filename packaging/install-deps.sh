@@ -30,6 +30,10 @@ packages=(
   # systemd-analyze for the unit, mmdebstrap and curl for packaging/try-packages.sh
   dpkg-dev lintian systemd mmdebstrap curl
   clang libfuzzer-14-dev libomp-14-dev  # fuzzing: LUCENT_FUZZ=ON, packaging/fuzz.sh (OpenMP for clang)
+  # reading tools: dciodvfy checks the measurement SR files
+  dicom3tools
+  # teaching: QR codes for invite links; movies through FFmpeg's libraries (ffprobe checks them)
+  libqrencode-dev libavcodec-dev libavformat-dev libavutil-dev libswscale-dev ffmpeg
 )
 
 missing=()
