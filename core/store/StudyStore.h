@@ -82,6 +82,18 @@ public:
     bool add(const std::filesystem::path& completeFile, const InstanceRecord& record);
     // Removes an instance's file and row (no-op when absent).
     void remove(const std::string& sopInstanceUid);
+    // Stores `completeFile` as add() does and, in the same index transaction, drops
+    // the rows of `replaced` (instances of any series); their files are removed only
+    // after the commit, so the index never names a missing or half-written file and
+    // readers see either the old instances or the new one. Throws StoreError.
+    void replace(const std::vector<std::string>& replaced,
+                 const std::filesystem::path& completeFile, const InstanceRecord& record);
+
+    // The files of a series' instances (absolute paths), by SOP Instance UID.
+    std::vector<std::pair<std::string, std::filesystem::path>>
+    instanceFiles(const std::string& seriesUid) const;
+    // The study of an indexed series, or "" when the index does not know it.
+    std::string studyOf(const std::string& seriesUid) const;
 
     void setExpected(const SeriesInfo& series, int seriesNumber, int instances);
     // The same with the study and patient facts of `series` (its SOP UID is unused).

@@ -1,0 +1,223 @@
+// Measurements as a DICOM SR (TID 1500) on real CT: every kind, on an acquired
+// slice (SCOORD) and an oblique plane (SCOORD3D), written and read back equal;
+// the file checked by dciodvfy; a foreign SR read read-only with what it could
+// not show listed; broken files named in the error.
+#include <QProcess>
+#include <QTemporaryDir>
+#include <QTest>
+
+#include <fstream>
+
+#include <dcmtk/config/osconfig.h>
+#include <dcmtk/dcmdata/dcdeftag.h>
+#include <dcmtk/dcmdata/dcfilefo.h>
+#include <dcmtk/dcmdata/dcuid.h>
+#include <dcmtk/dcmsr/cmr/tid1500.h>
+#include <dcmtk/dcmsr/codes/dcm.h>
+#include <dcmtk/dcmsr/dsrdoc.h>
+
+#include "core/report/MeasurementReport.h"
+#include "tests/core/report/MeasuredSeries.h"
+
+using namespace lucent;
+namespace fs = std::filesystem;
+
+namespace {
+
+// The items of the SR's content tree with this value type.
+int countItems(const fs::path& file, DSRTypes::E_ValueType type) {
+    DcmFileFormat f;
+    DSRDocument doc;
+    if (f.loadFile(file.c_str()).bad() || doc.read(*f.getDataset()).bad()) {
+        return -1;
+    }
+    int n = 0;
+    DSRDocumentTree& tree = doc.getTree();
+    for (size_t node = tree.gotoRoot(); node != 0; node = tree.iterate()) {
+        n += tree.getCurrentContentItem().getValueType() == type ? 1 : 0;
+    }
+    return n;
+}
+
+// dciodvfy's error lines ("Error - ..."), or a line saying it could not run.
+QStringList dciodvfyErrors(const fs::path& file) {
+    QProcess p;
+    p.setProcessChannelMode(QProcess::MergedChannels);
+    p.start("dciodvfy", {QString::fromStdString(file.string())});
+    if (!p.waitForStarted(10000)) {
+        return {"dciodvfy did not start: install dicom3tools (packaging/install-deps.sh)"};
+    }
+    p.waitForFinished(60000);
+    QStringList errors;
+    for (const QString& line : QString::fromUtf8(p.readAll()).split('\n')) {
+        if (line.startsWith("Error")) {
+            errors << line;
+        }
+    }
+    return errors;
+}
+
+} // namespace
+
+class TestMeasurementReport : public QObject {
+    Q_OBJECT
+    QTemporaryDir dir_;
+    Volume volume_;
+    ReferencedSeries series_;
+
+    void roundTrip(const std::vector<Measurement>& written, bool acquired) {
+        const fs::path file =
+            fs::path(dir_.path().toStdString()) / (acquired ? "acq.dcm" : "obl.dcm");
+        const WrittenReport w = writeMeasurementReport(file, series_, written);
+        QCOMPARE(w.studyUid, series_.studyUid);
+        QVERIFY(!w.sopInstanceUid.empty());
+        const ReadReport r = readMeasurementReport(file, &series_);
+        QVERIFY(r.writtenByLucent);
+        QCOMPARE(r.sopInstanceUid, w.sopInstanceUid);
+        QCOMPARE(r.referencedSeries, std::vector<std::string>{series_.seriesUid});
+        QVERIFY2(r.notShown.empty(), r.notShown.empty() ? "" : r.notShown.front().c_str());
+        test::compareMeasurements(r.measurements, written);
+        // 7 regions (the bidirectional has two): 2D on the acquired slice, 3D on the oblique one.
+        QCOMPARE(countItems(file, DSRTypes::VT_SCoord), acquired ? 7 : 0);
+        QCOMPARE(countItems(file, DSRTypes::VT_SCoord3D), acquired ? 0 : 7);
+        const QStringList errors = dciodvfyErrors(file);
+        QVERIFY2(errors.isEmpty(), qPrintable(errors.join('\n')));
+    }
+
+private slots:
+    void initTestCase() {
+        REQUIRE_DATA("dcm_qa_ct/Philips_S21570/S2010");
+        volume_ = loadPath(test::kMeasuredSeriesDir);
+        series_ = readReferencedSeries(test::seriesFiles());
+        QCOMPARE(series_.images.size(), std::size_t(28));
+        QVERIFY(!series_.frameOfReferenceUid.empty());
+    }
+
+    void acquiredSliceRoundTrip() {
+        const SlicePlane plane = test::acquiredPlane(series_, 11);
+        const std::vector<Measurement> m = test::everyKind(volume_, plane, "acquired");
+        QVERIFY(m.back().statistics.samples > 100);
+        QVERIFY(series_.acquiredImageOf(m.front()) == &series_.images[11]);
+        roundTrip(m, true);
+    }
+
+    void obliquePlaneRoundTrip() {
+        const std::vector<Measurement> m =
+            test::everyKind(volume_, test::obliquePlane(volume_), "oblique");
+        QVERIFY(series_.acquiredImageOf(m.front()) == nullptr);
+        QVERIFY(m.back().statistics.samples > 100);
+        roundTrip(m, false);
+    }
+
+    void readOnlyAndIncompleteAreLeftOut() {
+        std::vector<Measurement> m = test::everyKind(volume_, test::acquiredPlane(series_, 3), "x");
+        m[0].readOnly = true;
+        m[1].points.pop_back();
+        const fs::path file = fs::path(dir_.path().toStdString()) / "partial.dcm";
+        writeMeasurementReport(file, series_, m);
+        const ReadReport r = readMeasurementReport(file, &series_);
+        QCOMPARE(r.measurements.size(), m.size() - 2);
+    }
+
+    // An SR another program wrote with DCMTK's TID 1500 classes: a length on an
+    // image, a volume Lucent has no kind for, and a finding code.
+    void foreignReportIsReadOnly() {
+        const ReferencedImage& image = series_.images[5];
+        TID1500_MeasurementReport report(CMR_CID7021::ImagingMeasurementReport);
+        QVERIFY(report.setLanguage(CID5000_Languages::English).good());
+        QVERIFY(report.getObservationContext().addPersonObserver("Other^Reader").good());
+        QVERIFY(report.addProcedureReported(CMR_CID100::ImagingProcedure).good());
+        QVERIFY(report.addIndividualMeasurements().good());
+        auto& group = report.getIndividualMeasurements();
+        char uid[100];
+        QVERIFY(group.setTrackingIdentifier("Nodule A").good());
+        QVERIFY(group.setTrackingUniqueIdentifier(dcmGenerateUniqueIdentifier(uid)).good());
+        QVERIFY(group.setFinding(DSRBasicCodedEntry("M-03010", "SRT", "Nodule")).good());
+        using Value = CMR_TID1501_in_TID1500::MeasurementValue;
+        QVERIFY(group.addMeasurement(CMR_CID7469::Length, Value("31.5", CMR_CID7181::Millimeter))
+                    .good());
+        DSRSpatialCoordinatesValue line(DSRTypes::GT_Polyline);
+        line.getGraphicDataList().addItem(100.5f, 200.25f);
+        line.getGraphicDataList().addItem(140.0f, 180.75f);
+        QVERIFY(group.getMeasurement()
+                    .addSpatialCoordinates(
+                        CODE_DCM_ImageRegion, line,
+                        DSRImageReferenceValue(image.sopClassUid, image.sopInstanceUid))
+                    .good());
+        QVERIFY(
+            group.addMeasurement(CMR_CID7469::Volume, Value("2.5", CMR_CID7181::CubicCentimeter))
+                .good());
+        DSRDocument doc(DSRTypes::DT_Comprehensive3DSR);
+        QVERIFY(doc.setTreeFromRootTemplate(report).good());
+        QVERIFY(doc.setManufacturer("Other Vendor").good());
+        QVERIFY(doc.getCurrentRequestedProcedureEvidence()
+                    .addItem(series_.studyUid.c_str(), series_.seriesUid.c_str(),
+                             image.sopClassUid.c_str(), image.sopInstanceUid.c_str())
+                    .good());
+        DcmFileFormat out;
+        QVERIFY(doc.write(*out.getDataset()).good());
+        const fs::path file = fs::path(dir_.path().toStdString()) / "foreign.dcm";
+        QVERIFY(out.saveFile(file.c_str(), EXS_LittleEndianExplicit).good());
+
+        const ReadReport r = readMeasurementReport(file, &series_);
+        QVERIFY(!r.writtenByLucent);
+        QCOMPARE(r.measurements.size(), std::size_t(1));
+        const Measurement& m = r.measurements.front();
+        QVERIFY(m.readOnly);
+        QVERIFY(m.kind == MeasurementKind::Distance);
+        QCOMPARE(m.label, std::string("Nodule A"));
+        QVERIFY(glm::distance(m.points[0], image.patientPoint({100.5, 200.25})) < 1e-9);
+        // (column, row) from the top-left corner of the top-left pixel.
+        const glm::dvec3 expected = image.position +
+                                    (140.0 - 0.5) * image.spacing.x * image.rowDir +
+                                    (180.75 - 0.5) * image.spacing.y * image.colDir;
+        QVERIFY(glm::distance(m.points[1], expected) < 1e-9);
+        QVERIFY(std::abs(glm::dot(m.points[0] - image.position, image.normal())) < 1e-9);
+        QString notShown = QString::fromStdString(r.notShown.empty() ? "" : r.notShown[0]);
+        for (std::size_t i = 1; i < r.notShown.size(); ++i) {
+            notShown += "\n" + QString::fromStdString(r.notShown[i]);
+        }
+        QVERIFY2(notShown.contains("Nodule A: Volume 2.5 cm3"), qPrintable(notShown));
+        QVERIFY2(notShown.contains("Nodule A: Finding = Nodule"), qPrintable(notShown));
+    }
+
+    void brokenFilesAreNamed() {
+        const fs::path text = fs::path(dir_.path().toStdString()) / "notes.txt";
+        std::ofstream(text) << "not DICOM";
+        try {
+            readMeasurementReport(text);
+            QFAIL("read a text file as an SR");
+        } catch (const ReportError& e) {
+            QVERIFY2(QString(e.what()).contains("notes.txt") &&
+                         QString(e.what()).contains("not a DICOM"),
+                     e.what());
+        }
+        const fs::path image = series_.images.front().file;
+        try {
+            readMeasurementReport(image);
+            QFAIL("read a CT image as an SR");
+        } catch (const ReportError& e) {
+            QVERIFY2(QString(e.what()).contains(QString::fromStdString(image.string())) &&
+                         QString(e.what()).contains("not a structured report"),
+                     e.what());
+        }
+        // An SR cut short: the first 3 KiB of a written one.
+        const fs::path whole = fs::path(dir_.path().toStdString()) / "whole.dcm";
+        writeMeasurementReport(whole, series_,
+                               test::everyKind(volume_, test::acquiredPlane(series_, 2), "c"));
+        std::ifstream in(whole, std::ios::binary);
+        std::string bytes(3072, '\0');
+        in.read(bytes.data(), 3072);
+        const fs::path cut = fs::path(dir_.path().toStdString()) / "cut.dcm";
+        std::ofstream(cut, std::ios::binary) << bytes;
+        try {
+            readMeasurementReport(cut);
+            QFAIL("read a truncated SR");
+        } catch (const ReportError& e) {
+            QVERIFY2(QString(e.what()).contains("cut.dcm"), e.what());
+        }
+    }
+};
+
+QTEST_GUILESS_MAIN(TestMeasurementReport)
+#include "test_measurement_report.moc"
