@@ -11,12 +11,10 @@
 #include <dcmtk/config/osconfig.h>
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcfilefo.h>
-#include <dcmtk/dcmdata/dcuid.h>
-#include <dcmtk/dcmsr/cmr/tid1500.h>
-#include <dcmtk/dcmsr/codes/dcm.h>
 #include <dcmtk/dcmsr/dsrdoc.h>
 
 #include "core/report/MeasurementReport.h"
+#include "tests/core/report/ForeignReport.h"
 #include "tests/core/report/MeasuredSeries.h"
 
 using namespace lucent;
@@ -123,41 +121,8 @@ private slots:
     // image, a volume Lucent has no kind for, and a finding code.
     void foreignReportIsReadOnly() {
         const ReferencedImage& image = series_.images[5];
-        TID1500_MeasurementReport report(CMR_CID7021::ImagingMeasurementReport);
-        QVERIFY(report.setLanguage(CID5000_Languages::English).good());
-        QVERIFY(report.getObservationContext().addPersonObserver("Other^Reader").good());
-        QVERIFY(report.addProcedureReported(CMR_CID100::ImagingProcedure).good());
-        QVERIFY(report.addIndividualMeasurements().good());
-        auto& group = report.getIndividualMeasurements();
-        char uid[100];
-        QVERIFY(group.setTrackingIdentifier("Nodule A").good());
-        QVERIFY(group.setTrackingUniqueIdentifier(dcmGenerateUniqueIdentifier(uid)).good());
-        QVERIFY(group.setFinding(DSRBasicCodedEntry("M-03010", "SRT", "Nodule")).good());
-        using Value = CMR_TID1501_in_TID1500::MeasurementValue;
-        QVERIFY(group.addMeasurement(CMR_CID7469::Length, Value("31.5", CMR_CID7181::Millimeter))
-                    .good());
-        DSRSpatialCoordinatesValue line(DSRTypes::GT_Polyline);
-        line.getGraphicDataList().addItem(100.5f, 200.25f);
-        line.getGraphicDataList().addItem(140.0f, 180.75f);
-        QVERIFY(group.getMeasurement()
-                    .addSpatialCoordinates(
-                        CODE_DCM_ImageRegion, line,
-                        DSRImageReferenceValue(image.sopClassUid, image.sopInstanceUid))
-                    .good());
-        QVERIFY(
-            group.addMeasurement(CMR_CID7469::Volume, Value("2.5", CMR_CID7181::CubicCentimeter))
-                .good());
-        DSRDocument doc(DSRTypes::DT_Comprehensive3DSR);
-        QVERIFY(doc.setTreeFromRootTemplate(report).good());
-        QVERIFY(doc.setManufacturer("Other Vendor").good());
-        QVERIFY(doc.getCurrentRequestedProcedureEvidence()
-                    .addItem(series_.studyUid.c_str(), series_.seriesUid.c_str(),
-                             image.sopClassUid.c_str(), image.sopInstanceUid.c_str())
-                    .good());
-        DcmFileFormat out;
-        QVERIFY(doc.write(*out.getDataset()).good());
         const fs::path file = fs::path(dir_.path().toStdString()) / "foreign.dcm";
-        QVERIFY(out.saveFile(file.c_str(), EXS_LittleEndianExplicit).good());
+        test::writeForeignReport(file, series_, image);
 
         const ReadReport r = readMeasurementReport(file, &series_);
         QVERIFY(!r.writtenByLucent);
