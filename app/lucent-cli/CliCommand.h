@@ -53,7 +53,8 @@ int runExport(const QStringList& args);   // DICOM to a folder or ZIP, de-identi
 int runBench(const QStringList& args);
 // bench lod PATH: PSNR against the GPU budget, per-brick levels and one level.
 int runLodBench(const QStringList& args);
-int runOptions(const QStringList& args); // the render options table
-int runSurface(const QStringList& args); // isosurface meshes and the method of spheres
+int runOptions(const QStringList& args);      // the render options table
+int runSurface(const QStringList& args);      // isosurface meshes and the method of spheres
+int runMeasurements(const QStringList& args); // a series' or an SR's measurements
 
 } // namespace lucent::cli

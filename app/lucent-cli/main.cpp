@@ -29,6 +29,8 @@ const char* kUsageText =
     "                                       C-STORE or STOW-RS of the instances under PATH\n"
     "  export PATH -o OUT|OUT.zip [--series UID] [--anonymize] [--dicomdir]\n"
     "                                       copy instances out, de-identified or not\n"
+    "  measurements (--series UID [--store DIR] | SR_FILE [--images DIR]) [--json]\n"
+    "                                       measurements saved as DICOM SR, and what is not shown\n"
     "Exit status: 0 ok, 2 usage, 3 nothing loadable or bad input, 4 PACS or network failure.\n";
 
 } // namespace
@@ -82,6 +84,9 @@ int main(int argc, char** argv) {
     }
     if (command == "surface") {
         return lucent::cli::runSurface(args);
+    }
+    if (command == "measurements") {
+        return lucent::cli::runMeasurements(args);
     }
     if (command == "compare") {
         return lucent::cli::runCompare(args);

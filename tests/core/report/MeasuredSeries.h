@@ -89,6 +89,17 @@ inline SlicePlane obliquePlane(const Volume& volume) {
     return plane;
 }
 
+// Every kind on the acquired slice `slice` (ids 1..6) and on the oblique plane (ids 101..106).
+inline std::vector<Measurement> onBothPlanes(const Volume& volume, const ReferencedSeries& series,
+                                             int slice) {
+    std::vector<Measurement> out = everyKind(volume, acquiredPlane(series, slice), "axial");
+    for (Measurement m : everyKind(volume, obliquePlane(volume), "oblique")) {
+        m.id += 100;
+        out.push_back(m);
+    }
+    return out;
+}
+
 inline bool near(double a, double b, double tolerance = 1e-6) {
     return (std::isnan(a) && std::isnan(b)) || std::abs(a - b) <= tolerance;
 }

@@ -9,28 +9,13 @@
 #include "core/report/MeasurementReport.h"
 #include "tests/core/report/ForeignReport.h"
 #include "tests/core/report/MeasuredSeries.h"
+#include "tests/core/report/StoredCopies.h"
+#include "tests/support/CliRunner.h"
 
 using namespace lucent;
 namespace fs = std::filesystem;
 
 namespace {
-
-InstanceRecord recordOf(const fs::path& file, const std::string& modality) {
-    const InstanceHeader h = readInstanceHeader(file);
-    InstanceRecord r;
-    r.series.seriesUid = h.seriesUid;
-    r.series.studyUid = h.studyUid;
-    r.series.modality = modality;
-    r.series.patientName = "Phantom";
-    r.sopInstanceUid = h.sopInstanceUid;
-    return r;
-}
-
-void storeCopy(StudyStore& store, const fs::path& file, const std::string& modality) {
-    const fs::path temp = store.temporaryFile();
-    fs::copy_file(file, temp);
-    QVERIFY(store.add(temp, recordOf(file, modality)));
-}
 
 // Every SR series of the store with its instance files; each file the index names exists.
 std::vector<std::pair<std::string, fs::path>> reportsIn(const StudyStore& store) {
@@ -60,17 +45,12 @@ private slots:
         QTemporaryDir dir;
         StudyStore store(dir.path().toStdString());
         for (const fs::path& file : test::seriesFiles()) {
-            storeCopy(store, file, "CT");
+            QVERIFY(test::storeCopy(store, file, "CT"));
         }
         const ReferencedSeries series = readReferencedSeries(test::seriesFiles());
         const std::string ct = series.seriesUid;
         const Volume volume = loadPath(test::kMeasuredSeriesDir);
-        std::vector<Measurement> measurements =
-            test::everyKind(volume, test::acquiredPlane(series, 20), "axial");
-        for (Measurement m : test::everyKind(volume, test::obliquePlane(volume), "oblique")) {
-            m.id += 100;
-            measurements.push_back(m);
-        }
+        std::vector<Measurement> measurements = test::onBothPlanes(volume, series, 20);
 
         MeasurementArchive archive(store);
         QVERIFY(archive.load(ct).measurements.empty());
@@ -103,7 +83,7 @@ private slots:
         const auto [foreignSop, foreignSeries] =
             test::writeForeignReport(foreignFile, series, series.images[4]);
         QVERIFY(!foreignSop.empty());
-        storeCopy(store, foreignFile, "SR");
+        QVERIFY(test::storeCopy(store, foreignFile, "SR"));
         loaded = fresh.load(ct);
         QCOMPARE(loaded.measurements.size(), measurements.size() + 1);
         QCOMPARE(loaded.reports.size(), std::size_t(2));
@@ -135,6 +115,39 @@ private slots:
         }
         QCOMPARE(reportsIn(store).size(), std::size_t(1));
         QVERIFY(third != second);
+    }
+
+    void commandLine() {
+        REQUIRE_DATA("dcm_qa_ct/Philips_S21570/S2010");
+        QTemporaryDir dir;
+        const QString storeDir = dir.path() + "/store";
+        const ReferencedSeries series = readReferencedSeries(test::seriesFiles());
+        const Volume volume = loadPath(test::kMeasuredSeriesDir);
+        fs::path srFile;
+        {
+            StudyStore store(storeDir.toStdString());
+            for (const fs::path& file : test::seriesFiles()) {
+                QVERIFY(test::storeCopy(store, file, "CT"));
+            }
+            MeasurementArchive archive(store);
+            archive.save(series.seriesUid,
+                         test::everyKind(volume, test::obliquePlane(volume), "o"));
+            srFile = reportsIn(store).at(0).second;
+        }
+        const QString uid = QString::fromStdString(series.seriesUid);
+        test::CliRun run = test::runCli({"measurements", "--series", uid, "--store", storeDir});
+        QVERIFY2(run.exitCode == 0, qPrintable(run.err));
+        QVERIFY2(run.out.contains("6 measurement(s)"), qPrintable(run.out));
+        QVERIFY2(run.out.contains("Cobb angle  o Cobb"), qPrintable(run.out));
+        run = test::runCli({"measurements", QString::fromStdString(srFile.string()), "--json"});
+        QVERIFY2(run.exitCode == 0, qPrintable(run.err));
+        QCOMPARE(run.out.count("\"read_only\": false"), 6);
+        const QString ct = QString::fromStdString(series.images[0].file.string());
+        run = test::runCli({"measurements", ct});
+        QCOMPARE(run.exitCode, 3);
+        QVERIFY2(run.err.contains(ct) && run.err.contains("not a structured report"),
+                 qPrintable(run.err));
+        QCOMPARE(test::runCli({"measurements"}).exitCode, 2);
     }
 };
 

@@ -10,6 +10,7 @@
 #include "core/report/MeasurementArchive.h"
 #include "core/report/MeasurementReport.h"
 #include "tests/core/report/MeasuredSeries.h"
+#include "tests/core/report/StoredCopies.h"
 #include "tests/support/OrthancServer.h"
 
 using namespace lucent;
@@ -28,24 +29,11 @@ private slots:
         QTemporaryDir here;
         StudyStore store(here.path().toStdString());
         for (const fs::path& file : test::seriesFiles()) {
-            const InstanceHeader h = readInstanceHeader(file);
-            InstanceRecord r;
-            r.series.seriesUid = h.seriesUid;
-            r.series.studyUid = h.studyUid;
-            r.series.modality = "CT";
-            r.sopInstanceUid = h.sopInstanceUid;
-            const fs::path temp = store.temporaryFile();
-            fs::copy_file(file, temp);
-            QVERIFY(store.add(temp, r));
+            QVERIFY(test::storeCopy(store, file, "CT"));
         }
         const ReferencedSeries series = readReferencedSeries(test::seriesFiles());
         const Volume volume = loadPath(test::kMeasuredSeriesDir);
-        std::vector<Measurement> measurements =
-            test::everyKind(volume, test::acquiredPlane(series, 7), "axial");
-        for (Measurement m : test::everyKind(volume, test::obliquePlane(volume), "oblique")) {
-            m.id += 100;
-            measurements.push_back(m);
-        }
+        std::vector<Measurement> measurements = test::onBothPlanes(volume, series, 7);
         MeasurementArchive archive(store);
         const std::string srSop = archive.save(series.seriesUid, measurements);
 
