@@ -268,12 +268,15 @@ void StudyStore::indexInstance(const fs::path& target, const InstanceRecord& r) 
 }
 
 void StudyStore::remove(const std::string& sop) {
-    QSqlQuery path = prepared(connection_, "SELECT path FROM instances WHERE sop_uid = ?");
+    QSqlQuery path =
+        prepared(connection_, "SELECT path, series_uid FROM instances WHERE sop_uid = ?");
     path.addBindValue(q(sop));
     run(path, root_);
+    std::string seriesUid;
     if (path.next()) {
         std::error_code ec;
         fs::remove(root_ / path.value(0).toString().toStdString(), ec);
+        seriesUid = path.value(1).toString().toStdString();
     }
     // Its read snapshot ends here: a DELETE on a stale snapshot would be
     // refused as "locked" however long it waited.
@@ -281,6 +284,14 @@ void StudyStore::remove(const std::string& sop) {
     QSqlQuery del = prepared(connection_, "DELETE FROM instances WHERE sop_uid = ?");
     del.addBindValue(q(sop));
     run(del, root_);
+    // A series no PACS listed (pushed, or Lucent's own SR) goes with its last
+    // instance; one a retrieval expects stays, incomplete, to be fetched again.
+    QSqlQuery empty =
+        prepared(connection_, "DELETE FROM series WHERE series_uid = ? AND expected = 0 AND NOT "
+                              "EXISTS (SELECT 1 FROM instances WHERE series_uid = ?)");
+    empty.addBindValue(q(seriesUid));
+    empty.addBindValue(q(seriesUid));
+    run(empty, root_);
 }
 
 void StudyStore::setExpected(const SeriesInfo& s, int seriesNumber, int instances) {

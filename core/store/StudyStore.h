@@ -80,7 +80,8 @@ public:
     // Moves the complete file into place and indexes it. Returns false (and
     // removes the file) when the instance is already stored.
     bool add(const std::filesystem::path& completeFile, const InstanceRecord& record);
-    // Removes an instance's file and row (no-op when absent).
+    // Removes an instance's file and row (no-op when absent), and the series' row
+    // with its last instance when no PACS listed the series (expected() is 0).
     void remove(const std::string& sopInstanceUid);
     // Stores `completeFile` as add() does and, in the same index transaction, drops
     // the rows of `replaced` (instances of any series); their files are removed only

@@ -102,6 +102,8 @@ private slots:
         reports = reportsIn(store);
         QCOMPARE(reports.size(), std::size_t(1));
         QCOMPARE(reports[0].first, foreignSop);
+        // Its emptied series leaves the study browser's list too.
+        QCOMPARE(store.listSeries().size(), std::size_t(2)); // the CT and the foreign SR
         loaded = archive.load(ct);
         QCOMPARE(loaded.measurements.size(), std::size_t(1));
         QVERIFY(loaded.measurements[0].readOnly);
