@@ -81,6 +81,8 @@ std::optional<ReportRegion> regionBelow(DSRDocumentTree& tree, const ReferencedS
             const ReferencedImage* image = series ? series->find(sop) : nullptr;
             if (image == nullptr) {
                 region->unplaced = "on image " + sop + ", not one of the series";
+            } else if (image->frames != 1) {
+                region->unplaced = "on a frame of the multi-frame image " + sop;
             } else {
                 region->imagePlane = image->plane();
                 for (size_t i = 1; i <= s.getGraphicDataList().getNumberOfItems(); ++i) {

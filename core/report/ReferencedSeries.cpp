@@ -37,6 +37,9 @@ const ReferencedImage* ReferencedSeries::acquiredImageOf(const Measurement& m,
     }
     const glm::dvec3 normal = m.plane.normal();
     for (const ReferencedImage& image : images) {
+        if (image.frames != 1) {
+            continue;
+        }
         const glm::dvec3 n = image.normal();
         if (glm::length(glm::cross(n, normal)) > 1e-4) {
             continue; // not parallel: an oblique plane (a thin axis-aligned one may still fit)
@@ -98,14 +101,19 @@ ReferencedSeries readReferencedSeries(const std::vector<fs::path>& files) {
         } else if (seriesUid != series.seriesUid) {
             continue;
         }
-        Sint32 frames = 1;
-        if (d.findAndGetSint32(DCM_NumberOfFrames, frames).good() && frames > 1) {
-            continue;
-        }
         ReferencedImage image;
         image.file = file;
         image.sopClassUid = text(d, DCM_SOPClassUID);
         image.sopInstanceUid = text(d, DCM_SOPInstanceUID);
+        Sint32 frames = 1;
+        if (d.findAndGetSint32(DCM_NumberOfFrames, frames).good() && frames > 1) {
+            if (image.sopInstanceUid.empty()) {
+                throw ReportError(file.string() + ": lacks its SOP Instance UID");
+            }
+            image.frames = frames;
+            series.images.push_back(std::move(image));
+            continue;
+        }
         double orientation[6] = {};
         double spacing[2] = {};
         Uint16 rows = 0, columns = 0;

@@ -14,7 +14,8 @@
 
 namespace lucent {
 
-// One single-frame image of the series.
+// One instance of the series: a single-frame image with its plane, or a multi-frame
+// object (frames > 1, its planes per frame not read: measurements on it go as 3D).
 struct ReferencedImage {
     std::filesystem::path file;
     std::string sopClassUid;
@@ -25,6 +26,7 @@ struct ReferencedImage {
     glm::dvec2 spacing{1.0};          // x: between columns, y: between rows (mm)
     int rows = 0;
     int columns = 0;
+    int frames = 1;
 
     glm::dvec3 normal() const { return glm::normalize(glm::cross(rowDir, colDir)); }
     // DICOM's image coordinates (column, row), (0,0) the top-left corner of the
@@ -57,8 +59,8 @@ public:
 };
 
 // Reads the headers (never the pixels) of a series' files. Files of other series
-// than the first file's, and multi-frame objects, are passed over. Throws
-// ReportError naming the file when one is not DICOM or lacks its plane.
+// than the first file's are passed over. Throws ReportError naming the file when
+// one is not DICOM, or is a single-frame image without its plane.
 ReferencedSeries readReferencedSeries(const std::vector<std::filesystem::path>& files);
 
 } // namespace lucent

@@ -107,6 +107,32 @@ private slots:
         roundTrip(m, false);
     }
 
+    // An Enhanced MR multi-frame object: no single-frame image to put a SCOORD on, so
+    // every region is 3D; the statistics have no unit.
+    void enhancedMultiFrameGoesIn3D() {
+        REQUIRE_DATA("dcm_qa_enh/Philips_IM_0027_fMAP.dcm");
+        const fs::path mr = test::kRealData / "dcm_qa_enh/Philips_IM_0027_fMAP.dcm";
+        const Volume volume = loadPath(mr);
+        const ReferencedSeries series = readReferencedSeries({mr});
+        QCOMPARE(series.images.size(), std::size_t(1));
+        QVERIFY(series.images[0].frames > 1);
+        const VolumeGeometry& g = volume.geometry();
+        SlicePlane plane = standardPlane(g, Orientation::Axial,
+                                         g.toPatient(0.5 * (glm::dvec3(g.dims) - 1.0)), 64, 64);
+        std::vector<Measurement> written = test::everyKind(volume, plane, "mr");
+        for (Measurement& m : written) {
+            m.unit = "";
+        }
+        const fs::path file = fs::path(dir_.path().toStdString()) / "mr.dcm";
+        writeMeasurementReport(file, series, written);
+        QCOMPARE(countItems(file, DSRTypes::VT_SCoord), 0);
+        QCOMPARE(countItems(file, DSRTypes::VT_SCoord3D), 7);
+        const ReadReport r = readMeasurementReport(file, &series);
+        test::compareMeasurements(r.measurements, written);
+        const QStringList errors = dciodvfyErrors(file);
+        QVERIFY2(errors.isEmpty(), qPrintable(errors.join('\n')));
+    }
+
     void readOnlyAndIncompleteAreLeftOut() {
         std::vector<Measurement> m = test::everyKind(volume_, test::acquiredPlane(series_, 3), "x");
         m[0].readOnly = true;
