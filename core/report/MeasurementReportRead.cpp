@@ -197,6 +197,7 @@ ReadReport readMeasurementReport(const fs::path& file, const ReferencedSeries* s
         throw ReportError(file.string() + ": not a structured report (SOP Class UID '" + sopClass +
                           "')");
     }
+    f.convertToUTF8(); // labels and texts as Lucent keeps them; unconvertible ones stay as they are
     DSRDocument doc;
     const OFCondition read = doc.read(dataset);
     if (read.bad()) {
