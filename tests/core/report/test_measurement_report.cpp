@@ -63,6 +63,40 @@ class TestMeasurementReport : public QObject {
     Volume volume_;
     ReferencedSeries series_;
 
+    // The SR as another viewer reads it: Lucent's exact geometry items and marker taken
+    // out, the measurements come from the standard SCOORD or SCOORD3D and NUM items alone,
+    // within 32-bit float precision, read-only, unlabelled ones under their kind's name.
+    void readAsForeign(const fs::path& lucentFile, std::vector<Measurement> written) {
+        DcmFileFormat f;
+        QVERIFY(f.loadFile(lucentFile.c_str()).good());
+        DSRDocument doc;
+        QVERIFY(doc.read(*f.getDataset()).good());
+        const DSRCodedEntryValue geometry("LUCENT-GEOMETRY", "99LUCENT",
+                                          "Lucent measurement geometry");
+        int removed = 0;
+        while (doc.getTree().gotoNamedNode(geometry) > 0) {
+            QVERIFY(doc.getTree().removeCurrentContentItem() > 0);
+            ++removed;
+        }
+        QCOMPARE(removed, static_cast<int>(written.size()));
+        QVERIFY(doc.setManufacturer("Other Viewer").good());
+        DcmFileFormat out;
+        QVERIFY(doc.write(*out.getDataset()).good());
+        const fs::path file =
+            lucentFile.parent_path() / ("foreign-" + lucentFile.filename().string());
+        QVERIFY(out.saveFile(file.c_str(), EXS_LittleEndianExplicit).good());
+        const ReadReport r = readMeasurementReport(file, &series_);
+        QVERIFY(!r.writtenByLucent);
+        QVERIFY2(r.notShown.empty(), r.notShown.empty() ? "" : r.notShown.front().c_str());
+        for (Measurement& m : written) {
+            m.label = m.label.empty() ? measurementKindName(m.kind) : m.label;
+        }
+        for (const Measurement& m : r.measurements) {
+            QVERIFY(m.readOnly);
+        }
+        test::compareMeasurements(r.measurements, written, 1e-3, false);
+    }
+
     void roundTrip(const std::vector<Measurement>& written, bool acquired) {
         const fs::path file =
             fs::path(dir_.path().toStdString()) / (acquired ? "acq.dcm" : "obl.dcm");
@@ -80,6 +114,7 @@ class TestMeasurementReport : public QObject {
         QCOMPARE(countItems(file, DSRTypes::VT_SCoord3D), acquired ? 0 : 7);
         const QStringList errors = dciodvfyErrors(file);
         QVERIFY2(errors.isEmpty(), qPrintable(errors.join('\n')));
+        readAsForeign(file, written);
     }
 
 private slots:
