@@ -204,9 +204,14 @@ ReadReport readMeasurementReport(const fs::path& file, const ReferencedSeries* s
         throw ReportError(file.string() + ": an SR that cannot be read (" + read.text() + ")");
     }
     DSRDocumentTree& tree = doc.getTree();
-    DSRCodedEntryValue title;
-    if (tree.gotoRoot() == 0 ||
-        tree.getCurrentContentItem().getConceptName().getCodeValue() != "126000") {
+    // TID 1500 by its template identification, or by the usual title where that is missing.
+    DcmItem* rootTemplate = nullptr;
+    const bool tid1500 =
+        (dataset.findAndGetSequenceItem(DCM_ContentTemplateSequence, rootTemplate, 0).good() &&
+         rootTemplate != nullptr && text(*rootTemplate, DCM_TemplateIdentifier) == "1500") ||
+        (tree.gotoRoot() != 0 &&
+         tree.getCurrentContentItem().getConceptName().getCodeValue() == "126000");
+    if (!tid1500 || tree.gotoRoot() == 0) {
         throw ReportError(file.string() +
                           ": an SR, but not a TID 1500 Measurement Report (its title is '" +
                           meaningOf(tree.getCurrentContentItem().getConceptName()) + "')");

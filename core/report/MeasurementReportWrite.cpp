@@ -5,8 +5,6 @@
 #include <set>
 #include <system_error>
 
-#include <unistd.h>
-
 #include <dcmtk/config/osconfig.h>
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcfilefo.h>
@@ -173,10 +171,11 @@ void addGroup(CMR_TID1500& report, const Measurement& m, const ReferencedSeries&
     addText(geometryCode(), encodeMeasurementGeometry(m));
 }
 
-// The SR of `format` written to `file` whole or not at all.
+// The SR of `format` written to `file` whole or not at all. The temporary name keeps
+// the target's as its start: a study store's temporary file names its writer's
+// process, and the store keeps such files while that process runs.
 void saveWhole(DcmFileFormat& format, const fs::path& file) {
-    const fs::path temp = file.parent_path() /
-                          ("." + file.filename().string() + ".part-" + std::to_string(::getpid()));
+    const fs::path temp = file.parent_path() / (file.filename().string() + ".part");
     const OFCondition c = format.saveFile(temp.c_str(), EXS_LittleEndianExplicit);
     std::error_code ec;
     if (c.bad()) {

@@ -168,7 +168,9 @@ InterpretedGroup interpretGroup(const ReportGroup& group, bool lucentWrote) {
         } else if (shortAxis) {
             out.notShown.push_back(name + ": " + describe(*shortAxis));
         }
-        m.plane = planeThrough(*shape->region);
+        ReportRegion all = *shape->region; // the plane through every point of the measurement
+        all.points = m.points;
+        m.plane = planeThrough(all);
         if (m.kind == MeasurementKind::Ellipse) {
             // Lucent's ellipse has its axes along the plane's u and v.
             m.plane.u = glm::normalize(m.points[1] - m.points[0]);

@@ -93,6 +93,9 @@ class TestMeasurementReport : public QObject {
         }
         for (const Measurement& m : r.measurements) {
             QVERIFY(m.readOnly);
+            // Drawn on a plane that holds it, for the views to show it on.
+            QVERIFY2(distanceFromPlane(m, m.plane) < 1e-3, measurementKindName(m.kind));
+            QVERIFY(std::abs(glm::dot(m.plane.u, m.plane.v)) < 1e-3);
         }
         test::compareMeasurements(r.measurements, written, 1e-3, false);
     }
@@ -227,6 +230,33 @@ private slots:
                          QString(e.what()).contains("not a structured report"),
                      e.what());
         }
+        // An SR, but a plain text report.
+        DSRDocument textReport(DSRTypes::DT_BasicTextSR);
+        QVERIFY(textReport.getTree().addContentItem(DSRTypes::RT_isRoot, DSRTypes::VT_Container) >
+                0);
+        QVERIFY(textReport.getTree()
+                    .getCurrentContentItem()
+                    .setConceptName(DSRCodedEntryValue("11528-7", "LN", "Radiology Report"))
+                    .good());
+        QVERIFY(textReport.getTree()
+                    .addChildContentItem(DSRTypes::RT_contains, DSRTypes::VT_Text,
+                                         DSRCodedEntryValue("121071", "DCM", "Finding"))
+                    .good());
+        QVERIFY(textReport.getTree().getCurrentContentItem().setStringValue("No findings.").good());
+        DcmFileFormat textFile;
+        QVERIFY(textReport.write(*textFile.getDataset()).good());
+        const fs::path report = fs::path(dir_.path().toStdString()) / "report.dcm";
+        QVERIFY(textFile.saveFile(report.c_str(), EXS_LittleEndianExplicit).good());
+        try {
+            readMeasurementReport(report);
+            QFAIL("read a text report as a measurement report");
+        } catch (const ReportError& e) {
+            QVERIFY2(QString(e.what()).contains("report.dcm") &&
+                         QString(e.what()).contains("not a TID 1500 Measurement Report") &&
+                         QString(e.what()).contains("Radiology Report"),
+                     e.what());
+        }
+
         // An SR cut short: the first 3 KiB of a written one.
         const fs::path whole = fs::path(dir_.path().toStdString()) / "whole.dcm";
         writeMeasurementReport(whole, series_,
