@@ -55,5 +55,6 @@ int runBench(const QStringList& args);
 int runLodBench(const QStringList& args);
 int runOptions(const QStringList& args); // the render options table
 int runSurface(const QStringList& args); // isosurface meshes and the method of spheres
+int runMovie(const QStringList& args);   // turntable or cine movies (MP4, WebM, GIF)
 
 } // namespace lucent::cli
