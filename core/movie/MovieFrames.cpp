@@ -100,7 +100,8 @@ ImageRGBA8 windowedSlice(const Volume& volume, const SlicePlane& plane, const Wi
 CineFrames::CineFrames(const Volume& volume, IndexAxis axis, int frames, const WindowLevel& window,
                        int width, int height)
     : volume_(volume), axis_(axis), slices_(sliceCount(volume.geometry(), axis)),
-      frames_(frames > 0 ? frames : slices_), window_(window), width_(width), height_(height) {
+      frames_(frames > 0 ? std::min(frames, slices_) : slices_), window_(window), width_(width),
+      height_(height) {
     if (volume.empty()) {
         throw std::invalid_argument("a cine needs a volume");
     }

@@ -62,7 +62,7 @@ ImageRGBA8 windowedSlice(const Volume& volume, const SlicePlane& plane, const Wi
 
 class CineFrames : public MovieFrames {
 public:
-    // frames 0: every slice. `volume` must outlive this.
+    // frames 0, or more than there are slices: every slice. `volume` must outlive this.
     CineFrames(const Volume& volume, IndexAxis axis, int frames, const WindowLevel& window,
                int width, int height);
     int count() const override { return frames_; }

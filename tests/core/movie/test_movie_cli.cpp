@@ -13,7 +13,7 @@
 #include "core/image/PngIO.h"
 #include "core/io/Catalog.h"
 #include "core/mpr/PlaneSampler.h"
-#include "tests/core/movie/MovieProbe.h"
+#include "tests/support/MovieProbe.h"
 #include "tests/support/RealData.h"
 
 using namespace lucent;
@@ -25,10 +25,6 @@ constexpr double kMinPsnr = 35.0;
 
 QString ctPath() {
     return QString::fromStdString((test::kRealData / kCt).string());
-}
-
-QStringList leftovers(const QString& dir) {
-    return QDir(dir).entryList(QDir::Files | QDir::Hidden | QDir::NoDotAndDotDot);
 }
 
 } // namespace
@@ -170,7 +166,7 @@ private slots:
         QCOMPARE(run.exitCode, exitCode);
         QVERIFY2(run.err.contains(message), qPrintable(run.err));
         QVERIFY2(run.err.contains(QFileInfo(output).fileName()), qPrintable(run.err));
-        QCOMPARE(leftovers(out), QStringList{"blocker"});
+        QCOMPARE(test::filesIn(out), QStringList{"blocker"});
         QVERIFY(QFile::remove(out + "/blocker"));
     }
 };

@@ -13,7 +13,7 @@
 #include "core/movie/MovieFrames.h"
 #include "core/movie/MovieWriter.h"
 #include "core/movie/PaletteQuantizer.h"
-#include "tests/core/movie/MovieProbe.h"
+#include "tests/support/MovieProbe.h"
 
 using namespace lucent;
 
@@ -43,10 +43,6 @@ public:
 private:
     int count_, width_, height_;
 };
-
-QStringList filesIn(const QString& dir) {
-    return QDir(dir).entryList(QDir::Files | QDir::Hidden | QDir::NoDotAndDotDot);
-}
 
 } // namespace
 
@@ -93,7 +89,7 @@ private slots:
             QCOMPARE(calls, 8); // before the first frame and after each
             QCOMPARE(writer.framesWritten(), 7);
         }
-        QCOMPARE(filesIn(dir.path()), QStringList{name}); // no temporary file left
+        QCOMPARE(test::filesIn(dir.path()), QStringList{name}); // no temporary file left
         const test::ProbedMovie probed = test::probeMovie(file);
         QVERIFY2(probed.error.isEmpty(), qPrintable(probed.error));
         QCOMPARE(probed.codec, codec);
@@ -117,10 +113,10 @@ private slots:
             RampFrames frames(20, 64, 64);
             QVERIFY(!writeMovie(frames, writer, [](int done, int) { return done < 5; }));
             QCOMPARE(writer.framesWritten(), 5);
-            QCOMPARE(filesIn(dir.path()).size(), 1); // the temporary file, while writing
+            QCOMPARE(test::filesIn(dir.path()).size(), 1); // the temporary file, while writing
             QVERIFY(!QFile::exists(file));
         }
-        QCOMPARE(filesIn(dir.path()), QStringList{});
+        QCOMPARE(test::filesIn(dir.path()), QStringList{});
     }
 
     void failedFrameLeavesNoFile() {
@@ -131,7 +127,7 @@ private slots:
             writer.add(rampFrame(64, 64, 0));
             QVERIFY_THROWS_EXCEPTION(MovieError, writer.add(rampFrame(32, 64, 1)));
         }
-        QCOMPARE(filesIn(dir.path()), QStringList{});
+        QCOMPARE(test::filesIn(dir.path()), QStringList{});
     }
 
     void refusesWhatItCannotWrite() {
@@ -151,7 +147,7 @@ private slots:
         QVERIFY(refusal(dir.filePath("x.mp4"), {63, 64, 25}).contains("even width and height"));
         QVERIFY(refusal(dir.filePath("x.gif"), {64, 64, 0}).contains("frame rate"));
         QVERIFY(refusal(dir.filePath("x.tiff"), {}).contains("x.tiff"));
-        QCOMPARE(filesIn(dir.path()), QStringList{"blocker"});
+        QCOMPARE(test::filesIn(dir.path()), QStringList{"blocker"});
         // GIF takes odd sizes (no 4:2:0).
         QVERIFY(refusal(dir.filePath("odd.gif"), {63, 33, 25}).isEmpty());
         MovieWriter empty(dir.filePath("empty.gif").toStdString(), {8, 8, 25});
@@ -190,6 +186,32 @@ private slots:
         QCOMPARE(cineSlice(28, 1, 0), 14);
         QCOMPARE(cineSlice(10, 40, 7), 7); // more frames than slices: every slice
         QVERIFY_THROWS_EXCEPTION(std::invalid_argument, parseIndexAxis("x"));
+    }
+
+    // Slice k of a small volume holds k * 100 everywhere: each frame is its slice's
+    // value through the window, and asking more frames than slices gives each slice once.
+    void cineFramesShowTheirSlices() {
+        VolumeGeometry g;
+        g.dims = {6, 4, 5};
+        Volume volume(g, VoxelType::Int16);
+        auto voxels = volume.voxels<std::int16_t>();
+        for (int k = 0; k < 5; ++k) {
+            for (int n = 0; n < 24; ++n) {
+                voxels[std::size_t(k * 24 + n)] = std::int16_t(k * 100);
+            }
+        }
+        const WindowLevel window{200.0, 400.0, 1.0};
+        CineFrames cine(volume, IndexAxis::K, 12, window, 12, 8);
+        QCOMPARE(cine.count(), 5);
+        for (int k = 0; k < 5; ++k) {
+            const ImageRGBA8 frame = cine.frame(k);
+            QCOMPARE(frame.width, 12);
+            QCOMPARE(frame.height, 8);
+            QCOMPARE(int(frame.at(6, 4, 0)), int(windowToGrey(k * 100.0, 200.0, 400.0)));
+            QCOMPARE(int(frame.at(6, 4, 3)), 255);
+        }
+        QCOMPARE(CineFrames(volume, IndexAxis::I, 0, window, 8, 8).count(), 6);
+        QCOMPARE(CineFrames(volume, IndexAxis::J, 3, window, 8, 8).count(), 3);
     }
 
     // Axis i of a volume turned 90 degrees about z: the plane is spanned by j and k

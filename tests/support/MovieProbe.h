@@ -66,6 +66,11 @@ inline QString decodeFrames(const QString& file, const QString& dir) {
     return r.exitCode == 0 ? QString() : "ffmpeg " + file + ": " + r.err;
 }
 
+// Every file in `dir`, hidden ones too: what a movie left behind.
+inline QStringList filesIn(const QString& dir) {
+    return QDir(dir).entryList(QDir::Files | QDir::Hidden | QDir::NoDotAndDotDot);
+}
+
 inline QString framePng(const QString& dir, int k) {
     return dir + QString("/%1.png").arg(k, 3, 10, QChar('0'));
 }
