@@ -56,5 +56,6 @@ int runLodBench(const QStringList& args);
 int runOptions(const QStringList& args);      // the render options table
 int runSurface(const QStringList& args);      // isosurface meshes and the method of spheres
 int runMeasurements(const QStringList& args); // a series' or an SR's measurements
+int runMovie(const QStringList& args);        // turntable or cine movies (MP4, WebM, GIF)
 
 } // namespace lucent::cli

@@ -18,34 +18,12 @@
 #include "core/image/PngIO.h"
 #include "core/io/Catalog.h"
 #include "core/quality/SceneCost.h"
-#include "core/scene/DefaultPreset.h"
 #include "core/volume/BrickResidency.h"
 #include "render/GlError.h"
 #include "render/RenderDevice.h"
 
 namespace lucent::cli {
 namespace {
-
-// The description the flags ask for: the table's options, then the transfer
-// function (whose preset may depend on the mode), then the options again,
-// since shading lives in the transfer function.
-RenderDescription describe(const QCommandLineParser& p, const Volume& volume) {
-    RenderDescription d;
-    d.volume = &volume;
-    applyRenderFlags(p, d);
-    if (p.isSet("preset") && p.isSet("tf")) {
-        throw UsageError("--preset and --tf exclude each other");
-    }
-    if (p.isSet("tf")) {
-        d.transferFunction = readTransferFunction(p.value("tf").toStdString());
-    } else {
-        d.transferFunction =
-            loadPreset(p.isSet("preset") ? p.value("preset").toStdString()
-                                         : defaultPresetName(volume.modality, d.mode));
-    }
-    applyRenderFlags(p, d);
-    return d;
-}
 
 std::string mib(std::size_t bytes) {
     return QString::number(double(bytes) / 1048576.0, 'f', 1).toStdString();
@@ -178,7 +156,7 @@ int runRender(const QStringList& args) {
     const double loadMs = double(timer.nsecsElapsed()) / 1e6;
 
     try {
-        RenderDescription desc = describe(parser, volume);
+        RenderDescription desc = describeFromFlags(parser, volume);
         desc.validate();
         // The GL backend needs an EGL context; without one the CPU renders, and says so.
         const std::unique_ptr<RenderDevice> device = RenderDevice::open(kind);

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "CliCommand.h"
+#include "core/scene/DefaultPreset.h"
 #include "core/scene/RenderOptions.h"
 
 namespace lucent::cli {
@@ -59,6 +61,26 @@ bool anyRenderFlagSet(const QCommandLineParser& parser) {
         }
     }
     return false;
+}
+
+// The table's options, then the transfer function (whose preset may depend on
+// the mode), then the options again, since shading lives in the transfer function.
+RenderDescription describeFromFlags(const QCommandLineParser& p, const Volume& volume) {
+    RenderDescription d;
+    d.volume = &volume;
+    applyRenderFlags(p, d);
+    if (p.isSet("preset") && p.isSet("tf")) {
+        throw UsageError("--preset and --tf exclude each other");
+    }
+    if (p.isSet("tf")) {
+        d.transferFunction = readTransferFunction(p.value("tf").toStdString());
+    } else {
+        d.transferFunction =
+            loadPreset(p.isSet("preset") ? p.value("preset").toStdString()
+                                         : defaultPresetName(volume.modality, d.mode));
+    }
+    applyRenderFlags(p, d);
+    return d;
 }
 
 } // namespace lucent::cli

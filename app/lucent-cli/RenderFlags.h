@@ -15,5 +15,9 @@ void addRenderFlags(QCommandLineParser& parser);
 void applyRenderFlags(const QCommandLineParser& parser, RenderDescription& description);
 // Whether any of these flags is set.
 bool anyRenderFlagSet(const QCommandLineParser& parser);
+// The description of `volume` the flags ask for: the table's options, the
+// transfer function of --preset or --tf (which the parser must have) or the
+// volume's default preset. Throws UsageError or std::invalid_argument.
+RenderDescription describeFromFlags(const QCommandLineParser& parser, const Volume& volume);
 
 } // namespace lucent::cli

@@ -17,6 +17,8 @@ const char* kUsageText =
     "  compare A.png B.png                  print psnr_db=<x> ssim=<y> for two images\n"
     "  surface PATH -o OUT.stl|ply|vtk|obj --iso HU [--svr-radius MM] [...]\n"
     "                                       isosurface mesh, local surface-to-volume ratio\n"
+    "  movie PATH -o OUT.mp4|webm|gif [--turntable DEG | --cine-axis i|j|k] [--frames N]\n"
+    "        [--fps N] [--size WxH] [options]  turntable or cine movie (FFmpeg)\n"
     "  options [--markdown]                 every render option: flag, wire key, range, default\n"
     "  bench quality PATH [--backend cpu|gl] [--csv OUT.csv] [--plot OUT.png]\n"
     "                                       time against PSNR/SSIM of every sampling setting\n"
@@ -87,6 +89,9 @@ int main(int argc, char** argv) {
     }
     if (command == "measurements") {
         return lucent::cli::runMeasurements(args);
+    }
+    if (command == "movie") {
+        return lucent::cli::runMovie(args);
     }
     if (command == "compare") {
         return lucent::cli::runCompare(args);

@@ -150,6 +150,10 @@ private slots:
         QTest::newRow("render header includes mpi") << "render/distributed/Bad.h"
                                                     << "#pragma once\n#include <mpi.h>\n"
                                                     << QStringList{"third-party:2"};
+        QTest::newRow("core header includes FFmpeg")
+            << "core/movie/Bad.h"
+            << "#pragma once\nextern \"C\" {\n#include <libavcodec/avcodec.h>\n}\n"
+            << QStringList{"third-party:3"};
         QTest::newRow("render header includes IceT") << "render/distributed/Bad.h"
                                                      << "#pragma once\n#include <IceT.h>\n"
                                                      << QStringList{"third-party:2"};

@@ -17,6 +17,7 @@
 #include <QVBoxLayout>
 
 #include "core/pacs/PacsService.h"
+#include "ui/app/MovieExportDialog.h"
 #include "ui/app/ScreenshotExport.h"
 #include "ui/app/ViewLayout.h"
 #include "ui/mpr/CurvedMprView.h"
@@ -137,6 +138,8 @@ MainWindow::MainWindow(QWidget* parent)
                     this, [this] { screenshotDialog(ScreenshotScope::ActiveView); });
     file->addAction(tr("Save Screenshot of &Layout..."), QKeySequence(tr("Ctrl+Alt+E")), this,
                     [this] { screenshotDialog(ScreenshotScope::Layout); });
+    file->addAction(tr("Export &Movie..."), QKeySequence(tr("Ctrl+Shift+M")), this,
+                    &MainWindow::openMovieExport);
     file->addSeparator();
     file->addAction(tr("&Quit"), QKeySequence::Quit, qApp, &QApplication::closeAllWindows);
     // PACS query/retrieve and the local store in a dock; arrived series open here.
@@ -248,6 +251,25 @@ void MainWindow::screenshotDialog(ScreenshotScope scope) {
     } else {
         QMessageBox::warning(this, tr("Screenshot"), tr("Could not save %1: %2").arg(file, error));
     }
+}
+
+MovieExportDialog* MainWindow::openMovieExport() {
+    if (!volume_ || volume_->empty()) {
+        statusBar()->showMessage(tr("Open a volume to export a movie of it."), 5000);
+        return nullptr;
+    }
+    auto* dialog = new MovieExportDialog(
+        volume_, volumeView_->description(),
+        WindowLevel{cursor_->windowCenter(), cursor_->windowWidth(), cursor_->windowStep()}, this);
+    dialog->setAttribute(Qt::WA_DeleteOnClose);
+    connect(dialog, &MovieExportDialog::exportFinished, this,
+            [this](bool ok, const QString& message) {
+                if (ok) {
+                    statusBar()->showMessage(message, 8000);
+                }
+            });
+    dialog->show();
+    return dialog;
 }
 
 MainWindow::~MainWindow() = default;

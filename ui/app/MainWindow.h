@@ -14,6 +14,7 @@ class QLabel;
 namespace lucent {
 
 class CurvedMprView;
+class MovieExportDialog;
 class MprCursor;
 class SliceView;
 class TransferFunctionEditor;
@@ -54,6 +55,10 @@ public:
     // Writes a PNG of the active view or of the whole view area; on failure
     // returns false with the reason in error.
     bool saveScreenshot(const QString& file, ScreenshotScope scope, QString* error = nullptr);
+
+    // File > Export Movie: opens the (non-modal) dialog on the 3D view's scene and
+    // the MPR window, or returns nullptr with a status message when no volume is open.
+    MovieExportDialog* openMovieExport();
 
     // The folder of the last path opened (settings key "files/lastFolder").
     const QString& lastFolder() const { return lastFolder_; }
