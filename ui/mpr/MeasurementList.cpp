@@ -40,7 +40,7 @@ MeasurementList::MeasurementList(MprCursor* cursor, QWidget* parent)
         }
     });
     connect(table_, &QTableWidget::cellClicked, this, [this](int row, int) { rowClicked(row); });
-    connect(table_, &QTableWidget::cellChanged, this, &MeasurementList::nameEdited);
+    connect(table_, &QTableWidget::cellChanged, this, &MeasurementList::cellEdited);
     connect(table_, &QTableWidget::itemSelectionChanged, this, [this] {
         const std::uint64_t id = idAt(table_->currentRow());
         const SeriesMeasurements* m = measurements_;
@@ -95,7 +95,8 @@ void MeasurementList::refresh() {
             for (int c = 0; c < ColumnCount; ++c) {
                 auto* item = new QTableWidgetItem(cells[c]);
                 Qt::ItemFlags flags = Qt::ItemIsSelectable | Qt::ItemIsEnabled;
-                if (c == Name && !m.readOnly) {
+                const bool editable = c == Name || (c == Value && m.kind == MeasurementKind::Arrow);
+                if (editable && !m.readOnly) {
                     flags |= Qt::ItemIsEditable;
                 }
                 item->setFlags(flags);
@@ -138,18 +139,30 @@ void MeasurementList::rowClicked(int row) {
     showMeasurement(*cursor_, *measurements_->find(id));
 }
 
-void MeasurementList::nameEdited(int row, int column) {
-    if (refreshing_ || column != Name || measurements_ == nullptr) {
+void MeasurementList::cellEdited(int row, int column) {
+    if (refreshing_ || (column != Name && column != Value) || measurements_ == nullptr) {
         return;
     }
     const std::uint64_t id = idAt(row);
-    const std::string name = table_->item(row, Name)->text().trimmed().toStdString();
-    // After the edit has ended: the rename rebuilds the rows, the edited item with them.
-    // A refused rename (read-only, unchanged) puts the stored name back.
+    const std::string text = table_->item(row, column)->text().trimmed().toStdString();
+    // After the edit has ended: the edit rebuilds the rows, the edited item with them.
+    // A refused one (read-only, unchanged) puts the stored text back.
     QMetaObject::invokeMethod(
         this,
-        [this, id, name] {
-            if (measurements_ != nullptr && !measurements_->rename(id, name)) {
+        [this, id, text, column] {
+            const Measurement* m = measurements_ != nullptr ? measurements_->find(id) : nullptr;
+            if (m == nullptr) {
+                return;
+            }
+            bool done = false;
+            if (column == Name) {
+                done = measurements_->rename(id, text);
+            } else if (m->text != text) { // an arrow's text
+                Measurement arrow = *m;
+                arrow.text = text;
+                done = measurements_->change(arrow);
+            }
+            if (!done) {
                 refresh();
             }
         },

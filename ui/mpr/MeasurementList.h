@@ -17,9 +17,9 @@ class MprCursor;
 // The measurement list (a dock of the main window): one row per measurement of the
 // series, kind, name, value, plane (Axial/Coronal/Sagittal/Oblique) and slice. A click
 // on a row selects the measurement and moves the views to it (showMeasurement);
-// the name cell is edited in place (a rename); Del or the Delete button removes the
-// selected one. Read-only measurements (a foreign SR's) are grey and cannot be
-// renamed or deleted.
+// the name cell is edited in place (a rename), and an arrow's value cell (its text); Del or the
+// Delete button removes the selected one. Read-only measurements (a foreign SR's) are grey and
+// cannot be renamed or deleted.
 class MeasurementList : public QWidget {
     Q_OBJECT
 
@@ -38,7 +38,7 @@ private:
     void refresh();
     void showSelection();
     void rowClicked(int row);
-    void nameEdited(int row, int column);
+    void cellEdited(int row, int column);
     void deleteSelected();
 
     MprCursor* cursor_;

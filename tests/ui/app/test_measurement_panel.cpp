@@ -27,6 +27,7 @@
 #include "ui/app/MainWindow.h"
 #include "ui/app/MeasurementControls.h"
 #include "ui/app/ShortcutsDialog.h"
+#include "ui/app/ViewLayout.h"
 #include "ui/mpr/MeasurementList.h"
 #include "ui/mpr/MeasurementPainter.h"
 #include "ui/mpr/MprCursor.h"
@@ -63,6 +64,8 @@ private slots:
     void undoAndRedoEveryEdit();
     void listClickMovesTheViews();
     void readOnlyRowsAreGreyAndLocked();
+    void arrowTextIsTypedAndEdited();
+    void aDrawingToolKeepsTheDoubleClick();
     void measurementsStayWithTheirSeries();
     void shortcutsDialogListsEveryKey();
 
@@ -339,6 +342,46 @@ void TestMeasurementPanel::readOnlyRowsAreGreyAndLocked() {
     QCOMPARE(table()->rowCount(), 1);
     QVERIFY(!editAction(QStringLiteral("Delete Measurement"))->isEnabled());
     QVERIFY(!undo()->isEnabled()); // a load is not an edit
+}
+
+void TestMeasurementPanel::arrowTextIsTypedAndEdited() {
+    window_->measurementControls()->toolAction(SliceTool::Arrow)->trigger();
+    drag(axial(), {100, 100}, {160, 60});
+    QLineEdit* editor = axial()->measurementTools().textEditor();
+    QVERIFY(editor != nullptr);
+    QTest::keyClicks(editor, QStringLiteral("Cyst"));
+    QTest::keyClick(editor, Qt::Key_Return);
+    QCOMPARE(table()->rowCount(), 1);
+    QCOMPARE(table()->item(0, MeasurementList::Value)->text(), QStringLiteral("Cyst"));
+    QCOMPARE(undo()->text(), QStringLiteral("Undo Add arrow"));
+    // Its text edited in the list's value cell: one Change.
+    table()->setFocus();
+    table()->editItem(table()->item(0, MeasurementList::Value));
+    auto* cell = qobject_cast<QLineEdit*>(QApplication::focusWidget());
+    QVERIFY(cell != nullptr);
+    cell->selectAll();
+    QTest::keyClicks(cell, QStringLiteral("Simple cyst"));
+    QTest::keyClick(cell, Qt::Key_Return);
+    QTRY_COMPARE(measurements()->measurements()[0].text, std::string("Simple cyst"));
+    QCOMPARE(undo()->text(), QStringLiteral("Undo Change arrow"));
+    keys(Qt::CTRL | Qt::Key_Z);
+    QCOMPARE(table()->item(0, MeasurementList::Value)->text(), QStringLiteral("Cyst"));
+}
+
+void TestMeasurementPanel::aDrawingToolKeepsTheDoubleClick() {
+    ViewLayout* layout = window_->viewLayout();
+    QCOMPARE(layout->arrangement(), ViewLayout::Arrangement::Row1x3);
+    // Quick clicks of the angle tool are its points, not a maximize.
+    QTest::keyClick(axial(), Qt::Key_A);
+    QTest::mouseDClick(axial(), Qt::LeftButton, Qt::NoModifier, {100, 100});
+    QCOMPARE(layout->arrangement(), ViewLayout::Arrangement::Row1x3);
+    QVERIFY(axial()->measurementTools().busy());
+    // With the crosshair a double-click maximizes, as before.
+    QTest::keyClick(axial(), Qt::Key_Escape); // drops the angle
+    QTest::keyClick(axial(), Qt::Key_Escape); // the crosshair tool
+    QCOMPARE(axial()->tool(), SliceTool::Crosshair);
+    QTest::mouseDClick(axial(), Qt::LeftButton, Qt::NoModifier, {100, 100});
+    QCOMPARE(layout->arrangement(), ViewLayout::Arrangement::Single);
 }
 
 void TestMeasurementPanel::measurementsStayWithTheirSeries() {
