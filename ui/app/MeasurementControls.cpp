@@ -96,7 +96,8 @@ void MeasurementControls::setTool(SliceTool tool) {
     if (QAction* action = toolAction(tool)) {
         action->setChecked(true);
     }
-    if (sliceToolInfo(tool).kind.has_value() && dock_->isVisible()) {
+    // Not a dock the reader closed; one behind the 3D controls' tab comes to the front.
+    if (sliceToolInfo(tool).kind.has_value() && dock_->toggleViewAction()->isChecked()) {
         dock_->raise();
     }
 }

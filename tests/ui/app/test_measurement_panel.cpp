@@ -14,6 +14,7 @@
 #include <QSettings>
 #include <QSignalSpy>
 #include <QStandardPaths>
+#include <QTabBar>
 #include <QTableWidget>
 #include <QTemporaryDir>
 #include <QTest>
@@ -160,7 +161,25 @@ void TestMeasurementPanel::toolBarPicksOneToolForEveryView() {
     }
     QCOMPARE(checked, 1);
     QVERIFY(controls->toolAction(SliceTool::Crosshair)->isChecked());
+    // The list is a tab beside the 3D controls; a measuring tool brings it to the front.
+    auto* volumeDock = window_->findChild<QDockWidget*>(QStringLiteral("volumeDock"));
+    auto* listDock = window_->findChild<QDockWidget*>(QStringLiteral("measurementDock"));
+    volumeDock->show(); // back from init(), which hid it for room
+    QVERIFY(window_->tabifiedDockWidgets(listDock).contains(volumeDock));
+    auto frontTab = [this] {
+        for (const QTabBar* tabs : window_->findChildren<QTabBar*>()) {
+            for (int t = 0; t < tabs->count(); ++t) {
+                if (tabs->tabText(t) == QStringLiteral("Measurements")) {
+                    return tabs->tabText(tabs->currentIndex());
+                }
+            }
+        }
+        return QString();
+    };
+    volumeDock->raise();
+    QTRY_COMPARE(frontTab(), volumeDock->windowTitle());
     controls->toolAction(SliceTool::Ellipse)->trigger();
+    QTRY_COMPARE(frontTab(), listDock->windowTitle());
     for (const Orientation o : {Orientation::Axial, Orientation::Coronal, Orientation::Sagittal}) {
         QCOMPARE(window_->view(o)->tool(), SliceTool::Ellipse);
     }
