@@ -17,11 +17,14 @@
 #include <QVBoxLayout>
 
 #include "core/pacs/PacsService.h"
+#include "ui/app/MeasurementControls.h"
 #include "ui/app/MovieExportDialog.h"
 #include "ui/app/ScreenshotExport.h"
+#include "ui/app/ShortcutsDialog.h"
 #include "ui/app/ViewLayout.h"
 #include "ui/mpr/CurvedMprView.h"
 #include "ui/mpr/MprCursor.h"
+#include "ui/mpr/SeriesMeasurements.h"
 #include "ui/mpr/SliceView.h"
 #include "ui/pacs/PacsBrowser.h"
 #include "ui/study/StudyBrowser.h"
@@ -142,6 +145,8 @@ MainWindow::MainWindow(QWidget* parent)
                     &MainWindow::openMovieExport);
     file->addSeparator();
     file->addAction(tr("&Quit"), QKeySequence::Quit, qApp, &QApplication::closeAllWindows);
+    measurementControls_ =
+        new MeasurementControls(this, cursor_, views_, menuBar()->addMenu(tr("&Edit")));
     // PACS query/retrieve and the local store in a dock; arrived series open here.
     PacsBrowser* pacs = PacsBrowser::addDock(this, menuBar()->addMenu(tr("&PACS")));
     studies->setStoreFolder(pacs->config().storeFolder);
@@ -149,6 +154,9 @@ MainWindow::MainWindow(QWidget* parent)
     connect(pacs, &PacsBrowser::openSeries, this,
             [this](const QString& folder, const QString& series) { openPath(folder, series); });
     addViewMenu();
+    QMenu* help = menuBar()->addMenu(tr("&Help"));
+    help->addAction(tr("&Keyboard Shortcuts..."), QKeySequence(QKeySequence::HelpContents), this,
+                    &MainWindow::showShortcuts);
     resize(1500, 1000);
     restoreSettings();
 }
@@ -346,8 +354,51 @@ void MainWindow::setVolume(std::shared_ptr<const Volume> volume) {
     for (SliceView* view : views_) {
         view->setVolume(volume_);
     }
+    showMeasurementsOf(volume_);
     volumeView_->setVolume(volume_); // picks ct-bone or mr-default and tells the editor
     tfEditor_->setVolume(volume_);   // the histogram
+}
+
+} // namespace lucent
+
+namespace lucent {
+
+void MainWindow::showMeasurementsOf(const std::shared_ptr<const Volume>& volume) {
+    SeriesMeasurements* shown = nullptr;
+    bool created = false;
+    if (volume && !volume->empty()) {
+        // A series without a UID gets measurements of its own each time it is opened.
+        const auto known = volume->seriesUid.empty() ? seriesMeasurements_.end()
+                                                     : seriesMeasurements_.find(volume->seriesUid);
+        if (known != seriesMeasurements_.end()) {
+            shown = known->second;
+            shown->setVolume(volume);
+        } else {
+            shown = new SeriesMeasurements(volume, this);
+            created = true;
+            if (!volume->seriesUid.empty()) {
+                seriesMeasurements_[volume->seriesUid] = shown;
+            }
+        }
+    }
+    SeriesMeasurements* before = measurements_;
+    measurements_ = shown;
+    measurementControls_->setMeasurements(shown);
+    if (before != nullptr && before != shown && before->seriesUid().empty()) {
+        before->deleteLater(); // nothing can open it again
+    }
+    if (created) {
+        emit measurementsOpened(shown);
+    }
+}
+
+ShortcutsDialog* MainWindow::showShortcuts() {
+    if (shortcuts_ == nullptr) {
+        shortcuts_ = new ShortcutsDialog(*menuBar(), this);
+    }
+    shortcuts_->show();
+    shortcuts_->raise();
+    return shortcuts_;
 }
 
 } // namespace lucent

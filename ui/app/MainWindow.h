@@ -1,7 +1,9 @@
 #pragma once
 
 #include <array>
+#include <map>
 #include <memory>
+#include <string>
 
 #include <QMainWindow>
 
@@ -14,8 +16,11 @@ class QLabel;
 namespace lucent {
 
 class CurvedMprView;
+class MeasurementControls;
 class MovieExportDialog;
 class MprCursor;
+class SeriesMeasurements;
+class ShortcutsDialog;
 class SliceView;
 class TransferFunctionEditor;
 class ViewLayout;
@@ -30,6 +35,9 @@ class VolumeView;
 // window geometry and dock state; restored by the constructor, saved on close),
 // and the look: the saved theme (dark by default; View > Theme) is applied to
 // the application by the constructor.
+// Measuring (MeasurementControls): a tool bar of the MPR tools, Edit > Undo/Redo,
+// the measurement list dock, Help > Keyboard Shortcuts; each series opened keeps
+// its measurements (SeriesMeasurements, by series UID) for the session.
 class MainWindow : public QMainWindow {
     Q_OBJECT
 
@@ -50,6 +58,12 @@ public:
     MprCursor* cursor() const { return cursor_; }
     // The curved MPR window of the last path drawn (P on an MPR view); nullptr before.
     CurvedMprView* curvedMpr() const { return curvedMpr_; }
+    // The measurements of the series shown now (nullptr before one is open) and the
+    // tool bar, Edit actions and list that act on them.
+    SeriesMeasurements* measurements() const { return measurements_; }
+    MeasurementControls* measurementControls() const { return measurementControls_; }
+    // Help > Keyboard Shortcuts: opens (or raises) the dialog and returns it.
+    ShortcutsDialog* showShortcuts();
 
     enum class ScreenshotScope { ActiveView, Layout };
     // Writes a PNG of the active view or of the whole view area; on failure
@@ -68,6 +82,9 @@ public:
 signals:
     // After every load attempt: ok is false on error or cancel.
     void loadFinished(bool ok);
+    // A series' measurements were made, the first time that series is shown: where
+    // persistence loads what was saved for it and connects to its changed().
+    void measurementsOpened(lucent::SeriesMeasurements* measurements);
 
 protected:
     void closeEvent(QCloseEvent* event) override;
@@ -78,6 +95,7 @@ private:
     void openFileDialog();
     void screenshotDialog(ScreenshotScope scope);
     void openCurvedMpr(const std::vector<glm::dvec3>& points, const glm::dvec3& up);
+    void showMeasurementsOf(const std::shared_ptr<const Volume>& volume);
 
     MprCursor* cursor_;
     std::array<SliceView*, 3> views_{};
@@ -90,6 +108,10 @@ private:
     QString lastFolder_;
     std::shared_ptr<const Volume> volume_;
     CurvedMprView* curvedMpr_ = nullptr;
+    MeasurementControls* measurementControls_ = nullptr;
+    std::map<std::string, SeriesMeasurements*> seriesMeasurements_; // by series UID
+    SeriesMeasurements* measurements_ = nullptr;
+    ShortcutsDialog* shortcuts_ = nullptr;
 };
 
 } // namespace lucent

@@ -106,7 +106,8 @@ bool ViewLayout::eventFilter(QObject* watched, QEvent* event) {
         if (event->type() == QEvent::MouseButtonPress || movedFocusHere(event)) {
             setActiveView(views_[index]);
         } else if (event->type() == QEvent::MouseButtonDblClick &&
-                   static_cast<QMouseEvent*>(event)->button() == Qt::LeftButton) {
+                   static_cast<QMouseEvent*>(event)->button() == Qt::LeftButton &&
+                   !watched->property("keepsDoubleClick").toBool()) {
             if (arrangement_ == Arrangement::Single) {
                 restore();
             } else {

@@ -16,7 +16,9 @@ namespace lucent {
 //   Row1x3:  axial, coronal and sagittal in one row (the 3D view hidden).
 //   Single:  one view alone (the active one).
 // A double-click on a view maximizes it (Single); another double-click restores
-// the arrangement it came from. The view last pressed is the active one.
+// the arrangement it came from; a view whose property "keepsDoubleClick" is true
+// (an MPR view drawing with a tool) gets the double-click itself. The view last
+// pressed is the active one.
 class ViewLayout : public QWidget {
     Q_OBJECT
 

@@ -1,67 +1,68 @@
 #pragma once
 
-#include <vector>
+#include <cstdint>
+#include <optional>
 
-#include <QString>
+#include <QLineEdit>
+#include <QPointF>
+#include <QPointer>
 
-#include <glm/glm.hpp>
-
-#include "core/mpr/PlaneSampler.h"
-#include "core/mpr/RoiStatistics.h"
-#include "core/volume/Volume.h"
+#include "core/measure/Measurement.h"
+#include "ui/mpr/MeasurementDraft.h"
+#include "ui/mpr/SeriesMeasurements.h"
 
 class QPainter;
+class QWidget;
 
 namespace lucent {
 
-// A straight line between two patient points (LPS mm).
-struct DistanceMeasurement {
-    glm::dvec3 start{0.0};
-    glm::dvec3 end{0.0};
-    double lengthMm() const { return glm::distance(start, end); }
-};
-
-// An ellipse drawn on a plane, with the statistics of the values inside it.
-struct EllipseMeasurement {
-    SlicePlane plane; // the plane it was drawn on (its u and v are the ellipse's axes)
-    EllipseRoi ellipse;
-    RoiStatistics statistics;
-};
-
-enum class MeasurementKind { Distance, Ellipse };
-
-// The measurements of one MPR view, kept in patient coordinates, and the one being
-// drawn: begin() at the first point, moveTo() while the mouse moves, finish() at the
-// second point (a distance's other end, an ellipse's opposite bounding-box corner).
+// The measurements of a series as one MPR view draws and edits them: the shared
+// document's measurements that lie in the view's plane, a new one drawn with the
+// mouse (MeasurementDraft), a point handle dragged (one "Change" edit when let go),
+// and an arrow's text typed in a line edit over the view (Enter or leaving it adds
+// the arrow, Esc drops it). Positions are the view's widget pixels on its plane.
 class SliceMeasurements {
 public:
-    bool drawing() const { return drawing_; }
-    void begin(MeasurementKind kind, const glm::dvec3& point);
-    void moveTo(const glm::dvec3& point);
-    // Ends the measurement being drawn at `point`; an ellipse takes its statistics
-    // from the volume resliced on `plane`.
-    void finish(const glm::dvec3& point, const Volume& volume, const SlicePlane& plane);
-    void cancel() { drawing_ = false; }
-    void clear();
+    explicit SliceMeasurements(QWidget* view) : view_(view) {}
 
-    const std::vector<DistanceMeasurement>& distances() const { return distances_; }
-    const std::vector<EllipseMeasurement>& ellipses() const { return ellipses_; }
+    void setDocument(SeriesMeasurements* document);
+    SeriesMeasurements* document() const { return document_; }
 
-    // Draws the measurements that lie in `plane` (within `tolerance` mm along its
-    // normal) and the one being drawn; `unit` follows the ROI values ("HU" for CT).
-    void paint(QPainter& painter, const SlicePlane& plane, double tolerance,
-               const QString& unit) const;
+    // A left press: grabs the handle under the mouse (any tool), or goes on with the
+    // measurement being drawn, or starts one of `kind`. Returns whether it took the press.
+    bool press(const SlicePlane& plane, double tolerance, const QPointF& pos,
+               std::optional<MeasurementKind> kind);
+    // The mouse moved, a button held or not.
+    void move(const SlicePlane& plane, const QPointF& pos);
+    // The left button let go; `click`: the mouse stayed where it was pressed.
+    void release(const SlicePlane& plane, const QPointF& pos, bool click);
+    // Drops the measurement being drawn (and an arrow waiting for its text).
+    void cancel();
+    // Drawing, dragging a handle or typing an arrow's text.
+    bool busy() const { return draft_.active() || grab_.has_value() || editor_ != nullptr; }
+    // The arrow's text editor while it is open; nullptr otherwise.
+    QLineEdit* textEditor() const { return editor_; }
+
+    void paint(QPainter& painter, const SlicePlane& plane, double tolerance) const;
 
 private:
-    static EllipseRoi ellipseBetween(const glm::dvec3& a, const glm::dvec3& b,
-                                     const SlicePlane& plane);
+    struct Grab {
+        std::uint64_t id = 0;
+        int index = 0;
+        Measurement edited;
+        bool moved = false;
+    };
+    std::optional<Grab> handleAt(const SlicePlane& plane, double tolerance,
+                                 const QPointF& pos) const;
+    void askArrowText(const SlicePlane& plane, Measurement arrow);
+    void finishArrow(bool keep);
 
-    bool drawing_ = false;
-    MeasurementKind kind_ = MeasurementKind::Distance;
-    glm::dvec3 first_{0.0};
-    glm::dvec3 current_{0.0};
-    std::vector<DistanceMeasurement> distances_;
-    std::vector<EllipseMeasurement> ellipses_;
+    QWidget* view_;
+    QPointer<SeriesMeasurements> document_;
+    MeasurementDraft draft_;
+    std::optional<Grab> grab_;
+    std::optional<Measurement> arrow_; // waiting for its text
+    QPointer<QLineEdit> editor_;
 };
 
 } // namespace lucent

@@ -52,7 +52,7 @@ void SliceView::setVolume(std::shared_ptr<const Volume> volume) {
     samplesValid_ = false;
     imageValid_ = false;
     samples_.clear();
-    measurements_.clear();
+    measure_.cancel();
     update();
 }
 
@@ -147,16 +147,21 @@ void SliceView::setSlab(double thicknessMm, SlabMode mode) {
 }
 
 void SliceView::setTool(Tool tool) {
+    const bool changed = tool != tool_;
     tool_ = tool;
-    measurements_.cancel();
+    measure_.cancel();
     path_.clear();
     setCursor(tool == Tool::Crosshair ? Qt::ArrowCursor : Qt::CrossCursor);
+    // Quick clicks of a tool are points (or the end of a path), not a maximize.
+    setProperty("keepsDoubleClick", tool != Tool::Crosshair);
     update();
+    if (changed) {
+        emit toolChanged(tool);
+    }
 }
 
-void SliceView::clearMeasurements() {
-    measurements_.clear();
-    update();
+double SliceView::measurementTolerance() const {
+    return 0.5 * sliceStep() + 0.5 * slabThickness_;
 }
 
 QImage SliceView::image() {
@@ -262,8 +267,7 @@ void SliceView::paintEvent(QPaintEvent*) {
                               .arg(cursor_->windowWidth(), 0, 'g', 5)
                               .arg(cursor_->windowCenter(), 0, 'g', 5);
     paintSliceOverlay(painter, rect(), overlay);
-    const QString unit = volume_->modality == "CT" ? QStringLiteral("HU") : QString();
-    measurements_.paint(painter, p, 0.5 * sliceStep() + 0.5 * slabThickness_, unit);
+    measure_.paint(painter, p, measurementTolerance());
     paintCurvedPath(painter, p, path_);
 }
 
@@ -326,14 +330,10 @@ void SliceView::mousePressEvent(QMouseEvent* event) {
     } else if (event->button() == Qt::LeftButton && tool_ == Tool::CurvedPath && canMeasure) {
         path_.push_back(plane().pointAt(event->position().x(), event->position().y()));
         update();
-    } else if (event->button() == Qt::LeftButton && tool_ != Tool::Crosshair && canMeasure) {
+    } else if (event->button() == Qt::LeftButton && canMeasure &&
+               measure_.press(plane(), measurementTolerance(), event->position(),
+                              sliceToolInfo(tool_).kind)) {
         drag_ = Drag::Measure;
-        const glm::dvec3 p = plane().pointAt(event->position().x(), event->position().y());
-        measureBegan_ = !measurements_.drawing();
-        if (measureBegan_) {
-            measurements_.begin(
-                tool_ == Tool::Distance ? MeasurementKind::Distance : MeasurementKind::Ellipse, p);
-        }
         update();
     } else if (event->button() == Qt::LeftButton) {
         drag_ = Drag::Crosshair;
@@ -362,8 +362,8 @@ void SliceView::mouseMoveEvent(QMouseEvent* event) {
         update();
     } else if (drag_ == Drag::Rotate) {
         rotateOthers(event->position());
-    } else if (measurements_.drawing()) {
-        measurements_.moveTo(plane().pointAt(event->position().x(), event->position().y()));
+    } else if (measure_.busy()) {
+        measure_.move(plane(), event->position());
         update();
     }
     event->accept();
@@ -380,11 +380,7 @@ void SliceView::mouseReleaseEvent(QMouseEvent* event) {
         return;
     }
     if (drag_ == Drag::Measure) {
-        // A drag ends the measurement here; a click leaves it open for the second click.
-        const glm::dvec3 p = plane().pointAt(event->position().x(), event->position().y());
-        if (!click || !measureBegan_) {
-            measurements_.finish(p, *volume_, plane());
-        }
+        measure_.release(plane(), event->position(), click);
         update();
     } else if (drag_ == Drag::Window && click) {
         cursor_->setWindow(dragCenter_, dragWidth_);

@@ -10,6 +10,7 @@
 #include "core/mpr/PlaneSampler.h"
 #include "core/volume/Volume.h"
 #include "ui/mpr/SliceMeasurements.h"
+#include "ui/mpr/SliceTools.h"
 
 class QMenu;
 class QPainter;
@@ -26,19 +27,22 @@ class MprCursor;
 // zoom by zoomStepFactor() per notch about the mouse; right-drag = window (right =
 // wider) and level (down = higher), cursor->windowStep() units per pixel; a right-click
 // without a drag opens the context menu; middle-drag = pan; left-click/drag = crosshair
-// (or the measurement tool); shift+left-drag = rotates the other two planes about this
-// plane's normal.
+// (or the measurement tool; a press on a measurement's point handle drags it, whatever
+// the tool); shift+left-drag = rotates the other two planes about this plane's normal.
 // Keys: 1-8 window presets (brain, subdural, stroke, lung, mediastinum, abdomen, liver,
 // bone) for all linked views; S = slab mode (thin, MIP, MinIP, average); [ and ] = slab
-// thickness; D = distance tool; E = ellipse ROI tool; P = curved path tool (clicks add
-// points, a double-click or Enter ends the path); Esc = crosshair tool; Delete =
-// clear measurements; C = cine on/off; R = reset zoom and pan; O = reset obliquity;
-// Menu = the context menu.
+// thickness; the tools' keys (sliceTools(): D distance, A angle, K Cobb, T arrow,
+// B bidirectional, E ellipse, P curved path: clicks add points, a double-click or Enter
+// ends the path; Esc crosshair); Delete = delete the selected measurement; C = cine
+// on/off; R = reset zoom and pan; O = reset obliquity; Menu = the context menu
+// (sliceViewKeys() lists them for the shortcuts dialog).
+// The measurements are the series' (SeriesMeasurements, shared with the other views
+// and the list); without one set, the measuring tools do nothing.
 class SliceView : public QWidget {
     Q_OBJECT
 
 public:
-    enum class Tool { Crosshair, Distance, Ellipse, CurvedPath };
+    using Tool = SliceTool;
 
     SliceView(Orientation orientation, MprCursor* cursor, QWidget* parent = nullptr);
 
@@ -78,8 +82,15 @@ public:
 
     Tool tool() const { return tool_; }
     void setTool(Tool tool);
-    const SliceMeasurements& measurements() const { return measurements_; }
+    // The series' measurements this view draws and edits (not owned); nullptr: none.
+    void setMeasurements(SeriesMeasurements* measurements);
+    SeriesMeasurements* measurements() const { return measure_.document(); }
+    // The drawing and editing on this view (the arrow's text editor, for one).
+    const SliceMeasurements& measurementTools() const { return measure_; }
+    void deleteSelectedMeasurement();
     void clearMeasurements();
+    // How far from this plane a measurement may lie and still be drawn here, mm.
+    double measurementTolerance() const;
     // The points of the curved path being clicked (patient mm); finishPath()
     // hands two or more on as curvedPathDrawn and goes back to the crosshair.
     const std::vector<glm::dvec3>& pathPoints() const { return path_; }
@@ -96,6 +107,7 @@ public:
     QSize minimumSizeHint() const override { return {120, 120}; }
 
 signals:
+    void toolChanged(lucent::SliceTool tool);
     // A curved path clicked on this view, and the view's normal (the up of a
     // stretched reformation: the path is seen as it was drawn).
     void curvedPathDrawn(const std::vector<glm::dvec3>& points, const glm::dvec3& viewNormal);
@@ -140,7 +152,7 @@ private:
     double lastSlabThickness_ = 10.0;
     SlabMode slabMode_ = SlabMode::Mip;
     Tool tool_ = Tool::Crosshair;
-    SliceMeasurements measurements_;
+    SliceMeasurements measure_{this};
     std::vector<glm::dvec3> path_;
     QTimer* cine_;
 
@@ -152,7 +164,6 @@ private:
     glm::dvec2 dragPan_{0.0};
     double dragAngle_ = 0.0;
     std::array<glm::dmat3, 3> dragRotations_{};
-    bool measureBegan_ = false; // this press began the measurement being drawn
     int wheelRemainder_ = 0;
 };
 

@@ -1,4 +1,4 @@
-// SliceView's keys, context menu, window presets, slab controls and cine.
+// SliceView's keys, context menu, window presets, slab controls, cine and measurements.
 #include <algorithm>
 #include <array>
 
@@ -38,6 +38,31 @@ void SliceView::applyWindowPreset(int index) {
     }
     const WindowPreset& preset = presets[static_cast<std::size_t>(index)];
     cursor_->setWindow(preset.center, preset.width);
+}
+
+void SliceView::setMeasurements(SeriesMeasurements* measurements) {
+    if (SeriesMeasurements* before = measure_.document()) {
+        disconnect(before, nullptr, this, nullptr);
+    }
+    measure_.setDocument(measurements);
+    if (measurements != nullptr) {
+        connect(measurements, &SeriesMeasurements::changed, this, qOverload<>(&QWidget::update));
+        connect(measurements, &SeriesMeasurements::selectionChanged, this,
+                qOverload<>(&QWidget::update));
+    }
+    update();
+}
+
+void SliceView::deleteSelectedMeasurement() {
+    if (SeriesMeasurements* m = measure_.document(); m != nullptr && m->selected() != 0) {
+        m->remove(m->selected());
+    }
+}
+
+void SliceView::clearMeasurements() {
+    if (SeriesMeasurements* m = measure_.document()) {
+        m->clear();
+    }
 }
 
 void SliceView::cycleSlabMode() {
@@ -98,18 +123,18 @@ void SliceView::keyPressEvent(QKeyEvent* event) {
         changeSlabThickness(1);
     } else if (key == Qt::Key_BracketLeft) {
         changeSlabThickness(-1);
-    } else if (key == Qt::Key_D) {
-        setTool(Tool::Distance);
-    } else if (key == Qt::Key_E) {
-        setTool(Tool::Ellipse);
-    } else if (key == Qt::Key_P) {
-        setTool(Tool::CurvedPath);
+    } else if (const std::optional<Tool> tool = sliceToolForKey(*event)) {
+        // Esc while drawing drops the drawing and keeps the tool.
+        if (*tool == Tool::Crosshair && measure_.busy()) {
+            measure_.cancel();
+            update();
+        } else {
+            setTool(*tool);
+        }
     } else if ((key == Qt::Key_Return || key == Qt::Key_Enter) && tool_ == Tool::CurvedPath) {
         finishPath();
-    } else if (key == Qt::Key_Escape) {
-        setTool(Tool::Crosshair);
     } else if (key == Qt::Key_Delete || key == Qt::Key_Backspace) {
-        clearMeasurements();
+        deleteSelectedMeasurement();
     } else if (key == Qt::Key_C) {
         setCineRunning(!cineRunning());
     } else if (key == Qt::Key_R) {
@@ -165,18 +190,22 @@ void SliceView::fillContextMenu(QMenu& menu) {
     }
 
     menu.addSeparator();
-    auto tool = [&](const QString& text, Tool t) {
-        QAction* a = menu.addAction(text);
+    for (const SliceToolInfo& info : sliceTools()) {
+        QAction* a = menu.addAction(QStringLiteral("%1\t%2").arg(QString::fromLatin1(info.name),
+                                                                 QString::fromLatin1(info.key)));
         a->setCheckable(true);
-        a->setChecked(tool_ == t);
+        a->setChecked(tool_ == info.tool);
+        a->setStatusTip(QString::fromLatin1(info.help));
+        const Tool t = info.tool;
         connect(a, &QAction::triggered, this, [this, t] { setTool(t); });
-    };
-    tool(QStringLiteral("Crosshair\tEsc"), Tool::Crosshair);
-    tool(QStringLiteral("Measure distance\tD"), Tool::Distance);
-    tool(QStringLiteral("Ellipse ROI\tE"), Tool::Ellipse);
-    tool(QStringLiteral("Curved path (curved MPR)\tP"), Tool::CurvedPath);
-    connect(menu.addAction(QStringLiteral("Clear measurements\tDel")), &QAction::triggered, this,
-            &SliceView::clearMeasurements);
+    }
+    const SeriesMeasurements* measurements = measure_.document();
+    QAction* remove = menu.addAction(QStringLiteral("Delete measurement\tDel"));
+    remove->setEnabled(measurements != nullptr && measurements->selected() != 0);
+    connect(remove, &QAction::triggered, this, &SliceView::deleteSelectedMeasurement);
+    QAction* clear = menu.addAction(QStringLiteral("Clear measurements"));
+    clear->setEnabled(measurements != nullptr && !measurements->measurements().empty());
+    connect(clear, &QAction::triggered, this, &SliceView::clearMeasurements);
     menu.addSeparator();
     QAction* cine = menu.addAction(QStringLiteral("Cine\tC"));
     cine->setCheckable(true);

@@ -13,6 +13,7 @@
 #include "tests/support/BaselineImage.h"
 #include "tests/support/OffscreenPlatform.h"
 #include "ui/mpr/MprCursor.h"
+#include "ui/mpr/SeriesMeasurements.h"
 #include "ui/mpr/SliceView.h"
 
 using namespace lucent;
@@ -48,6 +49,7 @@ class TestSliceViewHiDpi : public QObject {
     std::shared_ptr<const Volume> stripes_ = makeStripes();
     std::unique_ptr<MprCursor> cursor_;
     std::unique_ptr<SliceView> view_;
+    std::unique_ptr<SeriesMeasurements> measurements_;
 
     void showView(const std::shared_ptr<const Volume>& volume, int size) {
         cursor_ = std::make_unique<MprCursor>();
@@ -55,6 +57,8 @@ class TestSliceViewHiDpi : public QObject {
         view_ = std::make_unique<SliceView>(Orientation::Axial, cursor_.get());
         view_->resize(size, size);
         view_->setVolume(volume);
+        measurements_ = std::make_unique<SeriesMeasurements>(volume);
+        view_->setMeasurements(measurements_.get());
         view_->show();
         QVERIFY(QTest::qWaitForWindowExposed(view_.get()));
     }
@@ -118,8 +122,8 @@ private slots:
         QTest::mousePress(view_.get(), Qt::LeftButton, {}, QPoint(20, 60));
         QTest::mouseMove(view_.get(), QPoint(50, 60));
         QTest::mouseRelease(view_.get(), Qt::LeftButton, {}, QPoint(80, 60));
-        QCOMPARE(view_->measurements().distances().size(), std::size_t(1));
-        const double length = view_->measurements().distances()[0].lengthMm();
+        QCOMPARE(measurements_->measurements().size(), std::size_t(1));
+        const double length = measurementLengthMm(measurements_->measurements()[0]);
         QVERIFY2(std::abs(length - 60.0 * view_->plane().pixelSize) < 1e-6,
                  qPrintable(QString::number(length)));
         QVERIFY(std::abs(view_->plane().pixelSize - 2.0) < 1e-9);

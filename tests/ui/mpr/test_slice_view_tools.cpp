@@ -14,6 +14,7 @@
 
 #include "tests/support/OffscreenPlatform.h"
 #include "ui/mpr/MprCursor.h"
+#include "ui/mpr/SeriesMeasurements.h"
 #include "ui/mpr/SliceOverlay.h"
 #include "ui/mpr/SliceView.h"
 
@@ -89,9 +90,12 @@ private slots:
 private:
     SliceView* view(Orientation o) { return views_[static_cast<int>(o)].get(); }
     void setVolume(std::shared_ptr<const Volume> volume);
+    const std::vector<Measurement>& measured() const { return measurements_->measurements(); }
 
     std::unique_ptr<MprCursor> cursor_;
     std::unique_ptr<SliceView> views_[3];
+    // The series' measurements, shared by the three views as in the main window.
+    std::unique_ptr<SeriesMeasurements> measurements_;
 };
 
 void TestSliceViewTools::init() {
@@ -109,15 +113,19 @@ void TestSliceViewTools::init() {
 
 void TestSliceViewTools::setVolume(std::shared_ptr<const Volume> volume) {
     cursor_->setPoint(volume->geometry().toPatient(glm::dvec3(volume->dims() / 2)));
+    auto measurements = std::make_unique<SeriesMeasurements>(volume);
     for (auto& v : views_) {
         v->setVolume(volume);
+        v->setMeasurements(measurements.get());
     }
+    measurements_ = std::move(measurements);
 }
 
 void TestSliceViewTools::cleanup() {
     for (auto& v : views_) {
         v.reset();
     }
+    measurements_.reset();
     cursor_.reset();
 }
 
@@ -245,10 +253,10 @@ void TestSliceViewTools::distanceBetweenTwoClicks() {
     QTest::keyClick(axial, Qt::Key_D);
     QCOMPARE(axial->tool(), SliceView::Tool::Distance);
     QTest::mouseClick(axial, Qt::LeftButton, Qt::NoModifier, QPoint(50, 60));
-    QVERIFY(axial->measurements().distances().empty());
+    QVERIFY(measured().empty());
     QTest::mouseClick(axial, Qt::LeftButton, Qt::NoModifier, QPoint(150, 60));
-    QCOMPARE(axial->measurements().distances().size(), std::size_t(1));
-    const double mm = axial->measurements().distances()[0].lengthMm();
+    QCOMPARE(measured().size(), std::size_t(1));
+    const double mm = measurementLengthMm(measured()[0]);
     QVERIFY2(near(mm, 13.5, 1e-9), qPrintable(QString::number(mm)));
     // Measuring leaves the crosshair alone.
     QCOMPARE(cursor_->point(), crosshair);
@@ -258,14 +266,16 @@ void TestSliceViewTools::distanceBetweenTwoClicks() {
     QTest::keyClick(coronal, Qt::Key_D);
     QTest::mouseClick(coronal, Qt::LeftButton, Qt::NoModifier, QPoint(100, 50));
     QTest::mouseClick(coronal, Qt::LeftButton, Qt::NoModifier, QPoint(130, 90));
-    QVERIFY(near(coronal->measurements().distances().at(0).lengthMm(), 10.0, 1e-9));
+    QVERIFY(near(measurementLengthMm(measured().at(1)), 10.0, 1e-9));
     // Zoomed in, the same pixels are fewer millimetres.
     wheel(coronal, 120, QPointF(120, 100), Qt::ControlModifier);
     QTest::mouseClick(coronal, Qt::LeftButton, Qt::NoModifier, QPoint(100, 50));
     QTest::mouseClick(coronal, Qt::LeftButton, Qt::NoModifier, QPoint(130, 90));
-    QVERIFY(near(coronal->measurements().distances().at(1).lengthMm(), 8.0, 1e-9));
+    QVERIFY(near(measurementLengthMm(measured().at(2)), 8.0, 1e-9));
+    // Delete removes the selected one: the last drawn.
+    QCOMPARE(measurements_->selected(), measured().at(2).id);
     QTest::keyClick(coronal, Qt::Key_Delete);
-    QVERIFY(coronal->measurements().distances().empty());
+    QCOMPARE(measured().size(), std::size_t(2));
     QTest::keyClick(coronal, Qt::Key_Escape);
     QCOMPARE(coronal->tool(), SliceView::Tool::Crosshair);
 }
@@ -276,8 +286,8 @@ void TestSliceViewTools::distanceByDrag() {
     QTest::mousePress(axial, Qt::LeftButton, Qt::NoModifier, QPoint(40, 40));
     QTest::mouseMove(axial, QPoint(100, 80));
     QTest::mouseRelease(axial, Qt::LeftButton, Qt::NoModifier, QPoint(100, 120));
-    QCOMPARE(axial->measurements().distances().size(), std::size_t(1));
-    QVERIFY(near(axial->measurements().distances()[0].lengthMm(), 100.0 * 0.135, 1e-9));
+    QCOMPARE(measured().size(), std::size_t(1));
+    QVERIFY(near(measurementLengthMm(measured()[0]), 100.0 * 0.135, 1e-9));
 }
 
 void TestSliceViewTools::ellipseRoiOverUniformRegion() {
@@ -290,13 +300,14 @@ void TestSliceViewTools::ellipseRoiOverUniformRegion() {
     QTest::mousePress(axial, Qt::LeftButton, Qt::NoModifier, QPoint(int(a.x), int(a.y)));
     QTest::mouseMove(axial, QPoint(int(b.x), int(b.y)));
     QTest::mouseRelease(axial, Qt::LeftButton, Qt::NoModifier, QPoint(int(b.x), int(b.y)));
-    QCOMPARE(axial->measurements().ellipses().size(), std::size_t(1));
-    const EllipseMeasurement& m = axial->measurements().ellipses()[0];
+    QCOMPARE(measured().size(), std::size_t(1));
+    const Measurement m = measured()[0];
+    QCOMPARE(m.unit, std::string("HU"));
     QCOMPARE(m.statistics.mean, 35.0);
     QCOMPARE(m.statistics.standardDeviation, 0.0);
     const double ru = 0.5 * (int(b.x) - int(a.x)) * 0.135;
     const double rv = 0.5 * (int(b.y) - int(a.y)) * 0.135;
-    QVERIFY(near(m.ellipse.radiusU, ru, 1e-9));
+    QVERIFY(near(measurementEllipse(m).radiusU, ru, 1e-9));
     QVERIFY(near(m.statistics.areaMm2, std::numbers::pi * ru * rv, 1e-6));
     QVERIFY(m.statistics.samples > 100);
 
@@ -305,8 +316,8 @@ void TestSliceViewTools::ellipseRoiOverUniformRegion() {
     const glm::dvec2 d = axial->plane().pixelOf({12.0, 3.0, 0.0});
     QTest::mouseClick(axial, Qt::LeftButton, Qt::NoModifier, QPoint(int(c.x), int(c.y)));
     QTest::mouseClick(axial, Qt::LeftButton, Qt::NoModifier, QPoint(int(d.x), int(d.y)));
-    QCOMPARE(axial->measurements().ellipses().size(), std::size_t(2));
-    const RoiStatistics& mixed = axial->measurements().ellipses()[1].statistics;
+    QCOMPARE(measured().size(), std::size_t(2));
+    const RoiStatistics& mixed = measured()[1].statistics;
     QVERIFY(mixed.mean < 30.0 && mixed.mean > -1000.0);
     QVERIFY(mixed.standardDeviation > 10.0);
 }
