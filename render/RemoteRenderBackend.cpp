@@ -166,7 +166,7 @@ void RemoteRenderBackend::open() {
 void RemoteRenderBackend::onConnected() {
     handshakeTimer_.stop();
     phase_ = Phase::Authenticating;
-    send(remote::writeClientMessage(remote::AuthRequest{settings_.token.toStdString()}));
+    send(remote::writeClientMessage(remote::AuthRequest{settings_.token.toStdString(), {}}));
 }
 
 void RemoteRenderBackend::onLost(const QString& why) {
