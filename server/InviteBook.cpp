@@ -7,27 +7,18 @@
 #include <algorithm>
 #include <array>
 
+#include "server/ConstantTime.h"
+
 namespace lucent::remote {
 namespace {
 
 constexpr int kCodeBytes = 24; // 192 bits
 constexpr std::int64_t kForgetAfterSeconds = 24 * 60 * 60;
 
-QByteArray digestOf(std::string_view code) {
+std::string digestOf(std::string_view code) {
     return QCryptographicHash::hash(QByteArrayView(code.data(), qsizetype(code.size())),
-                                    QCryptographicHash::Sha256);
-}
-
-// Every byte compared, whatever differs first.
-bool sameDigest(const QByteArray& a, const QByteArray& b) {
-    if (a.size() != b.size()) {
-        return false;
-    }
-    unsigned difference = 0;
-    for (qsizetype i = 0; i < a.size(); ++i) {
-        difference |= static_cast<unsigned char>(a[i]) ^ static_cast<unsigned char>(b[i]);
-    }
-    return difference == 0;
+                                    QCryptographicHash::Sha256)
+        .toStdString();
 }
 
 std::int64_t now() {
@@ -55,10 +46,10 @@ std::optional<InviteBook::Issued> InviteBook::issue(const QString& session,
 }
 
 InviteBook::Found InviteBook::find(std::string_view code) const {
-    const QByteArray digest = digestOf(code);
+    const std::string digest = digestOf(code);
     const Record* match = nullptr;
     for (const Record& r : records_) {
-        if (sameDigest(digest, r.digest)) {
+        if (equalInConstantTime(digest, r.digest)) {
             match = &r;
         }
     }

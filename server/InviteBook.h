@@ -5,7 +5,6 @@
 // digests in constant time; a code lives until it expires, is revoked or its
 // session ends. Nothing here is logged.
 
-#include <QByteArray>
 #include <QString>
 
 #include <cstdint>
@@ -48,7 +47,7 @@ public:
 
 private:
     struct Record {
-        QByteArray digest; // SHA-256 of the code
+        std::string digest; // SHA-256 of the code
         QString session;
         std::uint64_t number = 0;
         std::int64_t expires = 0;
