@@ -79,6 +79,11 @@ private slots:
                      .toString(),
                  "none");
 
+        // No page of the server lets the browser send a Referer.
+        QCOMPARE(driver.execute("return fetch('/').then((r) => r.headers.get('referrer-policy'));")
+                     .toString(),
+                 "no-referrer");
+
         const int drawn = framesDrawn(driver);
         presenter.send({{"type", "camera"}, {"azimuth", 90}});
         QVERIFY2(driver.waitUntil(
