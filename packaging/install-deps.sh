@@ -34,6 +34,8 @@ packages=(
   dicom3tools
   # teaching: QR codes for invite links; movies through FFmpeg's libraries (ffprobe checks them)
   libqrencode-dev libavcodec-dev libavformat-dev libavutil-dev libswscale-dev ffmpeg
+  # the invite test reads the QR codes back with a real decoder (zbarimg)
+  zbar-tools
 )
 
 missing=()

@@ -241,15 +241,92 @@ SessionHandover parseSessionHandover(const Json& m) {
     return {it->get<std::uint64_t>()};
 }
 
+AuthRequest parseAuth(const Json& m, int version) {
+    if (version < 3 && m.contains("invite")) {
+        // Before version 3 an unknown field; an invite holder learns what it needs.
+        throw ProtocolError("auth-failed",
+                            "an invite needs protocol version 3 (offer the subprotocol lucent.v3); "
+                            "this connection speaks version " +
+                                std::to_string(version),
+                            true);
+    }
+    if (version < 3) {
+        checkKeys(m, "auth", {"token"});
+        return {requiredString(m, "token", "auth"), {}};
+    }
+    checkKeys(m, "auth", {"token", "invite"});
+    if (m.contains("token") == m.contains("invite")) {
+        throwBadRequest("auth: give exactly one of 'token' and 'invite'");
+    }
+    if (m.contains("token")) {
+        return {requiredString(m, "token", "auth"), {}};
+    }
+    std::string invite = requiredString(m, "invite", "auth");
+    if (invite.size() > kMaxInviteCodeBytes) {
+        throwBadRequest("auth: 'invite' is longer than " + std::to_string(kMaxInviteCodeBytes) +
+                        " characters");
+    }
+    return {{}, std::move(invite)};
+}
+
+// "http(s)://host[:port]": letters, digits and . - : [ ] after the scheme.
+bool isOrigin(std::string_view origin) {
+    for (const std::string_view scheme : {"https://", "http://"}) {
+        if (origin.starts_with(scheme)) {
+            const std::string_view rest = origin.substr(scheme.size());
+            return !rest.empty() && rest.size() <= 253 + 6 &&
+                   rest.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                          "0123456789.-:[]") == std::string_view::npos;
+        }
+    }
+    return false;
+}
+
+InviteCreate parseInviteCreate(const Json& m) {
+    checkKeys(m, "invite-create", {"lifetime", "origin"});
+    InviteCreate c;
+    if (const auto it = m.find("lifetime"); it != m.end()) {
+        if (!it->is_number_integer() || it->get<long long>() < 1 ||
+            it->get<long long>() > kMaxInviteLifetimeSeconds) {
+            throwBadRequest("invite-create: 'lifetime' must be an integer number of seconds from "
+                            "1 to " +
+                            std::to_string(kMaxInviteLifetimeSeconds));
+        }
+        c.lifetimeSeconds = it->get<std::int64_t>();
+    }
+    if (m.contains("origin")) {
+        c.origin = requiredString(m, "origin", "invite-create");
+        if (!isOrigin(*c.origin)) {
+            throwBadRequest("invite-create: 'origin' must be http(s)://HOST[:PORT], without a "
+                            "path");
+        }
+    }
+    return c;
+}
+
+InviteRevoke parseInviteRevoke(const Json& m) {
+    checkKeys(m, "invite-revoke", {"invite"});
+    const auto it = m.find("invite");
+    if (it == m.end() || !it->is_number_unsigned() || it->get<std::uint64_t>() == 0) {
+        throwBadRequest("invite-revoke: 'invite' must be the number invite-created gave");
+    }
+    return {it->get<std::uint64_t>()};
+}
+
 template <class T> T empty(const Json& m, const std::string& type) {
     checkKeys(m, type, {});
     return T{};
 }
 
-ClientMessage parseTyped(const Json& m, const std::string& type) {
+ClientMessage parseTyped(const Json& m, const std::string& type, int version) {
     if (type == "auth") {
-        checkKeys(m, type, {"token"});
-        return AuthRequest{requiredString(m, "token", type)};
+        return parseAuth(m, version);
+    }
+    if (type == "invite-create") {
+        return parseInviteCreate(m);
+    }
+    if (type == "invite-revoke") {
+        return parseInviteRevoke(m);
     }
     if (type == "open") {
         checkKeys(m, type, {"series"});
@@ -303,7 +380,22 @@ ClientMessage parseTyped(const Json& m, const std::string& type) {
 // The fields of each message (everything but "type").
 struct FieldWriter {
     Json& m;
-    void operator()(const AuthRequest& a) const { m["token"] = a.token; }
+    void operator()(const AuthRequest& a) const {
+        if (!a.invite.empty()) {
+            m["invite"] = a.invite;
+        } else {
+            m["token"] = a.token;
+        }
+    }
+    void operator()(const InviteCreate& c) const {
+        if (c.lifetimeSeconds) {
+            m["lifetime"] = *c.lifetimeSeconds;
+        }
+        if (c.origin) {
+            m["origin"] = *c.origin;
+        }
+    }
+    void operator()(const InviteRevoke& r) const { m["invite"] = r.invite; }
     void operator()(const OpenRequest& o) const { m["series"] = o.series; }
     void operator()(const OptionUpdate& u) const { writeOptions(m, u); }
     void operator()(const TransferFunctionUpdate& u) const {
@@ -366,7 +458,7 @@ ClientMessage parseClientMessage(std::string_view text, int version) {
                                 std::to_string(since) + ")",
                             true);
     }
-    return parseTyped(m, type);
+    return parseTyped(m, type, version);
 }
 
 std::string writeClientMessage(const ClientMessage& message) {

@@ -26,6 +26,8 @@ constexpr TypeInfo kTypes[] = {
     {"session-join", 1, false},
     {"session-handover", 1, false},
     {"session-leave", 1, false},
+    {"invite-create", 3, false},
+    {"invite-revoke", 3, false},
 };
 static_assert(std::size(kTypes) == std::variant_size_v<ClientMessage>);
 

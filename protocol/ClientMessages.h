@@ -21,12 +21,19 @@ inline constexpr std::size_t kMaxMessageBytes = 64 * 1024;
 // Frames are at least this and at most this wide and tall.
 inline constexpr int kMinImageSide = 16;
 inline constexpr int kMaxImageSide = 4096;
+// An invite lives at most this long (and never past its session).
+inline constexpr std::int64_t kMaxInviteLifetimeSeconds = 24 * 60 * 60;
+// An invite code in `auth` is at most this long (the server's are 43 characters).
+inline constexpr std::size_t kMaxInviteCodeBytes = 128;
 
 enum class Quality { Interactive, Still };
 const char* qualityName(Quality quality);
 
+// Exactly one of the two: a token of the server's token file (a presenter's
+// credential), or (version 3) an invite code, which joins its session as a follower.
 struct AuthRequest {
     std::string token;
+    std::string invite;
     bool operator==(const AuthRequest&) const = default;
 };
 struct ListRequest {
@@ -96,11 +103,25 @@ struct SessionHandover {
 struct SessionLeave {
     bool operator==(const SessionLeave&) const = default;
 };
+// Version 3, the presenter of a session: an invite that lets its holder only
+// follow the session. `lifetime` (seconds, 1..kMaxInviteLifetimeSeconds): absent,
+// it lives as long as the session, at most a day. `origin` ("https://host:port"):
+// what the link starts with; absent, the host this client reached the server by.
+struct InviteCreate {
+    std::optional<std::int64_t> lifetimeSeconds;
+    std::optional<std::string> origin;
+    bool operator==(const InviteCreate&) const = default;
+};
+struct InviteRevoke {
+    std::uint64_t invite = 0; // the number invite-created gave
+    bool operator==(const InviteRevoke&) const = default;
+};
 
 using ClientMessage =
     std::variant<AuthRequest, ListRequest, OpenRequest, CameraUpdate, TransferFunctionUpdate,
                  ModeUpdate, ClipUpdate, QualityUpdate, SamplingUpdate, SizeUpdate, RenderRequest,
-                 InteractionUpdate, SessionCreate, SessionJoin, SessionHandover, SessionLeave>;
+                 InteractionUpdate, SessionCreate, SessionJoin, SessionHandover, SessionLeave,
+                 InviteCreate, InviteRevoke>;
 
 // True for the messages that change a view (and owe a frame).
 bool isViewMessage(const ClientMessage& message);

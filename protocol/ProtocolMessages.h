@@ -10,5 +10,6 @@
 #include "protocol/OptionValues.h"
 #include "protocol/ProtocolError.h"
 #include "protocol/ProtocolVersion.h"
+#include "protocol/QrCode.h"
 #include "protocol/ServerMessages.h"
 #include "protocol/ViewMessages.h"

@@ -37,6 +37,39 @@ template <class T> std::optional<T> readOptional(const Json& m, const char* key)
     }
 }
 
+// {"size":N,"rows":["1110...", ...]}: a row a string of 0 (light) and 1 (dark).
+Json qrJson(const QrCode& qr) {
+    Json rows = Json::array();
+    for (int y = 0; y < qr.size; ++y) {
+        std::string row(std::size_t(qr.size), '0');
+        for (int x = 0; x < qr.size; ++x) {
+            row[std::size_t(x)] = qr.dark(x, y) ? '1' : '0';
+        }
+        rows.push_back(std::move(row));
+    }
+    return {{"size", qr.size}, {"rows", rows}};
+}
+
+QrCode readQr(const Json& j) {
+    QrCode qr;
+    qr.size = jsonInteger<int>(j.at("size"), "qr.size");
+    const Json& rows = j.at("rows");
+    if (qr.size < 0 || qr.size > 177 || !rows.is_array() || rows.size() != std::size_t(qr.size)) {
+        throw ProtocolError("malformed", "'qr' must hold 'size' rows of 'size' modules", true);
+    }
+    for (const Json& row : rows) {
+        const std::string text = row.get<std::string>();
+        if (text.size() != std::size_t(qr.size) ||
+            text.find_first_not_of("01") != std::string::npos) {
+            throw ProtocolError("malformed", "a 'qr' row must hold 'size' of 0 and 1", true);
+        }
+        for (const char c : text) {
+            qr.modules.push_back(c == '1' ? 1 : 0);
+        }
+    }
+    return qr;
+}
+
 struct Writer {
     Json operator()(const Hello& h) const {
         return {{"type", "hello"}, {"version", h.version}, {"backend", h.backend}};
@@ -76,6 +109,14 @@ struct Writer {
     }
     Json operator()(const SessionLeft& l) const {
         return {{"type", "session-left"}, {"session", l.session}};
+    }
+    Json operator()(const InviteCreated& c) const {
+        return {{"type", "invite-created"}, {"invite", c.invite}, {"code", c.code},
+                {"expires", c.expires},     {"path", c.path},     {"link", c.link},
+                {"qr", qrJson(c.qr)}};
+    }
+    Json operator()(const InviteRevoked& r) const {
+        return {{"type", "invite-revoked"}, {"invite", r.invite}};
     }
 };
 
@@ -122,6 +163,17 @@ ServerMessage read(const Json& m, const std::string& type) {
     }
     if (type == "session-left") {
         return SessionLeft{m.at("session").get<std::string>()};
+    }
+    if (type == "invite-created") {
+        return InviteCreated{jsonInteger<std::uint64_t>(m.at("invite"), "invite"),
+                             m.at("code").get<std::string>(),
+                             jsonInteger<std::int64_t>(m.at("expires"), "expires"),
+                             m.at("path").get<std::string>(),
+                             m.at("link").get<std::string>(),
+                             readQr(m.at("qr"))};
+    }
+    if (type == "invite-revoked") {
+        return InviteRevoked{jsonInteger<std::uint64_t>(m.at("invite"), "invite")};
     }
     throw ProtocolError("unknown-type", "unknown server message type '" + type.substr(0, 64) + "'",
                         false);

@@ -13,6 +13,7 @@
 
 #include "protocol/ProtocolError.h"
 #include "protocol/ProtocolVersion.h"
+#include "protocol/QrCode.h"
 
 namespace lucent::remote {
 
@@ -66,8 +67,26 @@ struct SessionLeft {
     bool operator==(const SessionLeft&) const = default;
 };
 
+// Version 3: an invite to the presenter's session. The code is the secret; the
+// number names it (invite-revoke). `path` is the join link without the origin
+// ("/#invite=CODE": the code rides in the fragment, which no request carries),
+// `link` the whole link, `qr` the QR code of `link`.
+struct InviteCreated {
+    std::uint64_t invite = 0;
+    std::string code;
+    std::int64_t expires = 0; // seconds since 1970-01-01 UTC
+    std::string path;
+    std::string link;
+    QrCode qr;
+    bool operator==(const InviteCreated&) const = default;
+};
+struct InviteRevoked {
+    std::uint64_t invite = 0;
+    bool operator==(const InviteRevoked&) const = default;
+};
+
 using ServerMessage = std::variant<Hello, SeriesListReply, Opened, ErrorReply, SessionCreated,
-                                   SessionState, SessionLeft>;
+                                   SessionState, SessionLeft, InviteCreated, InviteRevoked>;
 
 // The message as compact JSON.
 std::string writeServerMessage(const ServerMessage& message);

@@ -107,6 +107,7 @@ void RemoteRenderBackend::closeConnection() {
     cameraTimer_.stop();
     phase_ = Phase::Idle;
     openSeries_.clear();
+    setSessionId({});
     if (socket_) {
         socket_->abort();
         socket_.reset();
@@ -166,7 +167,7 @@ void RemoteRenderBackend::open() {
 void RemoteRenderBackend::onConnected() {
     handshakeTimer_.stop();
     phase_ = Phase::Authenticating;
-    send(remote::writeClientMessage(remote::AuthRequest{settings_.token.toStdString()}));
+    send(remote::writeClientMessage(remote::AuthRequest{settings_.token.toStdString(), {}}));
 }
 
 void RemoteRenderBackend::onLost(const QString& why) {
@@ -177,6 +178,7 @@ void RemoteRenderBackend::onLost(const QString& why) {
     cameraTimer_.stop();
     phase_ = Phase::Idle;
     openSeries_.clear();
+    setSessionId({}); // the server ended it with this connection
     socket_.reset();
     if (!refusal_.isEmpty() && !retryAfterRefusal_) {
         setStatus(BackendStatus::Failed, refusal_);
@@ -229,6 +231,9 @@ void RemoteRenderBackend::onText(const QString& message) {
         serverBackend_ = text(hello->backend);
         serverVersion_ = hello->version;
         phase_ = Phase::Listing;
+        if (presenting_) { // the series is opened into the session, de-identified
+            send(remote::writeClientMessage(remote::SessionCreate{}));
+        }
         send(remote::writeClientMessage(remote::ListRequest{}));
     } else if (const auto* list = std::get_if<remote::SeriesListReply>(&m);
                list && phase_ == Phase::Listing) {
@@ -251,6 +256,8 @@ void RemoteRenderBackend::onText(const QString& message) {
                   tr("connected to %1, rendering with %2%3")
                       .arg(where(), serverBackend_.section(',', 0, 0), note));
         sync();
+    } else {
+        onSessionMessage(m);
     }
 }
 
@@ -263,7 +270,9 @@ void RemoteRenderBackend::onServerError(const QString& code, const QString& mess
                        : tr("%1 refused (%2: %3)").arg(where(), code, message);
         return;
     }
-    if (code == "not-found") {
+    if (isInviteRefusal(code, message)) {
+        emit inviteRefused(tr("%1 (%2)").arg(message, code));
+    } else if (code == "not-found") {
         fail(tr("%1 has no such series (%2)").arg(where(), message));
     } else if (code == "rate-limited") {
         // The camera was dropped: send it again a little later.

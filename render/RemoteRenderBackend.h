@@ -11,6 +11,7 @@
 #include <QSet>
 #include <QTimer>
 
+#include "protocol/ServerMessages.h"
 #include "render/RemoteServerSettings.h"
 #include "render/RenderBackend.h"
 
@@ -86,6 +87,27 @@ public:
     // an older one gets it served as a server of that version serves it.
     void setProtocolVersion(int version) { offeredVersion_ = version; }
 
+    // Teaching (RemoteRenderSession.cpp): while presenting, each connection
+    // starts a teaching session before it opens the series, so that the view is
+    // the session's and followers watch its de-identified copy. Changing it
+    // connects again; a new connection is a new session (the last one's invites
+    // end with it).
+    void setPresenting(bool presenting);
+    bool presenting() const { return presenting_; }
+    // The session this client presents; empty when none.
+    QString sessionId() const { return sessionId_; }
+    // Invites to it (protocol version 3; the answers come as signals): a
+    // lifetime in seconds, or none (until the session ends, at most a day).
+    void createInvite(std::optional<std::int64_t> lifetimeSeconds);
+    void revokeInvite(std::uint64_t invite);
+
+signals:
+    void sessionChanged(const QString& id);
+    void inviteCreated(const lucent::remote::InviteCreated& invite);
+    void inviteRevoked(quint64 invite);
+    // Why an invite could not be made or revoked.
+    void inviteRefused(const QString& why);
+
 private:
     enum class Phase { Idle, Connecting, Authenticating, Listing, Opening, Open };
     struct WantedView {
@@ -99,6 +121,11 @@ private:
     void onBinary(const QByteArray& message);
     void onLost(const QString& why);
     void onServerError(const QString& code, const QString& message, bool fatal);
+    // session-created, invite-created, invite-revoked; false for other messages.
+    bool onSessionMessage(const remote::ServerMessage& message);
+    // A refusal of invite-create or invite-revoke (reported by inviteRefused).
+    bool isInviteRefusal(const QString& code, const QString& message) const;
+    void setSessionId(const QString& id);
     void chooseSeries();
     void sync();
     void send(const std::string& json);
@@ -130,6 +157,8 @@ private:
     QString refusal_; // a fatal refusal, reported when the server closes
     bool retryAfterRefusal_ = true;
     bool retrying_ = true;
+    bool presenting_ = false;
+    QString sessionId_;
     bool wasOpen_ = false; // this connection got as far as an open series
     int serverVersion_ = 0;
     int offeredVersion_; // set in the constructor

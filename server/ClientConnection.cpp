@@ -84,10 +84,15 @@ void ClientConnection::start() {
     if (!socket_) {
         return;
     }
-    const QString prefix = QString::fromLatin1(kTokenSubprotocolPrefix);
+    const QString tokenPrefix = QString::fromLatin1(kTokenSubprotocolPrefix);
+    const QString invitePrefix = QString::fromLatin1(kInviteSubprotocolPrefix);
     for (const QString& offered : offeredSubprotocols(*socket_)) {
-        if (offered.startsWith(prefix)) {
-            authenticate(offered.mid(prefix.size()).toStdString());
+        if (offered.startsWith(tokenPrefix)) {
+            authenticate(offered.mid(tokenPrefix.size()).toStdString());
+            break;
+        }
+        if (offered.startsWith(invitePrefix)) {
+            authenticateInvite(offered.mid(invitePrefix.size()).toStdString());
             break;
         }
     }
@@ -174,7 +179,11 @@ void ClientConnection::authenticate(const std::string& token) {
 void ClientConnection::handle(const ClientMessage& message) {
     if (!authenticated_) {
         if (const auto* auth = std::get_if<AuthRequest>(&message)) {
-            authenticate(auth->token);
+            if (auth->invite.empty()) {
+                authenticate(auth->token);
+            } else {
+                authenticateInvite(auth->invite);
+            }
         } else {
             sendError("auth-required",
                       "the first message must be {\"type\":\"auth\",\"token\":...}", true);
@@ -184,6 +193,11 @@ void ClientConnection::handle(const ClientMessage& message) {
     const bool follower = session_ && !session_->isPresenter(*this);
     if (std::holds_alternative<AuthRequest>(message)) {
         sendError("out-of-order", "already authenticated", true);
+    } else if (refusedToInvitee(message)) {
+        return;
+    } else if (std::holds_alternative<InviteCreate>(message) ||
+               std::holds_alternative<InviteRevoke>(message)) {
+        handleInvite(message);
     } else if (std::holds_alternative<ListRequest>(message)) {
         sendList();
     } else if (const auto* open = std::get_if<OpenRequest>(&message)) {
@@ -274,16 +288,18 @@ void ClientConnection::handleSession(const ClientMessage& message) {
             sendError("session-full", "the session has no room for another member", false);
             return;
         }
-        ownView_->close();
-        session_ = session;
-        session->join(*this);
-        session->broadcastState();
-        qCInfo(lcClient) << "client" << id_ << "joined a session";
+        joinSession(*session);
     } else if (const auto* handover = std::get_if<SessionHandover>(&message)) {
+        const ClientConnection* to = session_ ? session_->member(handover->to) : nullptr;
         if (!session_) {
             sendError("out-of-order", "not in a session", true);
         } else if (!session_->isPresenter(*this)) {
             sendError("not-presenter", "this client does not hold control of the session", false);
+        } else if (to && to->invite() != 0) {
+            sendError("forbidden",
+                      "session-handover: member " + std::to_string(handover->to) +
+                          " joined by invite and may only follow",
+                      false);
         } else if (!session_->handover(handover->to)) {
             sendError("bad-request", "session-handover: no member " + std::to_string(handover->to),
                       false);
@@ -298,7 +314,35 @@ void ClientConnection::handleSession(const ClientMessage& message) {
         const std::string id = session_->id().toStdString();
         leaveSession();
         sendJson(writeServerMessage(SessionLeft{id}));
+        if (invite_ != 0) {
+            closeNormally("left"); // an invite's holder can do nothing else
+        }
     }
+}
+
+void ClientConnection::joinSession(TeachingSession& session) {
+    ownView_->close();
+    session_ = &session;
+    session.join(*this);
+    session.broadcastState();
+    qCInfo(lcClient) << "client" << id_ << "joined a session" << (invite_ ? "by invite" : "");
+}
+
+void ClientConnection::sessionEnded(const std::string& sessionId) {
+    session_ = nullptr;
+    sendJson(writeServerMessage(SessionLeft{sessionId}));
+    if (invite_ != 0) {
+        closeNormally("session ended");
+    }
+}
+
+void ClientConnection::closeNormally(const QString& reason) {
+    if (!socket_ || closing_) {
+        return;
+    }
+    closing_ = true;
+    socket_->flush();
+    socket_->close(QWebSocketProtocol::CloseCodeNormal, reason);
 }
 
 void ClientConnection::leaveSession() {

@@ -1,6 +1,6 @@
 #pragma once
 // One WebSocket client of the render server: authentication (the auth
-// message, or a token offered as a WebSocket subprotocol), the view it
+// message, or a token or an invite offered as a WebSocket subprotocol), the view it
 // watches (its own, or a teaching session's), and the frames it is sent.
 // The client is only ever sent the newest frame: one that arrives while the
 // previous one is still being written replaces any frame waiting behind it.
@@ -12,6 +12,7 @@
 #include <QTimer>
 #include <QWebSocket>
 
+#include <cstdint>
 #include <string>
 
 #include "protocol/ProtocolMessages.h"
@@ -34,6 +35,8 @@ inline constexpr int kAuthTimeoutMs = 10000;
 // The prefix of the subprotocol that carries a client's token (browsers cannot
 // set headers on a WebSocket); the version rides in another (ProtocolVersion.h).
 inline constexpr char kTokenSubprotocolPrefix[] = "lucent.token.";
+// The prefix of the subprotocol that carries an invite code (version 3).
+inline constexpr char kInviteSubprotocolPrefix[] = "lucent.invite.";
 
 class ClientConnection : public QObject {
     Q_OBJECT
@@ -48,6 +51,9 @@ public:
     // The protocol version of this connection: the lucent.v<N> subprotocol the
     // handshake selected, 1 when none.
     int version() const { return version_; }
+    // The number of the invite it came with; 0 when it came with a token (an
+    // invite's holder may only follow its session).
+    std::uint64_t invite() const { return invite_; }
     void sendJson(const std::string& json);
     // Sends an error; a fatal one closes the connection after it.
     void sendError(const std::string& code, const std::string& message, bool fatal);
@@ -58,6 +64,9 @@ public:
     bool readyForFrame() const;
     // Leaves its teaching session, if any (on a close too).
     void leaveSession();
+    // Its session ended under it: session-left, and a follower by invite,
+    // which can do nothing else, is closed.
+    void sessionEnded(const std::string& sessionId);
 
 signals:
     void closed(quint64 id);
@@ -70,6 +79,14 @@ private:
     void authenticate(const std::string& token);
     void handle(const ClientMessage& message);
     void handleSession(const ClientMessage& message);
+    void joinSession(TeachingSession& session);
+    // Invites (ClientInvites.cpp): auth by invite, invite-create and invite-revoke,
+    // and what an invite's holder may not do.
+    void authenticateInvite(const std::string& code);
+    void handleInvite(const ClientMessage& message);
+    bool refusedToInvitee(const ClientMessage& message);
+    std::string linkOrigin() const;
+    void closeNormally(const QString& reason);
     void handleOpen(const OpenRequest& open);
     void sendList();
     bool takeCameraToken();
@@ -82,6 +99,7 @@ private:
     QTimer keepaliveTimer_;
     QElapsedTimer lastHeard_; // since the last message or pong
     bool authenticated_ = false;
+    std::uint64_t invite_ = 0;
     bool closing_ = false;
 
     ViewStream* ownView_;               // child: the view when in no session

@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 
 #include "server/ClientConnection.h"
+#include "server/ConstantTime.h"
 #include "server/LocalFrameSource.h"
 #include "server/TeachingSession.h"
 #include "server/ViewStream.h"
@@ -17,19 +18,6 @@ namespace lucent::remote {
 namespace {
 
 Q_LOGGING_CATEGORY(lcServer, "lucent.server")
-
-// Compares every byte, not stopping at the first difference (no timing hint
-// about the contents; the length is not secret).
-bool sameToken(const std::string& a, const std::string& b) {
-    if (a.size() != b.size()) {
-        return false;
-    }
-    unsigned difference = 0;
-    for (std::size_t i = 0; i < a.size(); ++i) {
-        difference |= static_cast<unsigned char>(a[i]) ^ static_cast<unsigned char>(b[i]);
-    }
-    return difference == 0;
-}
 
 // "0644" for a file's permission bits.
 std::string octalMode(mode_t mode) {
@@ -153,7 +141,7 @@ quint16 RenderServer::port() const {
 bool RenderServer::acceptsToken(const std::string& token) const {
     bool accepted = false;
     for (const std::string& known : options_.tokens) {
-        accepted |= sameToken(token, known);
+        accepted |= equalInConstantTime(token, known);
     }
     return accepted;
 }

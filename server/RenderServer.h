@@ -23,6 +23,7 @@
 #include "core/io/SeriesEntry.h"
 #include "render/RenderDevice.h"
 #include "server/HttpFrontDoor.h"
+#include "server/InviteBook.h"
 #include "server/RenderWorker.h"
 #include "server/ServedSeries.h"
 
@@ -76,6 +77,8 @@ public:
 
     // For connections.
     bool acceptsToken(const std::string& token) const;
+    InviteBook& invites() { return invites_; }
+    bool servesTls() const { return options_.tls.has_value(); }
     int keepaliveSeconds() const { return options_.keepaliveSeconds; }
     const SeriesList& series() const { return series_; }
     std::shared_ptr<const SeriesEntry> findSeries(const std::string& uid) const;
@@ -135,6 +138,7 @@ private:
     QHash<quint64, QPointer<ViewStream>> views_;
     quint64 nextViewId_ = 1;
     QHash<QString, QPointer<TeachingSession>> sessions_;
+    InviteBook invites_;
     // De-identified copies by original series id, and who waits for one.
     std::map<std::string, std::shared_ptr<const SeriesEntry>> copies_;
     std::map<std::string, std::vector<std::pair<QPointer<QObject>, CopyDone>>> copyWaiters_;

@@ -67,7 +67,9 @@ TeachingSession* RenderServer::findSession(const QString& id) const {
 }
 
 void RenderServer::endSession(const QString& id) {
+    invites_.sessionEnded(id);
     if (const QPointer<TeachingSession> session = sessions_.take(id)) {
+        session->dismissAll();
         session->deleteLater();
     }
     qCInfo(lcSessions) << "a session ended;" << sessions_.size() << "running";

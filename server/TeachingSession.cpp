@@ -2,7 +2,10 @@
 
 #include <QLoggingCategory>
 
+#include <algorithm>
+
 #include "server/ClientConnection.h"
+#include "server/InviteBook.h"
 #include "server/RenderServer.h"
 
 namespace lucent::remote {
@@ -45,7 +48,9 @@ bool TeachingSession::leave(ClientConnection& client) {
     members_.removeAll(nullptr);
     view_->removeMember(&client);
     if (presenter_ == &client || !presenter_) {
-        presenter_ = members_.isEmpty() ? nullptr : members_.front().data();
+        const auto next = std::find_if(members_.cbegin(), members_.cend(),
+                                       [](const auto& m) { return m && m->invite() == 0; });
+        presenter_ = next == members_.cend() ? nullptr : next->data();
         view_->setPacer(presenter_);
         if (presenter_) {
             qCInfo(lcSession) << "session: the presenter left; client" << presenter_->id()
@@ -53,7 +58,36 @@ bool TeachingSession::leave(ClientConnection& client) {
         }
     }
     view_->pump(); // a new pacer may be ready
-    return members_.isEmpty();
+    return presenter_ == nullptr;
+}
+
+ClientConnection* TeachingSession::member(quint64 id) const {
+    for (const auto& m : members_) {
+        if (m && m->id() == id) {
+            return m.data();
+        }
+    }
+    return nullptr;
+}
+
+void TeachingSession::dismissAll() {
+    const auto members = members_;
+    members_.clear();
+    for (const auto& m : members) {
+        if (m) {
+            view_->removeMember(m.data());
+            m->sessionEnded(id_.toStdString());
+        }
+    }
+}
+
+void TeachingSession::dropInvited(std::uint64_t invite) {
+    const auto members = members_;
+    for (const auto& m : members) {
+        if (m && m->invite() == invite) {
+            m->sendError("auth-failed", InviteBook::refusal(InviteBook::State::Revoked), true);
+        }
+    }
 }
 
 bool TeachingSession::handover(quint64 to) {

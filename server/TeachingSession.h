@@ -2,8 +2,8 @@
 // A teaching session: one view, one presenter who controls it, followers who
 // receive the same frames. The series shown is the de-identified copy that
 // the server makes when the presenter opens one. When the presenter leaves,
-// the longest-standing follower presents; when the last member leaves, the
-// session ends.
+// the longest-standing follower who came with a token presents; when the last
+// of those leaves, the session ends (followers joined by invite never present).
 
 #include <QList>
 #include <QObject>
@@ -37,10 +37,18 @@ public:
     // Adds a follower and gives it the series and the last frame, if any.
     void join(ClientConnection& client);
     // Removes a member; a leaving presenter hands control to the longest-
-    // standing follower. True when the session is now empty.
+    // standing follower who came with a token. True when no such member is left:
+    // the session ends.
     bool leave(ClientConnection& client);
+    // The member with this client number; null when none.
+    ClientConnection* member(quint64 id) const;
     // Gives control to the member with this client number; false when none.
     bool handover(quint64 to);
+    // The session ends: members still in it (followers by invite) are told
+    // session-left and their connections close.
+    void dismissAll();
+    // Members who joined by this invite are refused and their connections close.
+    void dropInvited(std::uint64_t invite);
     // The presenter opens a series of the server: the members see its
     // de-identified copy once it is ready.
     void share(std::shared_ptr<const SeriesEntry> original);

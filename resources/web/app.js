@@ -1,8 +1,8 @@
-// Lucent browser client: protocol version 2 (docs/protocol.md; it sends no
-// sampling message, so it needs nothing of version 2) over a WebSocket to the
-// server that served this page: authentication, series, view changes, teaching
-// sessions, reconnect with backoff. The canvas lives in view.js. Plain
-// JavaScript, no build step.
+// Lucent browser client: protocol version 3 (docs/protocol.md; it sends no
+// sampling message, and invites need version 3) over a WebSocket to the server
+// that served this page: authentication by token or by a join link's invite,
+// series, view changes, teaching sessions and their invites, reconnect with
+// backoff. The canvas lives in view.js. Plain JavaScript, no build step.
 "use strict";
 
 (() => {
@@ -13,13 +13,18 @@
     resetView: $("reset-view"), panel: $("panel"), togglePanel: $("toggle-panel"),
     sessionId: $("session-id"), joinSession: $("join-session"),
     startSession: $("start-session"), leaveSession: $("leave-session"),
-    sessionInfo: $("session-info"),
+    sessionInfo: $("session-info"), createInvite: $("create-invite"),
+    inviteBox: $("invite-box"), inviteLink: $("invite-link"), copyInvite: $("copy-invite"),
+    inviteQr: $("invite-qr"), inviteExpiry: $("invite-expiry"),
+    revokeInvite: $("revoke-invite"),
   };
 
   // The protocol versions this page speaks, newest first, offered in the
   // handshake: the server selects the first it speaks and says it in hello.
-  const kSubprotocols = ["lucent.v2", "lucent.v1"];
+  const kSubprotocols = ["lucent.v3", "lucent.v2", "lucent.v1"];
   const kTokenSubprotocolPrefix = "lucent.token.";
+  const kInviteSubprotocolPrefix = "lucent.invite.";
+  const kQrQuietZone = 4; // light modules around a QR code
   // Characters a WebSocket subprotocol may hold (RFC 6455, an HTTP token).
   const kSubprotocolChars = /^[!#$%&'*+\-.^_`|~0-9A-Za-z]+$/;
   const kCameraIntervalMs = 33; // at most ~30 camera updates a second (the server allows 60)
@@ -31,6 +36,9 @@
                  radius: 0, preset: null, mode: "dvr",
                  iso: 300 };
   let token = "";
+  // A join link's invite: this page then only follows that session.
+  const invite = takeInviteFromAddress();
+  let shownInvite = null;       // the presenter's last invite-created
   let socket = null;
   let authenticated = false;
   let opened = false;
@@ -60,7 +68,20 @@
   });
   // Read by tests and handy in the console: counters and the view, never the token.
   window.lucent = { stats: canvasView.stats, view, session: () => session,
-                    protocolVersion: () => protocolVersion };
+                    protocolVersion: () => protocolVersion, invited: () => invite !== "",
+                    shownInvite: () => shownInvite };
+
+  // https://host:port/#invite=CODE: the code rides in the fragment, which no
+  // request and no Referer carries; it is taken out of the address bar at once
+  // (and so out of the history and any screenshot of the page).
+  function takeInviteFromAddress() {
+    const match = /^#invite=([A-Za-z0-9_-]{16,128})$/.exec(location.hash);
+    if (!match) {
+      return "";
+    }
+    history.replaceState(null, "", location.pathname + location.search);
+    return match[1];
+  }
 
   function controlling() {
     return authenticated && opened && (!session || session.role === "presenter");
@@ -87,6 +108,9 @@
     ui.joinSession.disabled = !authenticated || session !== null || joining !== null;
     ui.startSession.disabled = ui.joinSession.disabled;
     ui.leaveSession.disabled = !authenticated || session === null;
+    ui.createInvite.disabled = !authenticated || protocolVersion < 3 || session === null ||
+                               session.role !== "presenter";
+    ui.revokeInvite.disabled = ui.createInvite.disabled || shownInvite === null;
     for (const el of document.querySelectorAll(".iso-only")) {
       el.hidden = view.mode !== "iso";
     }
@@ -107,10 +131,12 @@
     setStatus("connecting to " + location.host + " ...");
     const scheme = location.protocol === "https:" ? "wss:" : "ws:";
     // The token rides in a subprotocol when it can (no extra round trip), else in
-    // the first message; never in the URL.
-    const tokenInProtocol = kSubprotocolChars.test(token);
+    // the first message; never in the URL. An invite's code always can.
+    const tokenInProtocol = invite !== "" || kSubprotocolChars.test(token);
     const protocols = [...kSubprotocols];
-    if (tokenInProtocol) {
+    if (invite) {
+      protocols.push(kInviteSubprotocolPrefix + invite);
+    } else if (tokenInProtocol) {
       protocols.push(kTokenSubprotocolPrefix + token);
     }
     socket = new WebSocket(scheme + "//" + location.host + "/", protocols);
@@ -163,6 +189,10 @@
         protocolVersion = message.version;
         backoffMs = kBackoffFirstMs;
         setStatus("connected (" + message.backend + ")", "good");
+        if (invite) {
+          setStatus("joining the session ...", "good"); // the invite joins it by itself
+          break;
+        }
         send({ type: "list" });
         if (session) { // a follower comes back to its session
           joinSession(session.id);
@@ -195,8 +225,12 @@
       ui.sessionInfo.textContent = "";
     }
     if (message.fatal && message.code.startsWith("auth")) {
-      stopReconnecting = true; // a new token is needed, not another try
-      ui.token.focus();
+      stopReconnecting = true; // a new token (or invite) is needed, not another try
+      if (invite) {
+        setStatus(message.message + ": ask the presenter for a new link", "bad");
+      } else {
+        ui.token.focus();
+      }
     }
   }
 
@@ -382,10 +416,73 @@
     } else if (message.type === "session-left") {
       session = null;
       opened = false;
+      showInvite(null);
+      if (invite) {
+        stopReconnecting = true; // the server closes: an invite follows one session only
+        setStatus("the session has ended");
+        return;
+      }
       ui.sessionInfo.textContent = "left the session; open a series";
       send({ type: "list" });
+    } else if (message.type === "invite-created") {
+      showInvite(message);
+    } else if (message.type === "invite-revoked") {
+      if (shownInvite && shownInvite.invite === message.invite) {
+        showInvite(null);
+      }
+      setStatus("invite revoked: its link lets no one in, and its followers were dropped");
     }
   }
+
+  // --- invites (the presenter's) ---------------------------------------------
+
+  function showInvite(created) {
+    shownInvite = created;
+    ui.inviteBox.hidden = created === null;
+    if (created === null) {
+      ui.inviteLink.value = "";
+      return;
+    }
+    ui.inviteLink.value = created.link;
+    ui.inviteExpiry.textContent = "valid until " + new Date(created.expires * 1000)
+      .toLocaleString() + " or the end of the session";
+    drawQr(ui.inviteQr, created.qr);
+  }
+
+  // The server's module matrix, dark on white, with its quiet zone.
+  function drawQr(canvas, qr) {
+    const modules = qr.size + 2 * kQrQuietZone;
+    const scale = Math.max(2, Math.floor(256 / modules));
+    canvas.width = canvas.height = modules * scale;
+    const g = canvas.getContext("2d");
+    g.fillStyle = "#fff";
+    g.fillRect(0, 0, canvas.width, canvas.height);
+    g.fillStyle = "#000";
+    qr.rows.forEach((row, y) => {
+      for (let x = 0; x < row.length; ++x) {
+        if (row[x] === "1") {
+          g.fillRect((x + kQrQuietZone) * scale, (y + kQrQuietZone) * scale, scale, scale);
+        }
+      }
+    });
+  }
+
+  ui.createInvite.addEventListener("click", () => {
+    // The link starts with what this page was loaded from (the host students reach).
+    send({ type: "invite-create", origin: location.origin });
+  });
+  ui.revokeInvite.addEventListener("click", () => {
+    if (shownInvite) {
+      send({ type: "invite-revoke", invite: shownInvite.invite });
+    }
+  });
+  ui.copyInvite.addEventListener("click", () => {
+    ui.inviteLink.select();
+    const copied = navigator.clipboard ? navigator.clipboard.writeText(ui.inviteLink.value)
+      : Promise.resolve(document.execCommand("copy"));
+    copied.then(() => setStatus("link copied", "good"),
+                () => setStatus("select the link and copy it", "bad"));
+  });
 
   ui.joinSession.addEventListener("click", () => {
     const id = ui.sessionId.value.trim();
@@ -425,6 +522,13 @@
       connect();
     }
   });
+  if (invite) {
+    // A student with a join link: only the view, following the presenter.
+    document.body.classList.add("invited");
+    showPanel(false);
+    backoffMs = kBackoffFirstMs;
+    connect();
+  }
   updateControls();
   canvasView.resize();
 })();

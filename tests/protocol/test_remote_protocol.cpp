@@ -367,7 +367,7 @@ private slots:
         ClipUpdate loOnly;
         loOnly.box.lo = {0.0, 0.0, 4.0};
         const std::vector<ClientMessage> all = {
-            AuthRequest{"t0ken/+="},
+            AuthRequest{"t0ken/+=", {}},
             ListRequest{},
             OpenRequest{"1.2.840.10008#2"},
             CameraUpdate{optionUpdate(kWireCamera, d)},
@@ -390,6 +390,10 @@ private slots:
             SessionJoin{"9u8ncw3mq7v5dbrf"},
             SessionHandover{7},
             SessionLeave{},
+            AuthRequest{{}, "Zm9vYmFyYmF6cXV4cXV1eGNvcmdl"},
+            InviteCreate{3600, "https://lecture.example.org:8443"},
+            InviteCreate{},
+            InviteRevoke{4},
         };
         std::set<std::size_t> kinds;
         for (const ClientMessage& m : all) {
@@ -426,6 +430,9 @@ private slots:
             SessionState{"9u8ncw3mq7v5dbrf", 2, {1, 2}, 1, 2, "follower", "1.2.826.0.1"},
             SessionState{"9u8ncw3mq7v5dbrf", 1, {3}, std::nullopt, 3, "presenter", std::nullopt},
             SessionLeft{"9u8ncw3mq7v5dbrf"},
+            InviteCreated{3, "Zm9v", 1790000000, "/#invite=Zm9v", "http://h:1/#invite=Zm9v",
+                          encodeQrCode("http://h:1/#invite=Zm9v")},
+            InviteRevoked{3},
         };
         std::set<std::size_t> kinds;
         for (const ServerMessage& m : all) {
@@ -541,15 +548,17 @@ private slots:
     }
 
     void versionsAreNegotiated() {
-        QCOMPARE(kProtocolVersion, 2);
+        QCOMPARE(kProtocolVersion, 3);
         QCOMPARE(subprotocolName(2), "lucent.v2");
         QCOMPARE(subprotocolVersion("lucent.v1"), std::optional<int>(1));
         QCOMPARE(subprotocolVersion("lucent.v2"), std::optional<int>(2));
-        for (const char* other : {"lucent.v3", "lucent.v0", "lucent.v", "lucent.v02", "lucent.v2x",
+        QCOMPARE(subprotocolVersion("lucent.v3"), std::optional<int>(3));
+        for (const char* other : {"lucent.v4", "lucent.v0", "lucent.v", "lucent.v02", "lucent.v2x",
                                   "lucent.token.abc", "v2"}) {
             QVERIFY2(!subprotocolVersion(other), other);
         }
-        QCOMPARE(supportedSubprotocols(), (std::vector<std::string>{"lucent.v2", "lucent.v1"}));
+        QCOMPARE(supportedSubprotocols(),
+                 (std::vector<std::string>{"lucent.v3", "lucent.v2", "lucent.v1"}));
         // Sampling came with version 2: a version 1 connection does not know the type.
         const char* sampling = R"({"type":"sampling","step":0.25,"interp":"cubic"})";
         bool fatal = false;
@@ -566,6 +575,73 @@ private slots:
             QCOMPARE(errorCode(v1, nullptr, 1), "");
             QCOMPARE(messageVersion(parseClientMessage(v1, 1)), 1);
         }
+    }
+
+    // Invites came with version 3: an older connection that presents one is refused
+    // with auth-failed saying so (fatal); its other messages are unknown types there.
+    void invitesNeedVersionThree() {
+        const char* inviteAuth = R"({"type":"auth","invite":"Zm9vYmFy"})";
+        for (const int old : {1, 2}) {
+            bool fatal = false;
+            std::string message;
+            QCOMPARE(errorCode(inviteAuth, &fatal, old, &message), "auth-failed");
+            QVERIFY(fatal);
+            QVERIFY2(message.find("version 3") != std::string::npos, message.c_str());
+            QCOMPARE(errorCode(R"({"type":"invite-create"})", nullptr, old), "unknown-type");
+            QCOMPARE(errorCode(R"({"type":"auth","token":"t"})", nullptr, old), "");
+        }
+        QCOMPARE(errorCode(inviteAuth, nullptr, 3), "");
+        QCOMPARE(messageTypeVersion("invite-create"), 3);
+        QCOMPARE(messageTypeVersion("invite-revoke"), 3);
+        const std::string longCode(kMaxInviteCodeBytes + 1, 'a');
+        const std::string tooLong = "{\"type\":\"auth\",\"invite\":\"" + longCode + "\"}";
+        for (const char* bad :
+             {R"({"type":"auth","invite":"a","token":"b"})", R"({"type":"auth"})",
+              R"({"type":"auth","invite":""})", tooLong.c_str(),
+              R"({"type":"invite-create","lifetime":0})",
+              R"({"type":"invite-create","lifetime":86401})",
+              R"({"type":"invite-create","lifetime":1.5})",
+              R"({"type":"invite-create","origin":"https://h/path"})",
+              "{\"type\":\"invite-create\",\"origin\":\"javascript:alert(1)\"}",
+              R"({"type":"invite-create","code":"x"})", R"({"type":"invite-revoke","invite":0})",
+              R"({"type":"invite-revoke"})"}) {
+            bool fatal = true;
+            QVERIFY2(errorCode(bad, &fatal, 3) == "bad-request", bad);
+            QVERIFY(!fatal);
+        }
+    }
+
+    // libqrencode's matrix against the format's invariants (ISO/IEC 18004): a
+    // side of 17 + 4 * version, the three finder patterns with their separators,
+    // the timing patterns and the dark module (zbarimg reads whole codes back in
+    // test_remote_invites).
+    void qrCodesKeepTheFormatsInvariants() {
+        for (const std::string& text :
+             {std::string("http://127.0.0.1:8765/#invite=Zm9vYmFyYmF6cXV4cXV1eGNvcmdlZ3JhdWx0"),
+              std::string(300, 'x')}) {
+            const QrCode qr = encodeQrCode(text);
+            QVERIFY(qr.size >= 21 && (qr.size - 17) % 4 == 0);
+            QCOMPARE(qr.modules.size(), std::size_t(qr.size * qr.size));
+            const int version = (qr.size - 17) / 4;
+            for (const auto& [ox, oy] : {std::pair{0, 0}, {qr.size - 7, 0}, {0, qr.size - 7}}) {
+                for (int y = -1; y <= 7; ++y) {
+                    for (int x = -1; x <= 7; ++x) {
+                        if (ox + x < 0 || oy + y < 0 || ox + x >= qr.size || oy + y >= qr.size) {
+                            continue;
+                        }
+                        // Rings about the centre: 0, 1 and 3 dark; 2 and 4 (the separator) light.
+                        const int ring = std::max(std::abs(x - 3), std::abs(y - 3));
+                        QCOMPARE(qr.dark(ox + x, oy + y), ring != 2 && ring != 4);
+                    }
+                }
+            }
+            for (int n = 8; n < qr.size - 8; ++n) {
+                QCOMPARE(qr.dark(n, 6), n % 2 == 0);
+                QCOMPARE(qr.dark(6, n), n % 2 == 0);
+            }
+            QVERIFY(qr.dark(8, 4 * version + 9));
+        }
+        QVERIFY_THROWS_EXCEPTION(std::runtime_error, encodeQrCode(std::string(8000, 'x')));
     }
 
     // A description, sent as view messages and applied by a server, arrives whole.

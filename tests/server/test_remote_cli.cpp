@@ -253,7 +253,7 @@ private slots:
                          [&](const QString& why) { failures.append(why); });
         now.connectTo(settings);
         QVERIFY(QTest::qWaitFor([&] { return now.status() == BackendStatus::Connected; }, 20000));
-        QCOMPARE(now.serverVersion(), 2);
+        QCOMPARE(now.serverVersion(), remote::kProtocolVersion);
         now.request(cubic, {});
         QVERIFY(QTest::qWaitFor([&] { return !nowFrames.isEmpty() && nowFrames.back().current; },
                                 30000));

@@ -11,6 +11,7 @@
 #include <QVBoxLayout>
 
 #include "ui/theme/Theme.h"
+#include "ui/volume/InviteDialog.h"
 #include "ui/volume/VolumeView.h"
 
 namespace lucent {
@@ -117,6 +118,19 @@ void addRenderBackendMenu(QMenu* menu, VolumeView* view) {
             view->renderOnServer(dialog.settings());
         }
         follow(); // cancelled: back to where the view still renders
+    });
+    // Teaching: the server's view presented as a session, with invites to it.
+    QAction* invite = menu->addAction(QObject::tr("&Invite Students..."));
+    invite->setObjectName(QStringLiteral("inviteStudents"));
+    const auto enable = [view, invite] {
+        invite->setEnabled(view->backend() == VolumeView::Backend::Remote);
+    };
+    enable();
+    QObject::connect(view, &VolumeView::backendChanged, invite, enable);
+    QObject::connect(invite, &QAction::triggered, view, [view] {
+        auto* dialog = new InviteDialog(view->remoteBackend(), view->window());
+        dialog->setAttribute(Qt::WA_DeleteOnClose); // modeless: the view stays in reach
+        dialog->show();
     });
 }
 
