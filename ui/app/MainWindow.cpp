@@ -23,6 +23,7 @@
 #include "ui/app/ShortcutsDialog.h"
 #include "ui/app/ViewLayout.h"
 #include "ui/mpr/CurvedMprView.h"
+#include "ui/mpr/MeasurementAutosave.h"
 #include "ui/mpr/MprCursor.h"
 #include "ui/mpr/SeriesMeasurements.h"
 #include "ui/mpr/SliceView.h"
@@ -150,6 +151,12 @@ MainWindow::MainWindow(QWidget* parent)
     // PACS query/retrieve and the local store in a dock; arrived series open here.
     PacsBrowser* pacs = PacsBrowser::addDock(this, menuBar()->addMenu(tr("&PACS")));
     studies->setStoreFolder(pacs->config().storeFolder);
+    // Measurements of stored series are kept there as DICOM SR, as the reader works.
+    autosave_ = new MeasurementAutosave(pacs->config().storeFolder, this);
+    connect(this, &MainWindow::measurementsOpened, autosave_, &MeasurementAutosave::attach);
+    connect(
+        autosave_, &MeasurementAutosave::message, this,
+        [this](const QString& text, int timeoutMs) { statusBar()->showMessage(text, timeoutMs); });
     connect(pacs->service(), &PacsService::retrievalFinished, studies, &StudyBrowser::refreshStore);
     connect(pacs, &PacsBrowser::openSeries, this,
             [this](const QString& folder, const QString& series) { openPath(folder, series); });

@@ -16,6 +16,7 @@ class QLabel;
 namespace lucent {
 
 class CurvedMprView;
+class MeasurementAutosave;
 class MeasurementControls;
 class MovieExportDialog;
 class MprCursor;
@@ -62,6 +63,8 @@ public:
     // tool bar, Edit actions and list that act on them.
     SeriesMeasurements* measurements() const { return measurements_; }
     MeasurementControls* measurementControls() const { return measurementControls_; }
+    // Keeps the measurements of stored series as DICOM SR in the study store.
+    MeasurementAutosave* measurementAutosave() const { return autosave_; }
     // Help > Keyboard Shortcuts: opens (or raises) the dialog and returns it.
     ShortcutsDialog* showShortcuts();
 
@@ -111,6 +114,7 @@ private:
     MeasurementControls* measurementControls_ = nullptr;
     std::map<std::string, SeriesMeasurements*> seriesMeasurements_; // by series UID
     SeriesMeasurements* measurements_ = nullptr;
+    MeasurementAutosave* autosave_ = nullptr;
     ShortcutsDialog* shortcuts_ = nullptr;
 };
 

@@ -3,6 +3,7 @@
 #include <QAction>
 #include <QHBoxLayout>
 #include <QHeaderView>
+#include <QLabel>
 #include <QPushButton>
 #include <QTableWidget>
 #include <QVBoxLayout>
@@ -13,7 +14,11 @@ namespace lucent {
 
 MeasurementList::MeasurementList(MprCursor* cursor, QWidget* parent)
     : QWidget(parent), cursor_(cursor), table_(new QTableWidget(0, ColumnCount, this)),
-      delete_(new QPushButton(tr("Delete"), this)), clear_(new QPushButton(tr("Clear all"), this)) {
+      delete_(new QPushButton(tr("Delete"), this)), clear_(new QPushButton(tr("Clear all"), this)),
+      notShown_(new QLabel(this)) {
+    notShown_->setObjectName(QStringLiteral("measurementsNotShown"));
+    notShown_->setWordWrap(true);
+    notShown_->setTextInteractionFlags(Qt::TextSelectableByMouse);
     table_->setObjectName(QStringLiteral("measurementTable"));
     table_->setHorizontalHeaderLabels(
         {tr("Kind"), tr("Name"), tr("Value"), tr("Plane"), tr("Slice")});
@@ -53,6 +58,7 @@ MeasurementList::MeasurementList(MprCursor* cursor, QWidget* parent)
     auto* column = new QVBoxLayout(this);
     column->setContentsMargins(2, 2, 2, 2);
     column->addWidget(table_, 1);
+    column->addWidget(notShown_);
     column->addLayout(buttons);
     // The dock may be narrower than the buttons' text: they share what it has.
     delete_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Fixed);
@@ -81,6 +87,17 @@ std::uint64_t MeasurementList::idAt(int row) const {
 void MeasurementList::refresh() {
     refreshing_ = true;
     table_->setRowCount(0);
+    QStringList notShown;
+    if (measurements_ != nullptr) {
+        for (const std::string& item : measurements_->notShown()) {
+            notShown << QString::fromStdString(item);
+        }
+    }
+    notShown_->setText(
+        notShown.isEmpty()
+            ? QString()
+            : tr("Not shown (other reports): %1").arg(notShown.join(QStringLiteral("; "))));
+    notShown_->setVisible(!notShown.isEmpty());
     if (measurements_ != nullptr) {
         const std::shared_ptr<const Volume> volume = measurements_->volume();
         for (const Measurement& m : measurements_->measurements()) {

@@ -7,6 +7,7 @@
 
 #include "ui/mpr/SeriesMeasurements.h"
 
+class QLabel;
 class QPushButton;
 class QTableWidget;
 
@@ -31,6 +32,8 @@ public:
     void setMeasurements(SeriesMeasurements* measurements);
     QTableWidget* table() const { return table_; }
     QPushButton* deleteButton() const { return delete_; }
+    // Lists what other reports hold that cannot be shown; hidden when there is none.
+    QLabel* notShownLabel() const { return notShown_; }
     // The measurement of a row; 0 for none.
     std::uint64_t idAt(int row) const;
 
@@ -46,6 +49,7 @@ private:
     QTableWidget* table_;
     QPushButton* delete_;
     QPushButton* clear_;
+    QLabel* notShown_;
     bool refreshing_ = false;
 };
 

@@ -106,4 +106,9 @@ void SeriesMeasurements::select(std::uint64_t id) {
     emit selectionChanged(id);
 }
 
+void SeriesMeasurements::setNotShown(std::vector<std::string> items) {
+    notShown_ = std::move(items);
+    emit changed();
+}
+
 } // namespace lucent

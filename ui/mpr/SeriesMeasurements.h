@@ -43,6 +43,10 @@ public:
     bool redo();
     void load(std::vector<Measurement> measurements);
 
+    // What other reports on the series hold that cannot be shown (one line an item).
+    const std::vector<std::string>& notShown() const { return notShown_; }
+    void setNotShown(std::vector<std::string> items);
+
     // The measurement the reader picked last (in a view or the list); 0: none.
     std::uint64_t selected() const { return selected_; }
     void select(std::uint64_t id);
@@ -61,6 +65,7 @@ private:
     std::weak_ptr<const Volume> volume_;
     MeasurementDocument document_;
     std::uint64_t selected_ = 0;
+    std::vector<std::string> notShown_;
 };
 
 } // namespace lucent
