@@ -140,6 +140,15 @@ private slots:
         QVERIFY2(what.contains("pixel data could not be decoded (1.2.840.10008.1.2.4.91)"),
                  qPrintable(what));
     }
+
+    // ... and allocated gigabytes for half a minute before crashing: the decoder's
+    // requests may map only what they can need, so it fails at once.
+    void j2kCodestreamThatAllocatesGigabytesIsALoadError() {
+        REQUIRE_DATA("nema_wg04/CT1/CT1_J2KI.dcm");
+        const QString what = loadError(regressionInput("j2k-codestream-allocates-gigabytes.dcm"));
+        QVERIFY2(what.contains("pixel data could not be decoded (1.2.840.10008.1.2.4.91)"),
+                 qPrintable(what));
+    }
 };
 
 QTEST_APPLESS_MAIN(TestDicomFuzzRegressions)
