@@ -173,6 +173,15 @@ gdcm::Image imageToDecode(const std::string& file, const gdcm::File& parsed,
     if (expected.transferSyntax == "1.2.840.10008.1.2.5") {
         checkRleFrames(file, ds.GetDataElement(pixelData), expected, frames);
     }
+    // GDCM's pixel format asserts HighBit < BitsStored and aborts the process; the
+    // standard asks for HighBit = BitsStored - 1 (PS3.3 C.7.6.3.1), so GDCM's codecs
+    // get only that (uncompressed little endian, read directly, takes the others).
+    if (expected.highBit != expected.bitsStored - 1) {
+        throw LoadError(file + ": HighBit (0028,0102) " + std::to_string(expected.highBit) +
+                        " is not BitsStored (0028,0101) " + std::to_string(expected.bitsStored) +
+                        " - 1, which pixel data of transfer syntax " + expected.transferSyntax +
+                        " needs");
+    }
     gdcm::Image image;
     image.SetNumberOfDimensions(frames > 1 ? 3 : 2);
     image.SetDimension(0, static_cast<unsigned>(expected.columns));

@@ -120,6 +120,13 @@ private slots:
                  qPrintable(what));
     }
 
+    void highBitAboveBitsStoredIsALoadErrorBeforeGdcmAsserts() {
+        const QString what =
+            loadError(regressionInput("high-bit-above-bits-stored-big-endian.dcm"));
+        QVERIFY2(what.contains("HighBit (0028,0102) 11 is not BitsStored (0028,0101) 8 - 1"),
+                 qPrintable(what));
+    }
+
     // JPEG 2000 is decoded in lucent-frame-decoder: GDCM's codec crashed on this one
     // (SEGV in JPEG2000Codec::DecodeByStreamsCommon; lucent-cli convert died with 139).
     // The decoder dies instead, and the next file gets a new one.
