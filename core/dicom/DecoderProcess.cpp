@@ -45,7 +45,8 @@ std::string frameDecoderExecutable() {
     return {};
 }
 
-DecoderProcess::DecoderProcess(std::chrono::milliseconds timeout) : timeout_(timeout) {}
+DecoderProcess::DecoderProcess(std::chrono::milliseconds timeout, int requestsPerChild)
+    : timeout_(timeout), requestsPerChild_(requestsPerChild) {}
 
 DecoderProcess::~DecoderProcess() {
     if (socket_ >= 0) {
@@ -125,13 +126,19 @@ DecodedFrames DecoderProcess::decode(const std::string& file, const PixelLayout&
         ::close(socket_);
         socket_ = -1;
     }
+    if (pid_ > 0 && served_ >= requestsPerChild_) {
+        stop();
+    }
     if (pid_ == 0) {
         start();
+        served_ = 0;
     }
+    ++served_;
     if (!writeRequest(socket_, {file, expected, frames})) {
         // Gone since the last file (killed, out of memory): a new one gets this file.
         howItEnded();
         start();
+        served_ = 1;
         if (!writeRequest(socket_, {file, expected, frames})) {
             throw LoadError(file + ": the frame decoder " + howItEnded() + " before it was asked");
         }

@@ -1,8 +1,9 @@
 #pragma once
 // Decoding untrusted frames in a child process, lucent-frame-decoder: a codec
-// that crashes, hangs or leaks on a damaged stream takes down or costs only the
-// child, which is started again for the next file. One child per thread, kept
-// between files so that a series pays for starting it once.
+// that crashes, aborts, hangs or leaks on a damaged stream takes down or costs
+// only the child, which is started again for the next file. One child per
+// thread, kept between files so that a series pays for starting it once, and
+// replaced after kRequestsPerChild files so that what codecs leak goes back.
 // Private to lucent_io.
 
 #include <chrono>
@@ -16,7 +17,11 @@ namespace lucent {
 
 class DecoderProcess {
 public:
-    explicit DecoderProcess(std::chrono::milliseconds timeout = std::chrono::seconds(60));
+    static constexpr int kRequestsPerChild = 1000;
+    static constexpr std::chrono::seconds kTimeout{60};
+
+    explicit DecoderProcess(std::chrono::milliseconds timeout = kTimeout,
+                            int requestsPerChild = kRequestsPerChild);
     ~DecoderProcess();
     DecoderProcess(const DecoderProcess&) = delete;
     DecoderProcess& operator=(const DecoderProcess&) = delete;
@@ -33,8 +38,10 @@ private:
     std::string howItEnded();
 
     std::chrono::milliseconds timeout_;
+    int requestsPerChild_;
     pid_t pid_ = 0;
     int socket_ = -1;
+    int served_ = 0; // files the running child was asked for
 };
 
 // Where lucent-frame-decoder is: $LUCENT_FRAME_DECODER, else beside the running

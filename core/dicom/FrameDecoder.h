@@ -1,8 +1,7 @@
 #pragma once
 // Getting the stored pixel values of DICOM frames: read straight from the file
 // for uncompressed little-endian data, decoded by GDCM's codecs for everything
-// else but JPEG-LS, which DCMTK's dcmdjpls decodes; JPEG 2000 by GDCM's codec in
-// a child process (DecoderProcess.h).
+// else but JPEG-LS (DCMTK's dcmdjpls), always in a child process (DecoderProcess.h).
 // Private to lucent_io and lucent-frame-decoder.
 
 #include <cstdint>
@@ -36,8 +35,6 @@ DecodedFrames decodeFrames(const std::string& file, const PixelLayout& expected,
 // GDCM's codecs in this process (GdcmFrameCodec.cpp).
 DecodedFrames decodeFramesWithGdcm(const std::string& file, const PixelLayout& expected,
                                    int frames);
-
-bool isJpeg2000(const std::string& transferSyntax);
 
 bool isJpegLs(const std::string& transferSyntax);
 DecodedFrames decodeJpegLsWithDcmtk(const std::string& file, const PixelLayout& expected,

@@ -1,6 +1,6 @@
 // GDCM's codecs on frames whose layout the scan has validated: everything but
-// JPEG-LS (JpegLsDecoder.cpp). JPEG 2000 reaches them only inside
-// lucent-frame-decoder (DecoderProcess.cpp).
+// JPEG-LS (JpegLsDecoder.cpp). Lucent runs them only inside lucent-frame-decoder
+// (DecoderProcess.cpp).
 #include "core/dicom/FrameDecoder.h"
 
 #include <algorithm>

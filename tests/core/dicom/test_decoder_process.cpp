@@ -79,6 +79,36 @@ private slots:
         QVERIFY(decoder.pid() > 0 && decoder.pid() != first);
     }
 
+    void aChildIsReplacedAfterItsShareOfFiles() {
+        REQUIRE_DATA(kJ2kLossless);
+        DecoderProcess decoder(DecoderProcess::kTimeout, 2);
+        const std::string file = (kRealData / kJ2kLossless).string();
+        (void)decoder.decode(file, layoutOf(kJ2kLossless), 1);
+        const pid_t first = decoder.pid();
+        (void)decoder.decode(file, layoutOf(kJ2kLossless), 1);
+        QCOMPARE(decoder.pid(), first);
+        const DecodedFrames third = decoder.decode(file, layoutOf(kJ2kLossless), 1);
+        QVERIFY(decoder.pid() != first); // what its codecs leaked went back with it
+        QVERIFY(third.buffer == uncompressed());
+    }
+
+    // JPEG, RLE and big endian go through the child too: each equals the original.
+    void everyGdcmSyntaxIsDecodedInTheChild_data() {
+        QTest::addColumn<QString>("file");
+        for (const char* v : {"JPLL", "RLE", "J2KR"}) {
+            QTest::newRow(v) << QString("nema_wg04/CT1/CT1_%1.dcm").arg(v);
+        }
+    }
+    void everyGdcmSyntaxIsDecodedInTheChild() {
+        QFETCH(QString, file);
+        REQUIRE_DATA(file.toStdString());
+        DecoderProcess decoder;
+        const std::string name = file.toStdString();
+        QVERIFY(decoder.decode((kRealData / name).string(), layoutOf(name.c_str()), 1).buffer ==
+                uncompressed());
+        QVERIFY(decoder.pid() > 0);
+    }
+
     void aDecoderTooSlowIsStopped() {
         REQUIRE_DATA(kJ2kLossless);
         // Decoding 512x512 lossless takes tens of milliseconds; one is not enough.
