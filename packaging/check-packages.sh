@@ -72,7 +72,7 @@ fi
 expect_files "$server" usr/bin/lucent-server usr/share/man/man1/lucent-server.1.gz \
   lib/systemd/system/lucent-server.service etc/lucent/lucent-server.conf \
   usr/share/doc/lucent-server/copyright usr/share/doc/lucent-server/changelog.gz
-expect_files "$common" usr/share/lucent/presets/ct-bone.json \
+expect_files "$common" usr/share/lucent/presets/ct-bone.json usr/libexec/lucent/lucent-frame-decoder \
   usr/share/doc/lucent-common/copyright usr/share/doc/lucent-common/changelog.gz
 
 # Control data: dependencies that dpkg-shlibdeps found, the conffile, the
@@ -87,8 +87,12 @@ for deb in "$lucent" "$server"; do
   grep -q 'lucent-common (= ' <<<"$depends" || fail "$(basename "$deb") does not depend on lucent-common"
   # Qt loads its SQLite driver (the study store's index) at run time.
   grep -q 'libqt6sql6-sqlite' <<<"$depends" || fail "$(basename "$deb") does not depend on libqt6sql6-sqlite"
+  # JPEG-LS frames are decoded by dcmtk's dcmdjpls, run as a program.
+  grep -q 'dcmtk' <<<"$depends" || fail "$(basename "$deb") does not depend on dcmtk"
 done
-[ "$(dpkg-deb -f "$common" Architecture)" = all ] || fail "lucent-common is not Architecture: all"
+# lucent-common holds lucent-frame-decoder (a program): its libraries from dpkg-shlibdeps.
+grep -q 'libgdcm' <<<"$(dpkg-deb -f "$common" Depends)" ||
+  fail "lucent-common does not depend on GDCM, which lucent-frame-decoder links"
 grep -q 'adduser' <<<"$(dpkg-deb -f "$server" Depends)" || fail "lucent-server does not depend on adduser"
 control=$out/control-server
 dpkg-deb -e "$server" "$control"

@@ -1,8 +1,8 @@
 #pragma once
 // Getting the stored pixel values of DICOM frames: read straight from the file
 // for uncompressed little-endian data, decoded by GDCM's codecs for everything
-// else but JPEG-LS, which DCMTK's dcmdjpls decodes.
-// Private to lucent_io.
+// else but JPEG-LS (DCMTK's dcmdjpls), always in a child process (DecoderProcess.h).
+// Private to lucent_io and lucent-frame-decoder.
 
 #include <cstdint>
 #include <string>
@@ -29,8 +29,12 @@ struct DecodedFrames {
     std::size_t frameBytes = 0;
     const char* frame(int index) const { return buffer.data() + frameBytes * index; }
 };
-// GDCM's codecs; JPEG-LS through DCMTK's dcmdjpls (JpegLsDecoder.cpp).
+// Every frame of one compressed file, by the decoder its transfer syntax needs.
 DecodedFrames decodeFrames(const std::string& file, const PixelLayout& expected, int frames);
+
+// GDCM's codecs in this process (GdcmFrameCodec.cpp).
+DecodedFrames decodeFramesWithGdcm(const std::string& file, const PixelLayout& expected,
+                                   int frames);
 
 bool isJpegLs(const std::string& transferSyntax);
 DecodedFrames decodeJpegLsWithDcmtk(const std::string& file, const PixelLayout& expected,

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/io/Catalog.h"
+#include "tests/support/RealData.h"
 
 namespace fs = std::filesystem;
 using namespace lucent;
@@ -116,6 +117,43 @@ private slots:
         const QString what = loadError(regressionInput("jpeg-size-not-the-image.dcm"));
         QVERIFY2(what.contains("JPEG pixel data (7FE0,0010): frame 1: the JPEG frame is "
                                "49416x8 with 1 component(s), the header says 8x8"),
+                 qPrintable(what));
+    }
+
+    void highBitAboveBitsStoredIsALoadErrorBeforeGdcmAsserts() {
+        const QString what =
+            loadError(regressionInput("high-bit-above-bits-stored-big-endian.dcm"));
+        QVERIFY2(what.contains("HighBit (0028,0102) 11 is not BitsStored (0028,0101) 8 - 1"),
+                 qPrintable(what));
+    }
+
+    // JPEG 2000 is decoded in lucent-frame-decoder: GDCM's codec crashed on this one
+    // (SEGV in JPEG2000Codec::DecodeByStreamsCommon; lucent-cli convert died with 139).
+    // The decoder dies instead, and the next file gets a new one.
+    void j2kCodestreamThatCrashesTheCodecIsALoadError() {
+        REQUIRE_DATA("nema_wg04/CT1/CT1_J2KR.dcm");
+        const QString what = loadError(regressionInput("j2k-codestream-crashes-the-codec.dcm"));
+        QVERIFY2(what.contains("the frame decoder stopped by signal"), qPrintable(what));
+        const Catalog good = scanPath(test::kRealData / "nema_wg04/CT1/CT1_J2KR.dcm");
+        QCOMPARE(good.series.size(), std::size_t(1));
+        const Volume v = loadSeries(good.series.front());
+        QCOMPARE(v.geometry().dims, glm::ivec3(512, 512, 1));
+    }
+
+    // ... and leaked what OpenJPEG allocated (112 bytes a load) on this one.
+    void j2kCodestreamThatLeaksInTheCodecIsALoadError() {
+        REQUIRE_DATA("nema_wg04/CT1/CT1_J2KI.dcm");
+        const QString what = loadError(regressionInput("j2k-codestream-leaks-in-the-codec.dcm"));
+        QVERIFY2(what.contains("pixel data could not be decoded (1.2.840.10008.1.2.4.91)"),
+                 qPrintable(what));
+    }
+
+    // ... and allocated gigabytes for half a minute before crashing: the decoder's
+    // requests may map only what they can need, so it fails at once.
+    void j2kCodestreamThatAllocatesGigabytesIsALoadError() {
+        REQUIRE_DATA("nema_wg04/CT1/CT1_J2KI.dcm");
+        const QString what = loadError(regressionInput("j2k-codestream-allocates-gigabytes.dcm"));
+        QVERIFY2(what.contains("pixel data could not be decoded (1.2.840.10008.1.2.4.91)"),
                  qPrintable(what));
     }
 };
