@@ -5,6 +5,8 @@
 #include "core/dicom/ImageRecord.h"
 #include "core/io/LoadControl.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <mutex>
@@ -93,20 +95,54 @@ std::string frameType(const FrameGroups& g) {
     return {};
 }
 
-void applyGeometry(ImageRecord& r, const std::optional<std::vector<double>>& ipp,
-                   const std::optional<std::vector<double>>& iop,
-                   const std::optional<std::vector<double>>& spacing) {
+bool allFinite(const std::vector<double>& values, std::size_t count) {
+    return std::all_of(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(count),
+                       [](double v) { return std::isfinite(v); });
+}
+
+// Sets the image's position, directions and pixel spacing from the elements that
+// are there. Returns why they cannot be used (naming the element), else "": a
+// direction that is no unit vector, or two that are not perpendicular, would make
+// every later step (the normal, the stack, resampling) compute with NaN
+// (fuzz_dicom: a zero column direction).
+std::string applyGeometry(ImageRecord& r, const std::optional<std::vector<double>>& ipp,
+                          const std::optional<std::vector<double>>& iop,
+                          const std::optional<std::vector<double>>& spacing) {
     if (ipp && ipp->size() >= 3 && iop && iop->size() >= 6) {
+        if (!allFinite(*ipp, 3)) {
+            return "ImagePositionPatient (0020,0032) holds a value that is not a finite number";
+        }
+        if (!allFinite(*iop, 6)) {
+            return "ImageOrientationPatient (0020,0037) holds a value that is not a finite number";
+        }
+        const glm::dvec3 row((*iop)[0], (*iop)[1], (*iop)[2]);
+        const glm::dvec3 column((*iop)[3], (*iop)[4], (*iop)[5]);
+        const double lr = glm::length(row);
+        const double lc = glm::length(column);
+        // Unit vectors, allowing for the few digits some writers keep.
+        if (std::abs(lr - 1.0) > 0.01 || std::abs(lc - 1.0) > 0.01) {
+            char lengths[64];
+            std::snprintf(lengths, sizeof lengths, "%.4g and %.4g", lr, lc);
+            return "ImageOrientationPatient (0020,0037): its row and column directions are no "
+                   "unit vectors (lengths " +
+                   std::string(lengths) + ")";
+        }
+        if (std::abs(glm::dot(row / lr, column / lc)) > 0.01) {
+            return "ImageOrientationPatient (0020,0037): its row and column directions are not "
+                   "perpendicular";
+        }
         r.hasPosition = true;
         r.position = {(*ipp)[0], (*ipp)[1], (*ipp)[2]};
-        r.rowDir = glm::normalize(glm::dvec3((*iop)[0], (*iop)[1], (*iop)[2]));
-        r.colDir = glm::normalize(glm::dvec3((*iop)[3], (*iop)[4], (*iop)[5]));
+        r.rowDir = row / lr;
+        r.colDir = column / lc;
     }
-    if (spacing && spacing->size() >= 2 && (*spacing)[0] > 0.0 && (*spacing)[1] > 0.0) {
+    if (spacing && spacing->size() >= 2 && allFinite(*spacing, 2) && (*spacing)[0] > 0.0 &&
+        (*spacing)[1] > 0.0) {
         r.hasPixelSpacing = true;
         // PixelSpacing is [between rows, between columns].
         r.pixelSpacing = {(*spacing)[1], (*spacing)[0]};
     }
+    return {};
 }
 
 FileScan skip(std::string reason) {
@@ -256,9 +292,13 @@ FileScan scanDicomFile(const std::string& file) {
                 r.enhanced = true;
                 r.frame = f;
                 const FrameGroups g{&perFrame->GetItem(f + 1).GetNestedDataSet(), shared.dataSet};
-                applyGeometry(r, frameValues(g, 0x0020, 0x9113, 0x0020, 0x0032),
-                              frameValues(g, 0x0020, 0x9116, 0x0020, 0x0037),
-                              frameValues(g, 0x0028, 0x9110, 0x0028, 0x0030));
+                const std::string unusable =
+                    applyGeometry(r, frameValues(g, 0x0020, 0x9113, 0x0020, 0x0032),
+                                  frameValues(g, 0x0020, 0x9116, 0x0020, 0x0037),
+                                  frameValues(g, 0x0028, 0x9110, 0x0028, 0x0030));
+                if (!unusable.empty()) {
+                    return skip("frame " + std::to_string(f + 1) + ": " + unusable);
+                }
                 if (auto t = frameValues(g, 0x0028, 0x9110, 0x0018, 0x0050)) {
                     r.sliceThickness = (*t)[0];
                 }
@@ -279,8 +319,12 @@ FileScan scanDicomFile(const std::string& file) {
             return out;
         }
 
-        applyGeometry(base, tagDoubles(ds, 0x0020, 0x0032), tagDoubles(ds, 0x0020, 0x0037),
-                      tagDoubles(ds, 0x0028, 0x0030));
+        const std::string unusable =
+            applyGeometry(base, tagDoubles(ds, 0x0020, 0x0032), tagDoubles(ds, 0x0020, 0x0037),
+                          tagDoubles(ds, 0x0028, 0x0030));
+        if (!unusable.empty()) {
+            return skip(unusable);
+        }
         if (frames == 1) {
             base.pixelOffset = offset;
             out.images.push_back(std::move(base));

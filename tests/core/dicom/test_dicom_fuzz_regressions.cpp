@@ -127,6 +127,13 @@ private slots:
                  qPrintable(what));
     }
 
+    void orientationWithAZeroDirectionIsRefused() {
+        const QString reason = skipReason(regressionInput("orientation-with-a-zero-column.dcm"));
+        QVERIFY2(reason.contains("frame 1: ImageOrientationPatient (0020,0037): its row and column "
+                                 "directions are no unit vectors (lengths 1.414 and 0)"),
+                 qPrintable(reason));
+    }
+
     // JPEG 2000 is decoded in lucent-frame-decoder: GDCM's codec crashed on this one
     // (SEGV in JPEG2000Codec::DecodeByStreamsCommon; lucent-cli convert died with 139).
     // The decoder dies instead, and the next file gets a new one.
