@@ -218,6 +218,12 @@ struct Walker {
                 }
                 return inItem || fail(at, "item delimiter outside an item");
             }
+            if (h.group == 0xfffe) {
+                // Items and sequence delimiters belong to sequences; GDCM asserts on
+                // one it meets among the elements (fuzz_dicom).
+                return fail(at,
+                            "(FFFE," + hex(h.element) + ") among the elements, outside a sequence");
+            }
             const std::size_t start = at;
             at = h.valueAt;
             const bool pixelData = depth == 0 && h.group == 0x7fe0 && h.element == 0x0010;

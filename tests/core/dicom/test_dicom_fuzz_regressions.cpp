@@ -134,6 +134,12 @@ private slots:
                  qPrintable(reason));
     }
 
+    void itemTagAmongTheElementsIsRefusedBeforeGdcmAsserts() {
+        const QString reason = skipReason(regressionInput("item-tag-among-the-elements.dcm"));
+        QVERIFY2(reason.contains("(FFFE,600D) among the elements, outside a sequence"),
+                 qPrintable(reason));
+    }
+
     // JPEG 2000 is decoded in lucent-frame-decoder: GDCM's codec crashed on this one
     // (SEGV in JPEG2000Codec::DecodeByStreamsCommon; lucent-cli convert died with 139).
     // The decoder dies instead, and the next file gets a new one.
