@@ -16,5 +16,6 @@ inline const std::filesystem::path kRealData = LUCENT_TEST_DATA_DIR;
 
 #define REQUIRE_DATA(sub)                                                                          \
     if (!std::filesystem::exists(lucent::test::kRealData / (sub)))                                 \
-    QSKIP(qPrintable(QString("real test data not found: %1 (see ../shared/data/README.md)")        \
-                         .arg(QString::fromStdString((lucent::test::kRealData / (sub)).string()))))
+    QSKIP(                                                                                         \
+        qPrintable(QString("real test data not found: %1 (see ../shared/data/README.md)")          \
+                       .arg(QString::fromStdString((lucent::test::kRealData / (sub)).string()))))

@@ -48,8 +48,8 @@ private slots:
 
     void bidirectionalHandlesKeepItsShape() {
         const SlicePlane plane = obliquePlane();
-        Measurement m = makeBidirectionalMeasurement(plane, plane.pointAt(20, 30),
-                                                     plane.pointAt(120, 30));
+        Measurement m =
+            makeBidirectionalMeasurement(plane, plane.pointAt(20, 30), plane.pointAt(120, 30));
         // A short-axis end dragged off the perpendicular moves along it only.
         QVERIFY(moveMeasurementPoint(m, 3, plane.pointAt(90, 30 + 35)));
         QVERIFY(near(bidirectionalShortAxisMm(m), (25.0 + 35.0) * 0.5));
