@@ -22,8 +22,20 @@ MeasurementAutosave::~MeasurementAutosave() {
     flush();
 }
 
-QString MeasurementAutosave::software() const {
-    return (QStringLiteral("Lucent ") + QCoreApplication::applicationVersion()).trimmed();
+void MeasurementAutosave::setStoreFolder(const QString& folder) {
+    archive_.reset();
+    store_.reset();
+    folder_ = folder;
+}
+
+MeasurementArchive& MeasurementAutosave::archive() {
+    if (!archive_) {
+        store_ = std::make_unique<StudyStore>(folder_.toStdString());
+        const QString software =
+            (QStringLiteral("Lucent ") + QCoreApplication::applicationVersion()).trimmed();
+        archive_ = std::make_unique<MeasurementArchive>(*store_, software.toStdString());
+    }
+    return *archive_;
 }
 
 void MeasurementAutosave::attach(SeriesMeasurements* measurements) {
@@ -35,11 +47,10 @@ void MeasurementAutosave::attach(SeriesMeasurements* measurements) {
         QFileInfo::exists(QDir(folder_).filePath(QStringLiteral("index.sqlite")));
     if (storeExists && !uid.isEmpty()) {
         try {
-            StudyStore store(folder_.toStdString());
-            stored = !store.instancesOf(uid.toStdString()).empty();
+            MeasurementArchive& reports = archive();
+            stored = !store_->instancesOf(uid.toStdString()).empty();
             if (stored) {
-                MeasurementArchive archive(store, software().toStdString());
-                MeasurementArchive::Loaded loaded = archive.load(uid.toStdString());
+                MeasurementArchive::Loaded loaded = reports.load(uid.toStdString());
                 measurements->load(std::move(loaded.measurements));
                 measurements->setNotShown(std::move(loaded.notShown));
             }
@@ -70,9 +81,7 @@ void MeasurementAutosave::flush() {
 void MeasurementAutosave::save(Tracked& tracked) {
     const SeriesMeasurements& m = *tracked.measurements;
     try {
-        StudyStore store(folder_.toStdString());
-        MeasurementArchive archive(store, software().toStdString());
-        const std::string sr = archive.save(m.seriesUid(), m.measurements());
+        const std::string sr = archive().save(m.seriesUid(), m.measurements());
         tracked.savedRevision = m.document().revision();
         emit saved(QString::fromStdString(m.seriesUid()), QString::fromStdString(sr));
     } catch (const std::exception& e) {

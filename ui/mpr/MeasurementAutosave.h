@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <QObject>
@@ -10,7 +11,9 @@
 
 namespace lucent {
 
+class MeasurementArchive;
 class SeriesMeasurements;
+class StudyStore;
 
 // Keeps each series' measurements in the local study store as Lucent's DICOM SR
 // (core/report/MeasurementArchive), as the reader works: what was saved (and what
@@ -27,7 +30,7 @@ public:
     explicit MeasurementAutosave(QString storeFolder, QObject* parent = nullptr);
     ~MeasurementAutosave() override;
 
-    void setStoreFolder(const QString& folder) { folder_ = folder; }
+    void setStoreFolder(const QString& folder);
     void attach(SeriesMeasurements* measurements);
     // Saves every series changed since its last save now.
     void flush();
@@ -43,9 +46,13 @@ private:
         std::uint64_t savedRevision = 0;
     };
     void save(Tracked& tracked);
-    QString software() const;
+    // The store and its archive, opened once: opening a store tidies its tmp/ folder,
+    // and the archive reads each series' image headers once.
+    MeasurementArchive& archive();
 
     QString folder_;
+    std::unique_ptr<StudyStore> store_;
+    std::unique_ptr<MeasurementArchive> archive_;
     std::vector<Tracked> tracked_;
     QTimer timer_;
 };
