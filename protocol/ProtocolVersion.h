@@ -14,7 +14,7 @@
 namespace lucent::remote {
 
 // The newest version this build speaks, and the oldest it still speaks.
-inline constexpr int kProtocolVersion = 3;
+inline constexpr int kProtocolVersion = 4;
 inline constexpr int kOldestProtocolVersion = 1;
 
 // "lucent.v2".

@@ -1,4 +1,4 @@
-// Lucent browser client: protocol version 3 (docs/protocol.md; it sends no
+// Lucent browser client: protocol version 4 (docs/protocol.md; it sends no
 // sampling message, and invites need version 3) over a WebSocket to the server
 // that served this page: authentication by token or by a join link's invite,
 // series, view changes, teaching sessions and their invites, reconnect with
@@ -21,7 +21,7 @@
 
   // The protocol versions this page speaks, newest first, offered in the
   // handshake: the server selects the first it speaks and says it in hello.
-  const kSubprotocols = ["lucent.v3", "lucent.v2", "lucent.v1"];
+  const kSubprotocols = ["lucent.v4", "lucent.v3", "lucent.v2", "lucent.v1"];
   const kTokenSubprotocolPrefix = "lucent.token.";
   const kInviteSubprotocolPrefix = "lucent.invite.";
   const kQrQuietZone = 4; // light modules around a QR code

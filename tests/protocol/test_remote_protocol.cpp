@@ -548,17 +548,18 @@ private slots:
     }
 
     void versionsAreNegotiated() {
-        QCOMPARE(kProtocolVersion, 3);
+        QCOMPARE(kProtocolVersion, 4);
         QCOMPARE(subprotocolName(2), "lucent.v2");
         QCOMPARE(subprotocolVersion("lucent.v1"), std::optional<int>(1));
         QCOMPARE(subprotocolVersion("lucent.v2"), std::optional<int>(2));
         QCOMPARE(subprotocolVersion("lucent.v3"), std::optional<int>(3));
-        for (const char* other : {"lucent.v4", "lucent.v0", "lucent.v", "lucent.v02", "lucent.v2x",
+        QCOMPARE(subprotocolVersion("lucent.v4"), std::optional<int>(4));
+        for (const char* other : {"lucent.v5", "lucent.v0", "lucent.v", "lucent.v02", "lucent.v2x",
                                   "lucent.token.abc", "v2"}) {
             QVERIFY2(!subprotocolVersion(other), other);
         }
         QCOMPARE(supportedSubprotocols(),
-                 (std::vector<std::string>{"lucent.v3", "lucent.v2", "lucent.v1"}));
+                 (std::vector<std::string>{"lucent.v4", "lucent.v3", "lucent.v2", "lucent.v1"}));
         // Sampling came with version 2: a version 1 connection does not know the type.
         const char* sampling = R"({"type":"sampling","step":0.25,"interp":"cubic"})";
         bool fatal = false;

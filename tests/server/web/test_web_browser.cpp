@@ -98,8 +98,8 @@ void TestWebBrowser::dragRotatesTheRemoteView() {
             driver.execute("return document.getElementById('status').textContent;").toString() +
             "\n" + driver.consoleLog()));
     QVERIFY(!driver.execute("return location.href;").toString().contains(kToken));
-    // The page offers lucent.v3 and the server speaks it (hello's version).
-    QCOMPARE(driver.execute("return window.lucent.protocolVersion();").toInt(), 3);
+    // The page offers lucent.v4 and the server speaks it (hello's version).
+    QCOMPARE(driver.execute("return window.lucent.protocolVersion();").toInt(), 4);
 
     // Open the series: a still frame of the canvas' size arrives and shows something.
     QVERIFY(driver.click(driver.findElement("#open")));
