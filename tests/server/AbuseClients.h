@@ -46,11 +46,17 @@ public:
             }
         });
         QObject::connect(&socket, &QWebSocket::disconnected, [this] { closed = true; });
+        QObject::connect(&socket, qOverload<QAbstractSocket::SocketError>(&QWebSocket::error),
+                         [this](QAbstractSocket::SocketError error) {
+                             reset = reset || error == QAbstractSocket::RemoteHostClosedError;
+                         });
         socket.open(QUrl(QString("ws://127.0.0.1:%1/").arg(port)));
     }
     QWebSocket socket;
     int errors = 0;
     bool closed = false;
+    // The connection ended without a close handshake (a reset).
+    bool reset = false;
 };
 
 // A raw TCP connection to the server's port: what it received, and whether

@@ -29,8 +29,8 @@ constexpr qint64 kMaxGrowthKiB = 32 * 1024;
 
 // The nine non-fatal messages (wrong types, unknown fields, a long string)
 // and the fatal one that ends connection n; true in *tooLarge when the server
-// must close with 1009 rather than 1008.
-QStringList junkFor(int n, bool* tooLarge, bool* binary) {
+// must close with 1009 rather than 1008, in *overQtLimit when Qt refuses it unread.
+QStringList junkFor(int n, bool* tooLarge, bool* overQtLimit, bool* binary) {
     const QStringList wrongTypes{
         R"({"type":"camera","azimuth":"north"})",
         R"({"type":"open","series":42})",
@@ -54,6 +54,7 @@ QStringList junkFor(int n, bool* tooLarge, bool* binary) {
     };
     const int kind = n % int(fatal.size());
     *tooLarge = kind == 5 || kind == 6;
+    *overQtLimit = kind == 6;
     *binary = kind == 7;
     return wrongTypes + QStringList{fatal[kind]};
 }
@@ -106,6 +107,7 @@ class TestRemoteAbuse : public QObject {
         for (int wave = 0; wave < 5; ++wave) {
             std::vector<std::unique_ptr<JunkClient>> clients;
             std::vector<bool> tooLarge;
+            std::vector<bool> overQtLimit;
             for (int k = 0; k < 20; ++k) {
                 clients.push_back(std::make_unique<JunkClient>(server_->port()));
             }
@@ -121,9 +123,11 @@ class TestRemoteAbuse : public QObject {
                 20000));
             for (int k = 0; k < 20; ++k) {
                 bool large = false;
+                bool overLimit = false;
                 bool binary = false;
-                const QStringList junk = junkFor(wave * 20 + k, &large, &binary);
+                const QStringList junk = junkFor(wave * 20 + k, &large, &overLimit, &binary);
                 tooLarge.push_back(large);
+                overQtLimit.push_back(overLimit);
                 QWebSocket& s = clients[k]->socket;
                 s.sendTextMessage(QString(R"({"type":"auth","token":"%1"})").arg(kToken));
                 for (qsizetype m = 0; m + 1 < junk.size(); ++m) {
@@ -151,7 +155,14 @@ class TestRemoteAbuse : public QObject {
                 const JunkClient& c = *clients[k];
                 const auto want = tooLarge[k] ? QWebSocketProtocol::CloseCodeTooMuchData
                                               : QWebSocketProtocol::CloseCodePolicyViolated;
-                QVERIFY2(c.socket.closeCode() == want,
+                // Over Qt's limit the server closes while the client is still sending
+                // the megabyte: the unread bytes make the server's TCP stack answer
+                // with a reset, which may discard the close frame before the client
+                // reads it. The server closed it; the code is then lost on the way.
+                const bool lostToReset =
+                    overQtLimit[k] && c.reset &&
+                    c.socket.closeCode() == QWebSocketProtocol::CloseCodeNormal;
+                QVERIFY2(c.socket.closeCode() == want || lostToReset,
                          qPrintable(QString("connection %1: close code %2, not %3 (%4)")
                                         .arg(wave * 20 + int(k))
                                         .arg(int(c.socket.closeCode()))
