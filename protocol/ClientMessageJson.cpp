@@ -7,6 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "protocol/MarkMessageJson.h"
+
 namespace lucent::remote {
 namespace {
 
@@ -328,6 +330,15 @@ ClientMessage parseTyped(const Json& m, const std::string& type, int version) {
     if (type == "invite-revoke") {
         return parseInviteRevoke(m);
     }
+    if (type == "pointer") {
+        return parsePointerUpdate(m);
+    }
+    if (type == "mark") {
+        return parseMarkPlace(m);
+    }
+    if (type == "marks-clear") {
+        return empty<MarksClear>(m, type);
+    }
     if (type == "open") {
         checkKeys(m, type, {"series"});
         return OpenRequest{requiredString(m, "series", type)};
@@ -396,6 +407,8 @@ struct FieldWriter {
         }
     }
     void operator()(const InviteRevoke& r) const { m["invite"] = r.invite; }
+    void operator()(const PointerUpdate& p) const { writePointerUpdate(m, p); }
+    void operator()(const MarkPlace& p) const { writeMarkPlace(m, p); }
     void operator()(const OpenRequest& o) const { m["series"] = o.series; }
     void operator()(const OptionUpdate& u) const { writeOptions(m, u); }
     void operator()(const TransferFunctionUpdate& u) const {

@@ -11,6 +11,7 @@
 
 #include "core/scene/RenderDescription.h"
 #include "core/tf/TransferFunction.h"
+#include "protocol/MarkMessages.h"
 #include "protocol/OptionValues.h"
 #include "protocol/ProtocolVersion.h"
 
@@ -121,7 +122,7 @@ using ClientMessage =
     std::variant<AuthRequest, ListRequest, OpenRequest, CameraUpdate, TransferFunctionUpdate,
                  ModeUpdate, ClipUpdate, QualityUpdate, SamplingUpdate, SizeUpdate, RenderRequest,
                  InteractionUpdate, SessionCreate, SessionJoin, SessionHandover, SessionLeave,
-                 InviteCreate, InviteRevoke>;
+                 InviteCreate, InviteRevoke, PointerUpdate, MarkPlace, MarksClear>;
 
 // True for the messages that change a view (and owe a frame).
 bool isViewMessage(const ClientMessage& message);

@@ -9,17 +9,19 @@ namespace lucent::remote {
 using Json = nlohmann::json;
 
 std::string frameMessage(const FrameHeader& header, std::string_view imageBytes) {
-    const std::string json = Json{
-        {"width", header.width},
-        {"height", header.height},
-        {"format", header.format},
-        {"seq", header.seq},
-        {"quality", qualityName(header.quality)},
-        {"render_ms", header.renderMs},
-        {"encode_ms", header.encodeMs},
-        {"scale", header.scale},
-        {"jpeg_quality",
-         header.jpegQuality}}.dump();
+    Json fields = Json{{"width", header.width},
+                       {"height", header.height},
+                       {"format", header.format},
+                       {"seq", header.seq},
+                       {"quality", qualityName(header.quality)},
+                       {"render_ms", header.renderMs},
+                       {"encode_ms", header.encodeMs},
+                       {"scale", header.scale},
+                       {"jpeg_quality", header.jpegQuality}};
+    if (header.projection) {
+        fields["projection"] = *header.projection;
+    }
+    const std::string json = fields.dump();
     const auto n = static_cast<std::uint32_t>(json.size());
     std::string out;
     out.reserve(4 + json.size() + imageBytes.size());
@@ -65,6 +67,12 @@ ParsedFrame parseFrameMessage(std::string_view message) {
             h.contains("jpeg_quality")
                 ? jsonInteger<int>(h.at("jpeg_quality"), "frame: header: jpeg_quality")
                 : 0;
+        if (const auto p = h.find("projection"); p != h.end()) {
+            if (!p->is_array() || p->size() != 12) {
+                throw malformed("header: 'projection' must hold 12 numbers");
+            }
+            f.header.projection = p->get<std::array<double, 12>>();
+        }
     } catch (const Json::exception& e) {
         throw malformed(std::string("header: ") + e.what());
     }

@@ -2,7 +2,9 @@
 // The binary frame message (docs/protocol.md, "Frames"): 4 bytes big-endian header
 // length N, N bytes of header JSON, then the encoded image.
 
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -24,6 +26,10 @@ struct FrameHeader {
     // 0.5 or 0.35) and the JPEG quality (60..85); 1 and 0 for PNG stills.
     double scale = 1.0;
     int jpegQuality = 0;
+    // Version 4 servers: the 3 x 4 row-major matrix taking (x, y, z, 1) in LPS mm
+    // to (u w, v w, w), u and v fractions of the image ((0, 0) its top-left corner):
+    // where a mark anchored in the patient lies on this frame.
+    std::optional<std::array<double, 12>> projection;
     bool operator==(const FrameHeader&) const = default;
 };
 

@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "protocol/JsonIntegers.h"
+#include "protocol/MarkMessageJson.h"
 
 namespace lucent::remote {
 namespace {
@@ -118,6 +119,9 @@ struct Writer {
     Json operator()(const InviteRevoked& r) const {
         return {{"type", "invite-revoked"}, {"invite", r.invite}};
     }
+    Json operator()(const PointerShown& p) const { return pointerShownJson(p); }
+    Json operator()(const MarkShown& m) const { return markShownJson(m); }
+    Json operator()(const MarksCleared&) const { return {{"type", "marks-cleared"}}; }
 };
 
 ServerMessage read(const Json& m, const std::string& type) {
@@ -174,6 +178,15 @@ ServerMessage read(const Json& m, const std::string& type) {
     }
     if (type == "invite-revoked") {
         return InviteRevoked{jsonInteger<std::uint64_t>(m.at("invite"), "invite")};
+    }
+    if (type == "pointer") {
+        return readPointerShown(m);
+    }
+    if (type == "mark") {
+        return readMarkShown(m);
+    }
+    if (type == "marks-cleared") {
+        return MarksCleared{};
     }
     throw ProtocolError("unknown-type", "unknown server message type '" + type.substr(0, 64) + "'",
                         false);

@@ -11,6 +11,7 @@
 
 #include <glm/glm.hpp>
 
+#include "protocol/MarkMessages.h"
 #include "protocol/ProtocolError.h"
 #include "protocol/ProtocolVersion.h"
 #include "protocol/QrCode.h"
@@ -85,8 +86,9 @@ struct InviteRevoked {
     bool operator==(const InviteRevoked&) const = default;
 };
 
-using ServerMessage = std::variant<Hello, SeriesListReply, Opened, ErrorReply, SessionCreated,
-                                   SessionState, SessionLeft, InviteCreated, InviteRevoked>;
+using ServerMessage =
+    std::variant<Hello, SeriesListReply, Opened, ErrorReply, SessionCreated, SessionState,
+                 SessionLeft, InviteCreated, InviteRevoked, PointerShown, MarkShown, MarksCleared>;
 
 // The message as compact JSON.
 std::string writeServerMessage(const ServerMessage& message);

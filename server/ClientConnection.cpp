@@ -198,6 +198,8 @@ void ClientConnection::handle(const ClientMessage& message) {
     } else if (std::holds_alternative<InviteCreate>(message) ||
                std::holds_alternative<InviteRevoke>(message)) {
         handleInvite(message);
+    } else if (handleMark(message)) {
+        return;
     } else if (std::holds_alternative<ListRequest>(message)) {
         sendList();
     } else if (const auto* open = std::get_if<OpenRequest>(&message)) {

@@ -87,6 +87,8 @@ private:
     bool refusedToInvitee(const ClientMessage& message);
     std::string linkOrigin() const;
     void closeNormally(const QString& reason);
+    // pointer, mark and marks-clear (ClientMarks.cpp); false for other messages.
+    bool handleMark(const ClientMessage& message);
     void handleOpen(const OpenRequest& open);
     void sendList();
     bool takeCameraToken();
@@ -108,6 +110,8 @@ private:
 
     double cameraTokens_ = kCameraBurst;
     QElapsedTimer cameraClock_;
+    double pointerTokens_ = kCameraBurst; // the pointer is limited as the camera is
+    QElapsedTimer pointerClock_;
 };
 
 } // namespace lucent::remote

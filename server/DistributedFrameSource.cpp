@@ -1,5 +1,7 @@
 #include "server/DistributedFrameSource.h"
 
+#include <stdexcept>
+
 namespace lucent::remote {
 namespace {
 
@@ -48,6 +50,13 @@ ImageRGBA8 DistributedFrameSource::render(const std::shared_ptr<const SeriesEntr
         throw std::logic_error("DistributedFrameSource: render() before start()");
     }
     return series_->lead(renderCommand(numberOf(series), *series, description), *series).image;
+}
+
+std::vector<glm::dvec3>
+DistributedFrameSource::surfaceAnchors(const std::shared_ptr<const SeriesEntry>&,
+                                       const RenderDescription&, const std::vector<glm::dvec2>&) {
+    throw std::runtime_error("marks cannot be anchored by a distributed server: each rank holds "
+                             "only a part of the volume (the pointer works)");
 }
 
 } // namespace lucent::remote

@@ -25,6 +25,10 @@ public:
     void stop() override;
     ImageRGBA8 render(const std::shared_ptr<const SeriesEntry>& series,
                       const RenderDescription& description) override;
+    // Refused: the volume lies in parts on the ranks, none holds a whole ray.
+    std::vector<glm::dvec3> surfaceAnchors(const std::shared_ptr<const SeriesEntry>& series,
+                                           const RenderDescription& description,
+                                           const std::vector<glm::dvec2>& fractions) override;
 
 private:
     // Rank 0's number for an entry (the same entry, the same number).

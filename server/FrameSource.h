@@ -7,6 +7,9 @@
 #include <QString>
 
 #include <memory>
+#include <vector>
+
+#include <glm/glm.hpp>
 
 #include "core/image/Image.h"
 #include "core/io/SeriesEntry.h"
@@ -26,6 +29,12 @@ public:
     // failure, with a message for the client.
     virtual ImageRGBA8 render(const std::shared_ptr<const SeriesEntry>& series,
                               const RenderDescription& description) = 0;
+    // A mark's points (fractions of the image of `description`) anchored on the
+    // surface they show (core/raycast/SurfaceDepth.h). Throws on failure, with a
+    // message for the client.
+    virtual std::vector<glm::dvec3> surfaceAnchors(const std::shared_ptr<const SeriesEntry>& series,
+                                                   const RenderDescription& description,
+                                                   const std::vector<glm::dvec2>& fractions) = 0;
 };
 
 } // namespace lucent::remote

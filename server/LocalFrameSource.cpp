@@ -1,6 +1,7 @@
 #include "server/LocalFrameSource.h"
 
 #include "core/io/Catalog.h"
+#include "core/raycast/SurfaceDepth.h"
 #include "core/scene/Renderer.h"
 
 namespace lucent::remote {
@@ -63,6 +64,15 @@ ImageRGBA8 LocalFrameSource::render(const std::shared_ptr<const SeriesEntry>& en
     RenderDescription d = description;
     d.volume = series.volume.get();
     return series.renderer->render(d).image;
+}
+
+std::vector<glm::dvec3>
+LocalFrameSource::surfaceAnchors(const std::shared_ptr<const SeriesEntry>& entry,
+                                 const RenderDescription& description,
+                                 const std::vector<glm::dvec2>& fractions) {
+    RenderDescription d = description;
+    d.volume = loaded(entry).volume.get();
+    return lucent::surfaceAnchors(d, fractions);
 }
 
 } // namespace lucent::remote

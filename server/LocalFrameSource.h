@@ -20,6 +20,9 @@ public:
     void stop() override;
     ImageRGBA8 render(const std::shared_ptr<const SeriesEntry>& series,
                       const RenderDescription& description) override;
+    std::vector<glm::dvec3> surfaceAnchors(const std::shared_ptr<const SeriesEntry>& series,
+                                           const RenderDescription& description,
+                                           const std::vector<glm::dvec2>& fractions) override;
 
 private:
     struct LoadedSeries;

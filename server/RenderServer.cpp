@@ -12,6 +12,7 @@
 #include "server/ConstantTime.h"
 #include "server/LocalFrameSource.h"
 #include "server/TeachingSession.h"
+#include "server/ViewMarks.h"
 #include "server/ViewStream.h"
 
 namespace lucent::remote {
@@ -78,6 +79,8 @@ RenderServer::RenderServer(ServerOptions options, SeriesList storeSeries, Series
     worker_->moveToThread(&renderThread_);
     renderThread_.setObjectName("lucent-render");
     connect(worker_.get(), &RenderWorker::frameRendered, this, &RenderServer::onFrameRendered);
+    qRegisterMetaType<lucent::remote::FoundAnchors>();
+    connect(worker_.get(), &RenderWorker::anchorsFound, this, &RenderServer::onAnchorsFound);
     connect(socketServer_, &QWebSocketServer::newConnection, this, &RenderServer::onNewConnection);
     // A client that offers a lucent.v<N> this server speaks gets it (its token may
     // ride in another subprotocol).
@@ -161,6 +164,12 @@ void RenderServer::submit(const RenderJob& job) {
         Qt::QueuedConnection);
 }
 
+void RenderServer::submitAnchors(const AnchorJob& job) {
+    QMetaObject::invokeMethod(
+        worker_.get(), [worker = worker_.get(), job] { worker->anchor(job); },
+        Qt::QueuedConnection);
+}
+
 void RenderServer::onNewConnection() {
     while (QWebSocket* socket = socketServer_->nextPendingConnection()) {
         const quint64 id = nextClientId_++;
@@ -183,6 +192,12 @@ void RenderServer::onNewConnection() {
 void RenderServer::onFrameRendered(const RenderedFrame& frame) {
     if (const QPointer<ViewStream> view = views_.value(frame.view)) {
         view->deliver(frame);
+    }
+}
+
+void RenderServer::onAnchorsFound(const FoundAnchors& found) {
+    if (const QPointer<ViewStream> view = views_.value(found.view)) {
+        view->marks().anchored(found);
     }
 }
 

@@ -6,6 +6,8 @@
 #include <QImageWriter>
 
 #include "core/quality/InteractiveQuality.h"
+#include "core/scene/ImageProjection.h"
+#include "core/scene/ViewFrame.h"
 #include "protocol/PngEncoder.h"
 
 namespace lucent::remote {
@@ -81,6 +83,9 @@ void RenderWorker::render(const RenderJob& job) {
         header.format = interactive ? "jpeg" : "png";
         header.seq = job.seq;
         header.quality = job.quality;
+        // Where a mark's anchors lie on this image (clients draw marks over it).
+        header.projection = imageProjection(makeViewFrame(job.series->geometry, description.camera,
+                                                          description.width, description.height));
         const std::string message = frameMessage(
             header, std::string_view(encoded.constData(), std::size_t(encoded.size())));
         frame.message = QByteArray(message.data(), qsizetype(message.size()));
@@ -88,6 +93,18 @@ void RenderWorker::render(const RenderJob& job) {
         frame.error = QString::fromUtf8(e.what());
     }
     emit frameRendered(frame);
+}
+
+void RenderWorker::anchor(const AnchorJob& job) {
+    FoundAnchors found;
+    found.view = job.view;
+    found.ticket = job.ticket;
+    try {
+        found.anchors = frames_->surfaceAnchors(job.series, job.description, job.fractions);
+    } catch (const std::exception& e) {
+        found.error = QString::fromUtf8(e.what());
+    }
+    emit anchorsFound(found);
 }
 
 } // namespace lucent::remote

@@ -9,6 +9,9 @@
 
 #include <cstdint>
 #include <memory>
+#include <vector>
+
+#include <glm/glm.hpp>
 
 #include "core/io/SeriesEntry.h"
 #include "core/scene/RenderDescription.h"
@@ -37,6 +40,21 @@ struct RenderedFrame {
     QString error;
 };
 
+// One mark of a view to anchor on the surface its points show (ViewMarks).
+struct AnchorJob {
+    quint64 view = 0;
+    std::uint64_t ticket = 0; // the view's number for this mark
+    std::shared_ptr<const SeriesEntry> series;
+    RenderDescription description; // the still description; volume left null
+    std::vector<glm::dvec2> fractions;
+};
+struct FoundAnchors {
+    quint64 view = 0;
+    std::uint64_t ticket = 0;
+    std::vector<glm::dvec3> anchors; // LPS mm; empty on error
+    QString error;
+};
+
 // The `quality: interactive` frames: half the image size, twice the step, JPEG 85.
 inline constexpr double kFixedInteractiveScale = 0.5;
 inline constexpr int kFixedInteractiveJpegQuality = 85;
@@ -54,9 +72,12 @@ public:
     void stop();
     // Renders and encodes; emits frameRendered() (with an error on failure).
     void render(const lucent::remote::RenderJob& job);
+    // Anchors a mark; emits anchorsFound() (with an error on failure).
+    void anchor(const lucent::remote::AnchorJob& job);
 
 signals:
     void frameRendered(const lucent::remote::RenderedFrame& frame);
+    void anchorsFound(const lucent::remote::FoundAnchors& found);
 
 private:
     std::unique_ptr<FrameSource> frames_;
@@ -66,3 +87,4 @@ private:
 } // namespace lucent::remote
 
 Q_DECLARE_METATYPE(lucent::remote::RenderedFrame)
+Q_DECLARE_METATYPE(lucent::remote::FoundAnchors)

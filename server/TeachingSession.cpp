@@ -7,6 +7,7 @@
 #include "server/ClientConnection.h"
 #include "server/InviteBook.h"
 #include "server/RenderServer.h"
+#include "server/ViewMarks.h"
 
 namespace lucent::remote {
 namespace {
@@ -40,6 +41,7 @@ void TeachingSession::join(ClientConnection& client) {
         if (!view_->lastFrame().isEmpty()) {
             client.offerFrame(view_->lastFrame());
         }
+        view_->marks().sendTo(client);
     }
 }
 

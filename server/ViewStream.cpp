@@ -5,11 +5,13 @@
 #include "core/scene/DefaultPreset.h"
 #include "server/ClientConnection.h"
 #include "server/RenderServer.h"
+#include "server/ViewMarks.h"
 
 namespace lucent::remote {
 
 ViewStream::ViewStream(quint64 id, RenderServer& server, QObject* parent)
-    : QObject(parent), id_(id), server_(server) {
+    : QObject(parent), id_(id), server_(server),
+      marks_(std::make_unique<ViewMarks>(*this, server)) {
     server_.registerView(this);
 }
 
@@ -57,6 +59,7 @@ void ViewStream::reset(const SeriesEntry& like) {
     interacting_ = false;
     stillOwed_ = false;
     lastFrame_.clear();
+    marks_->clear(false); // marks lie on the series they were placed on
     changed();
 }
 
@@ -73,6 +76,7 @@ std::string ViewStream::show(std::shared_ptr<const SeriesEntry> series) {
 }
 
 void ViewStream::close() {
+    marks_->clear(false);
     series_.reset();
     opening_ = false;
     renderWanted_ = false;

@@ -28,6 +28,7 @@ namespace lucent::remote {
 
 class ClientConnection;
 class RenderServer;
+class ViewMarks;
 
 class ViewStream : public QObject {
     Q_OBJECT
@@ -40,6 +41,11 @@ public:
     std::uint64_t seq() const { return seq_; }
     // The last frame sent (for members who join later); empty before the first.
     const QByteArray& lastFrame() const { return lastFrame_; }
+
+    const QList<QPointer<ClientConnection>>& members() const { return members_; }
+    const RenderDescription& description() const { return description_; }
+    // Its pointer and marks (ViewMarks.h); a new series clears them.
+    ViewMarks& marks() { return *marks_; }
 
     void addMember(ClientConnection* client);
     void removeMember(ClientConnection* client);
@@ -90,6 +96,7 @@ private:
     bool adaptiveInFlight_ = false; // the frame in flight was made with adaptive_
     bool renderWanted_ = false;
     QByteArray lastFrame_;
+    std::unique_ptr<ViewMarks> marks_;
 };
 
 } // namespace lucent::remote

@@ -127,4 +127,36 @@ std::optional<glm::dvec3> surfacePoint(const RenderDescription& desc, glm::dvec2
     return g.toPatient(*index);
 }
 
+std::vector<glm::dvec3> surfaceAnchors(const RenderDescription& desc,
+                                       const std::vector<glm::dvec2>& fractions) {
+    if (desc.volume == nullptr) {
+        throw std::invalid_argument("surfaceAnchors: the description has no volume");
+    }
+    const VolumeGeometry& g = desc.volume->geometry();
+    const ViewFrame frame = makeViewFrame(g, desc.camera, desc.width, desc.height);
+    std::vector<std::optional<glm::dvec3>> found;
+    found.reserve(fractions.size());
+    std::optional<double> depth; // along the view's forward axis
+    for (const glm::dvec2& f : fractions) {
+        found.push_back(surfacePoint(desc, f));
+        if (found.back() && !depth) {
+            depth = glm::dot(*found.back() - frame.eye, frame.forward);
+        }
+    }
+    const glm::dvec3 target =
+        volumeCentre(g) + frame.right * desc.camera.panRight + frame.up * desc.camera.panUp;
+    const double planeDepth = depth.value_or(glm::dot(target - frame.eye, frame.forward));
+    std::vector<glm::dvec3> anchors;
+    anchors.reserve(fractions.size());
+    for (std::size_t n = 0; n < fractions.size(); ++n) {
+        if (found[n]) {
+            anchors.push_back(*found[n]);
+            continue;
+        }
+        const glm::dvec3 w = rayThroughFraction(frame, fractions[n], desc.width, desc.height);
+        anchors.push_back(frame.eye + w * (planeDepth / glm::dot(w, frame.forward)));
+    }
+    return anchors;
+}
+
 } // namespace lucent

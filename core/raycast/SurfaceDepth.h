@@ -4,6 +4,7 @@
 // anatomy when the view turns.
 
 #include <optional>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -27,5 +28,12 @@ inline constexpr double kSurfaceOpacity = 0.5;
 // interpolation is used whatever the description's filter (a cubic or nearest render
 // moves the point by less than a voxel). description.volume must be set.
 std::optional<glm::dvec3> surfacePoint(const RenderDescription& description, glm::dvec2 fraction);
+
+// The points of one mark placed at `fractions` of the image, anchored in the patient:
+// each at its surfacePoint; one with no surface on the plane facing the viewer at the
+// depth of the first point that has one (or, when none has, of the point the camera
+// looks at), so that a mark drawn across the silhouette keeps its shape.
+std::vector<glm::dvec3> surfaceAnchors(const RenderDescription& description,
+                                       const std::vector<glm::dvec2>& fractions);
 
 } // namespace lucent

@@ -394,6 +394,11 @@ private slots:
             InviteCreate{3600, "https://lecture.example.org:8443"},
             InviteCreate{},
             InviteRevoke{4},
+            PointerUpdate{glm::dvec2(0.25, 0.75)},
+            PointerUpdate{},
+            MarkPlace{MarkKind::Arrow, {{0.1, 0.2}, {0.3, 0.4}}, {}},
+            MarkPlace{MarkKind::Text, {{0.5, 0.5}}, "Foramen magnum"},
+            MarksClear{},
         };
         std::set<std::size_t> kinds;
         for (const ClientMessage& m : all) {
@@ -433,6 +438,11 @@ private slots:
             InviteCreated{3, "Zm9v", 1790000000, "/#invite=Zm9v", "http://h:1/#invite=Zm9v",
                           encodeQrCode("http://h:1/#invite=Zm9v")},
             InviteRevoked{3},
+            PointerShown{glm::dvec2(0.0, 1.0)},
+            PointerShown{},
+            MarkShown{7, MarkKind::Circle, {{1.5, -2.25, 30.0}, {4.0, 5.0, 6.0}}, {}},
+            MarkShown{8, MarkKind::Text, {{0.0, 0.0, 0.0}}, "Sella"},
+            MarksCleared{},
         };
         std::set<std::size_t> kinds;
         for (const ServerMessage& m : all) {
