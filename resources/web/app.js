@@ -65,11 +65,16 @@
     onResize: () => sendSize(),
     onReset: () => resetView(),
     onError: (text) => setStatus(text, "bad"),
+    onOverlay: (context, rect, header) => marks.draw(context, rect, header),
+  });
+  // The presenter's pointer and marks over the frame (marks.js).
+  const marks = window.createLucentMarks($("view"), canvasView, {
+    send, toolbar: $("mark-tools"), textInput: $("mark-text"),
   });
   // Read by tests and handy in the console: counters and the view, never the token.
   window.lucent = { stats: canvasView.stats, view, session: () => session,
                     protocolVersion: () => protocolVersion, invited: () => invite !== "",
-                    shownInvite: () => shownInvite };
+                    shownInvite: () => shownInvite, marks: () => marks.drawn() };
 
   // https://host:port/#invite=CODE: the code rides in the fragment, which no
   // request and no Referer carries; it is taken out of the address bar at once
@@ -115,6 +120,7 @@
       el.hidden = view.mode !== "iso";
     }
     canvasView.setEnabled(controlling());
+    marks.setEnabled(controlling() && protocolVersion >= 4);
   }
 
   // --- connection -----------------------------------------------------------
@@ -206,7 +212,17 @@
         }
         break;
       case "opened":
+        marks.reset();
         onOpened(message);
+        break;
+      case "pointer":
+      case "mark":
+      case "marks-cleared":
+        marks.handle(message);
+        break;
+      case "session-left":
+        marks.reset();
+        onSessionMessage(message);
         break;
       case "error":
         onError(message);

@@ -28,7 +28,10 @@ window.createLucentView = (canvas, handlers) => {
     const w = frame.width * scale;
     const h = frame.height * scale;
     context.imageSmoothingEnabled = true;
-    context.drawImage(frame, (canvas.width - w) / 2, (canvas.height - h) / 2, w, h);
+    const x = (canvas.width - w) / 2;
+    const y = (canvas.height - h) / 2;
+    context.drawImage(frame, x, y, w, h);
+    handlers.onOverlay(context, { x, y, w, h }, stats.lastHeader); // the pointer and marks
   }
 
   function decode(item) {
@@ -220,6 +223,7 @@ window.createLucentView = (canvas, handlers) => {
     showFrame,
     resize,
     size: () => ({ width: canvas.width, height: canvas.height }),
+    redraw: draw,
     // Gestures act only while the user controls the view.
     setEnabled(on) {
       enabled = on;
