@@ -179,6 +179,7 @@ void RemoteRenderBackend::onLost(const QString& why) {
     phase_ = Phase::Idle;
     openSeries_.clear();
     setSessionId({}); // the server ended it with this connection
+    marks_.clear();   // and its marks
     socket_.reset();
     if (!refusal_.isEmpty() && !retryAfterRefusal_) {
         setStatus(BackendStatus::Failed, refusal_);
@@ -460,6 +461,7 @@ void RemoteRenderBackend::onBinary(const QByteArray& message) {
         out.renderMs = frame.header.renderMs;
         out.jpegQuality = frame.header.format == "jpeg" ? frame.header.jpegQuality : 0;
         out.scale = frame.header.scale;
+        out.projection = frame.header.projection;
         emit frameReady(out);
     } catch (const std::exception& e) {
         emit frameFailed(tr("a frame from the server cannot be read: %1").arg(e.what()));

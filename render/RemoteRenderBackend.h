@@ -14,6 +14,7 @@
 #include "protocol/ServerMessages.h"
 #include "render/RemoteServerSettings.h"
 #include "render/RenderBackend.h"
+#include "render/TeachingMarks.h"
 
 class QWebSocket;
 
@@ -100,8 +101,16 @@ public:
     // lifetime in seconds, or none (until the session ends, at most a day).
     void createInvite(std::optional<std::int64_t> lifetimeSeconds);
     void revokeInvite(std::uint64_t invite);
+    // The session's pointer and marks (version 4), as the server sent them (its
+    // own too: the server sends them to every member). The presenter points (at
+    // fractions of the view; none hides the pointer), marks and clears.
+    const TeachingMarks& teachingMarks() const { return marks_; }
+    void point(std::optional<glm::dvec2> at);
+    void placeMark(const remote::MarkPlace& mark);
+    void clearMarks();
 
 signals:
+    void marksChanged();
     void sessionChanged(const QString& id);
     void inviteCreated(const lucent::remote::InviteCreated& invite);
     void inviteRevoked(quint64 invite);
@@ -163,6 +172,7 @@ private:
     int serverVersion_ = 0;
     int offeredVersion_; // set in the constructor
 
+    TeachingMarks marks_;
     std::shared_ptr<const Volume> volume_;
     std::optional<WantedView> wanted_;
     // What the server has been told since `open`: the last view message of each

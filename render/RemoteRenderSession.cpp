@@ -46,10 +46,30 @@ bool RemoteRenderBackend::onSessionMessage(const remote::ServerMessage& message)
         emit inviteCreated(*invite);
     } else if (const auto* revoked = std::get_if<remote::InviteRevoked>(&message)) {
         emit inviteRevoked(revoked->invite);
+    } else if (marks_.apply(message)) {
+        emit marksChanged();
     } else {
         return false;
     }
     return true;
+}
+
+void RemoteRenderBackend::point(std::optional<glm::dvec2> at) {
+    if (!sessionId_.isEmpty() && serverVersion_ >= 4) {
+        send(remote::writeClientMessage(remote::PointerUpdate{at}));
+    }
+}
+
+void RemoteRenderBackend::placeMark(const remote::MarkPlace& mark) {
+    if (!sessionId_.isEmpty() && serverVersion_ >= 4) {
+        send(remote::writeClientMessage(mark));
+    }
+}
+
+void RemoteRenderBackend::clearMarks() {
+    if (!sessionId_.isEmpty() && serverVersion_ >= 4) {
+        send(remote::writeClientMessage(remote::MarksClear{}));
+    }
 }
 
 bool RemoteRenderBackend::isInviteRefusal(const QString& code, const QString& message) const {

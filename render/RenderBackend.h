@@ -1,4 +1,7 @@
 #pragma once
+
+#include <array>
+#include <optional>
 // What turns a RenderDescription into a frame for the 3D view: the local GPU
 // (or CPU) ray caster, or a lucent-server over WebSocket. The view asks with
 // request(); a frame comes back later with frameReady(). The newest request
@@ -37,6 +40,9 @@ struct BackendFrame {
     double renderMs = 0.0; // where the renderer reports it
     int jpegQuality = 0;   // a server's JPEG quality; 0: lossless
     double scale = 1.0;    // the image's size against the view's, as the renderer chose it
+    // A server's frame (protocol version 4): the 3 x 4 matrix taking LPS mm to image
+    // fractions (core/scene/ImageProjection.h), where a session's marks lie on it.
+    std::optional<std::array<double, 12>> projection;
 };
 
 // Where the backend stands; local backends are always Ready, a remote one

@@ -14,6 +14,7 @@
 
 #include "core/scene/ViewFrame.h"
 #include "ui/volume/SurfaceColourBar.h"
+#include "ui/volume/TeachingMarksOverlay.h"
 #include "ui/volume/VolumeSurfaces.h"
 
 namespace lucent {
@@ -92,6 +93,11 @@ VolumeView::VolumeView(QWidget* parent, Backend preferred)
     // Not now: the GL surface is in the middle of painting and is replaced.
     connect(local_.get(), &LocalRenderBackend::gpuFailed, this, &VolumeView::fallBackToCpu,
             Qt::QueuedConnection);
+    connect(remote_.get(), &RemoteRenderBackend::marksChanged, this, [this] {
+        if (backend_ == Backend::Remote) {
+            updateSurface();
+        }
+    });
     connect(remote_.get(), &RemoteRenderBackend::statusChanged, this, [this] {
         if (backend_ == Backend::Remote) {
             frameError_.clear();
@@ -383,6 +389,7 @@ void VolumeView::onFrame(const BackendFrame& frame) {
             frame.interactive ? scaledTo(frame.image, still.width, still.height) : frame.image;
     }
     lastFrameCurrent_ = frame.current;
+    lastProjection_ = frame.projection;
     // What a still frame shows, when it is not the whole volume at full resolution.
     const QString detail =
         frame.interactive || (frame.stats.lod == 0 && frame.stats.bricksPending == 0) ? QString()
@@ -431,6 +438,9 @@ void VolumeView::paintFrame(QPainter& painter) {
         }
         if (surfaceDisplay_ && local_->surfaceShown() && backend_ == Backend::Gpu) {
             paintSurfaceColourBar(painter, area, *surfaceDisplay_, surfaceRadius_);
+        }
+        if (backend_ == Backend::Remote && lastProjection_) {
+            paintTeachingMarks(painter, area, remote_->teachingMarks(), *lastProjection_);
         }
     }
     if (!notice_.isEmpty()) {

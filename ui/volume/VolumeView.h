@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <array>
 #include <optional>
 
 #include <QImage>
@@ -192,6 +193,7 @@ private:
     QString detailNotice_;  // a still frame at a coarser level, or bricks still streaming in
     QString glFailure_;
     ImageRGBA8 lastFrame_; // empty for a frame drawn in place until it is read back
+    std::optional<std::array<double, 12>> lastProjection_; // a server's: where its marks lie
     bool lastFrameCurrent_ = false;
     bool frameInPlace_ = false; // the GL surface's framebuffer holds the last frame
     QSize frameSize_;           // the view's size in pixels when it came
