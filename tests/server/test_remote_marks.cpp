@@ -159,6 +159,13 @@ private slots:
             QCOMPARE(refused["code"].toString(), "not-presenter");
             QVERIFY(!refused["fatal"].toBool());
         }
+        // A follower by invite may only follow: forbidden.
+        presenter.send({{"type", "invite-create"}});
+        const QString code = presenter.waitForText("invite-created")["code"].toString();
+        RemoteTestClient invited(server.port(), {"lucent.v4", "lucent.invite." + code});
+        QVERIFY(!invited.waitForText("opened").isEmpty());
+        invited.send(arrow(0.1, 0.1, 0.2, 0.2));
+        QCOMPARE(invited.waitForText("error")["code"].toString(), "forbidden");
         // Refusals name the field; nothing is placed.
         qsizetype from = presenter.texts.size();
         presenter.send({{"type", "mark"}, {"kind", "circle"}, {"points", QJsonArray{}}});
