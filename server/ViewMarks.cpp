@@ -28,6 +28,12 @@ void ViewMarks::point(const PointerUpdate& pointer) {
     sendToMembers(json);
 }
 
+void ViewMarks::hidePointer() {
+    if (!pointer_.empty()) {
+        point(PointerUpdate{});
+    }
+}
+
 std::optional<std::pair<std::string, std::string>> ViewMarks::place(const MarkPlace& place,
                                                                     ClientConnection& by) {
     if (!view_.series()) {

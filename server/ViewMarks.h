@@ -30,6 +30,8 @@ public:
 
     // To every member at once.
     void point(const PointerUpdate& pointer);
+    // Hides the pointer when it is shown (its presenter no longer presents).
+    void hidePointer();
     // Anchors `place` (fractions of the view as `by` sees it); every member gets
     // the mark when the render thread has placed it. The error code and message
     // when it cannot be placed (no series shown, the limit reached).

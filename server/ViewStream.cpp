@@ -33,6 +33,13 @@ void ViewStream::removeMember(ClientConnection* client) {
     }
 }
 
+void ViewStream::setPacer(ClientConnection* client) {
+    if (client != pacer_) {
+        marks_->hidePointer();
+    }
+    pacer_ = client;
+}
+
 int ViewStream::memberCount() const {
     int n = 0;
     for (const auto& m : members_) {

@@ -51,7 +51,8 @@ public:
     void removeMember(ClientConnection* client);
     int memberCount() const;
     // The member whose sending paces the renders.
-    void setPacer(ClientConnection* client) { pacer_ = client; }
+    // (A new presenter: the last one's pointer is hidden.)
+    void setPacer(ClientConnection* client);
 
     // open() = reset() + show(). Returns the {"type":"opened"} message (no
     // description: it may identify a patient).

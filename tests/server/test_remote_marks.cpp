@@ -284,6 +284,19 @@ private slots:
         QCOMPARE(lastOf(late, "mark")["text"].toString(), "Orbit");
         QCOMPARE(lastOf(late, "mark")["anchors"].toArray().size(), 1);
 
+        // Control passes on: the marks stay, the last presenter's pointer goes.
+        const int pointers = countOf(late, "pointer");
+        const QJsonObject lateState = lastOf(late, "session-state");
+        presenter.send({{"type", "session-handover"}, {"to", lateState["you"]}});
+        QVERIFY(waitCount(late, "pointer", pointers + 1));
+        QVERIFY(!lastOf(late, "pointer").contains("x"));
+        late.send(
+            {{"type", "session-handover"}, {"to", lastOf(presenter, "session-state")["you"]}});
+        QVERIFY(QTest::qWaitFor(
+            [&] { return lastOf(presenter, "session-state")["role"].toString() == "presenter"; },
+            20000));
+        QCOMPARE(countOf(late, "marks-cleared"), 0);
+
         presenter.send({{"type", "marks-clear"}});
         QVERIFY(!late.waitForText("marks-cleared").isEmpty());
         QVERIFY(!presenter.waitForText("marks-cleared").isEmpty());
