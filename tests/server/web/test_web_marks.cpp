@@ -166,6 +166,35 @@ private slots:
                  qPrintable("the canvas at the tip is " +
                             QString::fromUtf8(QJsonDocument(rgba).toJson(QJsonDocument::Compact))));
 
+        // The other kinds are drawn too, each at its first anchor.
+        QJsonArray freehand;
+        for (int n = 0; n <= 20; ++n) {
+            freehand.append(QJsonArray{0.4 + 0.01 * n, 0.55 + 0.002 * n * n / 4.0});
+        }
+        presenter.send({{"type", "mark"},
+                        {"kind", "circle"},
+                        {"points", QJsonArray{QJsonArray{0.45, 0.45}, QJsonArray{0.5, 0.45}}}});
+        presenter.send({{"type", "mark"}, {"kind", "freehand"}, {"points", freehand}});
+        presenter.send({{"type", "mark"},
+                        {"kind", "text"},
+                        {"points", QJsonArray{QJsonArray{0.42, 0.6}}},
+                        {"text", "Zygoma <b>&amp;</b>"}});
+        QVERIFY2(driver.waitUntil("const m = window.lucent.marks().marks;"
+                                  "return m.length === 4 && m.every((k) => k.pixels !== null);",
+                                  20000),
+                 qPrintable(statusOf(driver)));
+        const QJsonArray all = driver.execute("return window.lucent.marks().marks;").toArray();
+        for (const QJsonValue& m : all) {
+            const QJsonArray first = m.toObject()["pixels"].toArray()[0].toArray();
+            const QJsonArray colour =
+                canvasPixel(driver, {first[0].toDouble(), first[1].toDouble()});
+            QVERIFY2(isMarkColour(colour),
+                     qPrintable(
+                         m.toObject()["kind"].toString() + " is " +
+                         QString::fromUtf8(QJsonDocument(colour).toJson(QJsonDocument::Compact))));
+        }
+        QCOMPARE(all[3].toObject()["text"].toString(), "Zygoma <b>&amp;</b>"); // text, not markup
+
         presenter.send({{"type", "marks-clear"}});
         QVERIFY2(driver.waitUntil("return window.lucent.marks().marks.length === 0;", 20000),
                  qPrintable(statusOf(driver)));
