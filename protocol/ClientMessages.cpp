@@ -28,6 +28,8 @@ constexpr TypeInfo kTypes[] = {
     {"session-leave", 1, false},
     {"invite-create", 3, false},
     {"invite-revoke", 3, false},
+    {"free-look", 4, false},
+    {"free-look-recall", 4, false},
 };
 static_assert(std::size(kTypes) == std::variant_size_v<ClientMessage>);
 

@@ -118,6 +118,15 @@ struct Writer {
     Json operator()(const InviteRevoked& r) const {
         return {{"type", "invite-revoked"}, {"invite", r.invite}};
     }
+    Json operator()(const FreeLookStarted& s) const {
+        return {{"type", "free-look-started"}, {"seq", s.seq}};
+    }
+    Json operator()(const FreeLookEnded& e) const {
+        return {{"type", "free-look-ended"}, {"reason", e.reason}};
+    }
+    Json operator()(const FreeLookState& s) const {
+        return {{"type", "free-look-state"}, {"looking", s.looking}, {"limit", s.limit}};
+    }
 };
 
 ServerMessage read(const Json& m, const std::string& type) {
@@ -174,6 +183,16 @@ ServerMessage read(const Json& m, const std::string& type) {
     }
     if (type == "invite-revoked") {
         return InviteRevoked{jsonInteger<std::uint64_t>(m.at("invite"), "invite")};
+    }
+    if (type == "free-look-started") {
+        return FreeLookStarted{jsonInteger<std::uint64_t>(m.at("seq"), "seq")};
+    }
+    if (type == "free-look-ended") {
+        return FreeLookEnded{m.at("reason").get<std::string>()};
+    }
+    if (type == "free-look-state") {
+        return FreeLookState{jsonInteger<int>(m.at("looking"), "looking"),
+                             jsonInteger<int>(m.at("limit"), "limit")};
     }
     throw ProtocolError("unknown-type", "unknown server message type '" + type.substr(0, 64) + "'",
                         false);

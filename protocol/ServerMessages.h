@@ -85,8 +85,27 @@ struct InviteRevoked {
     bool operator==(const InviteRevoked&) const = default;
 };
 
+// Version 4, free look. To the follower: its own view starts (its frames follow,
+// the first numbered `seq`), or it ends (`reason`: own, recalled, series,
+// presenting, left, session-ended) and the session's newest frame follows.
+struct FreeLookStarted {
+    std::uint64_t seq = 0;
+    bool operator==(const FreeLookStarted&) const = default;
+};
+struct FreeLookEnded {
+    std::string reason;
+    bool operator==(const FreeLookEnded&) const = default;
+};
+// To the presenter: how many followers look on their own, of at most `limit`.
+struct FreeLookState {
+    int looking = 0;
+    int limit = 0;
+    bool operator==(const FreeLookState&) const = default;
+};
+
 using ServerMessage = std::variant<Hello, SeriesListReply, Opened, ErrorReply, SessionCreated,
-                                   SessionState, SessionLeft, InviteCreated, InviteRevoked>;
+                                   SessionState, SessionLeft, InviteCreated, InviteRevoked,
+                                   FreeLookStarted, FreeLookEnded, FreeLookState>;
 
 // The message as compact JSON.
 std::string writeServerMessage(const ServerMessage& message);

@@ -156,9 +156,35 @@ std::shared_ptr<const SeriesEntry> RenderServer::findSeries(const std::string& u
 }
 
 void RenderServer::submit(const RenderJob& job) {
+    if (!job.background) {
+        dispatch(job);
+        return;
+    }
+    RenderJob waiting = job;
+    if (waiting.mayDegrade && waiting.quality == Quality::Still &&
+        (rendersOutstanding_ > 0 || !backgroundJobs_.empty())) {
+        waiting.quality = Quality::Interactive;
+        waiting.scale = kFixedInteractiveScale;
+        waiting.jpegQuality = kFixedInteractiveJpegQuality;
+        waiting.degraded = true;
+    }
+    backgroundJobs_.push_back(std::move(waiting));
+    dispatchBackground();
+}
+
+void RenderServer::dispatch(const RenderJob& job) {
+    ++rendersOutstanding_;
     QMetaObject::invokeMethod(
         worker_.get(), [worker = worker_.get(), job] { worker->render(job); },
         Qt::QueuedConnection);
+}
+
+void RenderServer::dispatchBackground() {
+    if (rendersOutstanding_ == 0 && !backgroundJobs_.empty()) {
+        const RenderJob job = std::move(backgroundJobs_.front());
+        backgroundJobs_.pop_front();
+        dispatch(job);
+    }
 }
 
 void RenderServer::onNewConnection() {
@@ -181,9 +207,11 @@ void RenderServer::onNewConnection() {
 }
 
 void RenderServer::onFrameRendered(const RenderedFrame& frame) {
+    --rendersOutstanding_;
     if (const QPointer<ViewStream> view = views_.value(frame.view)) {
-        view->deliver(frame);
+        view->deliver(frame); // its next job, if any, goes ahead of waiting free look
     }
+    dispatchBackground();
 }
 
 } // namespace lucent::remote

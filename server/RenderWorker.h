@@ -27,6 +27,11 @@ struct RenderJob {
     double scale = 0.5;
     int jpegQuality = 85;
     std::uint64_t seq = 0;
+    // A follower's free look: rendered when the render thread has nothing else
+    // to do (RenderServer::submit()); a still may then be made cheaper.
+    bool background = false;
+    bool mayDegrade = false; // background only: a still may become an interactive frame
+    bool degraded = false;   // it did (the server was busy)
 };
 
 struct RenderedFrame {
@@ -35,6 +40,7 @@ struct RenderedFrame {
     std::uint64_t seq = 0;
     QByteArray message; // the binary frame message, ready to send; empty on error
     QString error;
+    bool degraded = false; // a still made interactive because the server was busy
 };
 
 // The `quality: interactive` frames: half the image size, twice the step, JPEG 85.

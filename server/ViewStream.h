@@ -46,6 +46,10 @@ public:
     int memberCount() const;
     // The member whose sending paces the renders.
     void setPacer(ClientConnection* client) { pacer_ = client; }
+    // A follower's free look: the view starts as `session`'s (series, description,
+    // quality, seq) and owes a frame; its renders wait for an idle render thread
+    // and may be cheaper when it is busy (RenderServer::submit()).
+    void startAsCopyOf(const ViewStream& session);
 
     // open() = reset() + show(). Returns the {"type":"opened"} message (no
     // description: it may identify a patient).
@@ -89,6 +93,8 @@ private:
     bool renderInFlight_ = false;
     bool adaptiveInFlight_ = false; // the frame in flight was made with adaptive_
     bool renderWanted_ = false;
+    bool background_ = false;  // free look (startAsCopyOf)
+    bool upgradeOwed_ = false; // a still came degraded: the full one follows
     QByteArray lastFrame_;
 };
 
