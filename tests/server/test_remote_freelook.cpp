@@ -1,0 +1,330 @@
+// Free look on the real lucent-server over loopback, with real CT: a follower's
+// own view shows its camera (against a local render of that camera) while the
+// other follower keeps the presenter's frames; it follows the presenter's
+// transfer function; the per-session limit; snapping back by itself and by the
+// presenter's recall gives the presenter's newest frame (>= 50 dB, the same
+// bytes); free look ends on a new series, a handover, leaving and the end of the
+// session; a follower by invite may look on its own; a busy server's cheaper
+// frame is followed by the full still.
+#include <QDir>
+#include <QJsonArray>
+#include <QTest>
+
+#include "RemoteTestFixture.h"
+#include "core/image/ImageMetrics.h"
+#include "core/io/Catalog.h"
+#include "core/raycast/CpuRayCaster.h"
+#include "tests/support/RealData.h"
+
+using namespace lucent;
+using namespace lucent::test;
+
+namespace {
+
+constexpr int kSide = 96;
+constexpr char kRealSeries[] = "dcm_qa_ct/Philips_S21570/S2010";
+const QStringList kV4 = {"lucent.v4"};
+
+QString realSeriesDir() {
+    return QString::fromStdString((kRealData / kRealSeries).string());
+}
+
+void saveOnFailure(const ImageRGBA8& image, const QString& name, bool failed) {
+    if (failed) {
+        QImage(image.pixels.data(), image.width, image.height, QImage::Format_RGBA8888)
+            .save(QDir::temp().filePath(name));
+        qWarning() << "saved" << QDir::temp().filePath(name);
+    }
+}
+
+// The presenter creates a session showing the server's only series at kSide
+// (ct-bone, the CT default); its id, empty when it failed.
+QString presentOnlySeries(RemoteTestClient& presenter) {
+    if (!presenter.waitConnected() || !presenter.authenticate()) {
+        return {};
+    }
+    presenter.send({{"type", "session-create"}});
+    const QString id = presenter.waitForText("session-created")["session"].toString();
+    if (openOnlySeries(presenter, kSide).isEmpty() || presenter.waitForText("opened").isEmpty() ||
+        !presenter.waitForCurrentFrame()) {
+        return {};
+    }
+    return id;
+}
+
+bool join(RemoteTestClient& follower, const QString& session) {
+    if (!follower.waitConnected() || !follower.authenticate()) {
+        return false;
+    }
+    follower.send({{"type", "session-join"}, {"session", session}});
+    return !follower.waitForText("opened").isEmpty();
+}
+
+// Waits until the client holds more than `count` frames; the one at `count`, or null.
+const ReceivedFrame* frameAfter(RemoteTestClient& client, qsizetype count) {
+    (void)QTest::qWaitFor([&] { return client.frames.size() > count; }, 60000);
+    return client.frames.size() > count ? &client.frames[count] : nullptr;
+}
+
+// Free look on: the seq its first own frame carries; -1 when refused.
+qint64 startFreeLook(RemoteTestClient& follower) {
+    const qsizetype from = follower.texts.size();
+    follower.send({{"type", "free-look"}, {"state", "start"}});
+    const QJsonObject started = follower.waitForText("free-look-started", 20000, from);
+    if (started.isEmpty()) {
+        return -1;
+    }
+    follower.seq = std::uint64_t(started["seq"].toInteger());
+    return qint64(follower.seq);
+}
+
+// The follower's frame of its own latest change (its own seq), waited for.
+const ReceivedFrame* ownFrame(RemoteTestClient& follower, const QJsonObject& change) {
+    follower.change(change);
+    return follower.waitForCurrentFrame();
+}
+
+// The presenter's newest frame equals the follower's next frame after `count`
+// (the snap back): >= 50 dB, in fact the same bytes.
+void verifySnapBack(RemoteTestClient& presenter, RemoteTestClient& follower, qsizetype count,
+                    const QString& what) {
+    const ReceivedFrame* next = frameAfter(follower, count);
+    QVERIFY2(next, qPrintable(what));
+    const ReceivedFrame& theirs = presenter.frames.back();
+    const double db = psnr(theirs.decoded(), next->decoded());
+    qInfo("snap back (%s): %.1f dB against the presenter's last frame", qPrintable(what), db);
+    saveOnFailure(next->decoded(), "freelook_snapback_" + what + ".png", !(db >= 50.0));
+    QVERIFY2(db >= 50.0, qPrintable(QString("%1: %2 dB").arg(what).arg(db)));
+    QCOMPARE(next->image, theirs.image);
+}
+
+} // namespace
+
+class TestRemoteFreeLook : public QObject {
+    Q_OBJECT
+
+private slots:
+    void aFollowerLooksOnItsOwnAndSnapsBack() {
+        REQUIRE_DATA(kRealSeries);
+        ServerProcess server("cpu", realSeriesDir(), {"--max-free-look", "1"});
+        QVERIFY(server.port());
+        RemoteTestClient presenter(server.port(), kV4);
+        const QString session = presentOnlySeries(presenter);
+        QVERIFY(!session.isEmpty());
+        RemoteTestClient looker(server.port(), kV4), watcher(server.port(), kV4);
+        QVERIFY(join(looker, session));
+        QVERIFY(join(watcher, session));
+
+        // Free look on; the presenter is told how many look on their own.
+        qsizetype presenterFrom = presenter.texts.size();
+        QVERIFY(startFreeLook(looker) >= 0);
+        const QJsonObject state = presenter.waitForText("free-look-state", 20000, presenterFrom);
+        QCOMPARE(state["looking"].toInt(), 1);
+        QCOMPARE(state["limit"].toInt(), 1);
+
+        // The limit: the second is refused, not fatal.
+        qsizetype from = watcher.texts.size();
+        watcher.send({{"type", "free-look"}, {"state", "start"}});
+        const QJsonObject refused = watcher.waitForText("error", 20000, from);
+        QCOMPARE(refused["code"].toString(), "free-look-limit");
+        QVERIFY(!refused["fatal"].toBool());
+
+        // Its own camera, rendered for it alone.
+        const ReceivedFrame* own =
+            ownFrame(looker, {{"type", "camera"}, {"azimuth", 70}, {"elevation", 20}});
+        QVERIFY(own);
+        QCOMPARE(own->header.format, "png");
+        const Volume volume = loadPath(realSeriesDir().toStdString());
+        CpuRayCaster cpu(volume);
+        const ImageRGBA8 local =
+            cpu.render(referenceDescription(volume, Camera{70, 20, 1.0}, kSide)).image;
+        const double ownDb = psnr(local, own->decoded());
+        qInfo("free look frame: %.1f dB against a local render of its camera", ownDb);
+        saveOnFailure(own->decoded(), "freelook_own.png", !(ownDb >= 40.0));
+        QVERIFY2(ownDb >= 40.0, qPrintable(QString("%1 dB").arg(ownDb)));
+        QVERIFY(psnr(presenter.frames.back().decoded(), own->decoded()) <
+                30.0); // not the session's
+
+        // The presenter turns: the watcher gets the same bytes, the looker none of them.
+        const qsizetype lookerFrames = looker.frames.size();
+        presenter.change({{"type", "camera"}, {"azimuth", 20}});
+        const ReceivedFrame* mine = presenter.waitForCurrentFrame();
+        QVERIFY(mine);
+        watcher.seq = presenter.seq;
+        const ReceivedFrame* theirs = watcher.waitForCurrentFrame();
+        QVERIFY(theirs);
+        QCOMPARE(theirs->image, mine->image);
+        for (qsizetype n = lookerFrames; n < looker.frames.size(); ++n) {
+            QVERIFY(looker.frames[n].image != mine->image);
+        }
+
+        // The presenter's transfer function reaches the looker's own view, its camera kept.
+        const qsizetype beforeTf = looker.frames.size();
+        presenter.change({{"type", "tf"}, {"preset", "ct-soft-tissue"}});
+        QVERIFY(presenter.waitForCurrentFrame());
+        ++looker.seq; // the followed message counts in its own view
+        const ReceivedFrame* soft = looker.waitForCurrentFrame();
+        QVERIFY(soft && looker.frames.size() > beforeTf);
+        RenderDescription softTissue = referenceDescription(volume, Camera{70, 20, 1.0}, kSide);
+        softTissue.transferFunction = loadPreset("ct-soft-tissue");
+        const double softDb = psnr(cpu.render(softTissue).image, soft->decoded());
+        QVERIFY2(softDb >= 40.0, qPrintable(QString("%1 dB").arg(softDb)));
+
+        // Snap back by itself: the next frame is the presenter's newest.
+        from = looker.texts.size();
+        qsizetype count = looker.frames.size();
+        presenterFrom = presenter.texts.size();
+        looker.send({{"type", "free-look"}, {"state", "end"}});
+        QCOMPARE(looker.waitForText("free-look-ended", 20000, from)["reason"].toString(), "own");
+        verifySnapBack(presenter, looker, count, "own");
+        QCOMPARE(presenter.waitForText("free-look-state", 20000, presenterFrom)["looking"].toInt(),
+                 0);
+        // Back on the session: its view messages are the presenter's again.
+        from = looker.texts.size();
+        looker.send({{"type", "camera"}, {"azimuth", 5}});
+        QCOMPARE(looker.waitForText("error", 20000, from)["code"].toString(), "not-presenter");
+
+        // The place is free: the watcher looks; the presenter calls everyone back.
+        QVERIFY(startFreeLook(watcher) >= 0);
+        QVERIFY(ownFrame(watcher, {{"type", "camera"}, {"azimuth", -60}, {"zoom", 1.5}}));
+        from = watcher.texts.size();
+        count = watcher.frames.size();
+        presenter.send({{"type", "free-look-recall"}});
+        QCOMPARE(watcher.waitForText("free-look-ended", 20000, from)["reason"].toString(),
+                 "recalled");
+        verifySnapBack(presenter, watcher, count, "recalled");
+        // Followers follow again: the next turn reaches both.
+        presenter.change({{"type", "camera"}, {"azimuth", 45}});
+        QVERIFY(presenter.waitForCurrentFrame());
+        QVERIFY(QTest::qWaitFor(
+            [&] { return watcher.frames.back().image == presenter.frames.back().image; }, 60000));
+        // A follower may not recall, nor the presenter look on its own.
+        from = looker.texts.size();
+        looker.send({{"type", "free-look-recall"}});
+        QCOMPARE(looker.waitForText("error", 20000, from)["code"].toString(), "not-presenter");
+        from = presenter.texts.size();
+        presenter.send({{"type", "free-look"}, {"state", "start"}});
+        const QJsonObject notFollower = presenter.waitForText("error", 20000, from);
+        QCOMPARE(notFollower["code"].toString(), "bad-request");
+        QVERIFY(notFollower["message"].toString().startsWith("free-look"));
+        QVERIFY(!presenter.disconnected && !looker.disconnected && !watcher.disconnected);
+    }
+
+    void freeLookEndsWithTheSeriesAHandoverLeavingAndTheSession() {
+        REQUIRE_DATA(kRealSeries);
+        ServerProcess server("cpu", realSeriesDir());
+        QVERIFY(server.port());
+        RemoteTestClient presenter(server.port(), kV4);
+        const QString session = presentOnlySeries(presenter);
+        QVERIFY(!session.isEmpty());
+        RemoteTestClient a(server.port(), kV4), b(server.port(), kV4);
+        QVERIFY(join(a, session));
+        QVERIFY(join(b, session));
+
+        // The presenter opens a series again: free look ends, the new view follows.
+        QVERIFY(startFreeLook(a) >= 0);
+        qsizetype from = a.texts.size();
+        const qsizetype bOpened = b.texts.size();
+        presenter.send({{"type", "list"}});
+        const QString uid = presenter.waitForText("series")["series"][0]["uid"].toString();
+        presenter.send({{"type", "open"}, {"series", uid}});
+        QCOMPARE(a.waitForText("free-look-ended", 20000, from)["reason"].toString(), "series");
+        QVERIFY(!a.waitForText("opened", 20000, from).isEmpty());
+
+        // Handed control while looking: it ends, "presenting".
+        QVERIFY(!b.waitForText("opened", 20000, bOpened).isEmpty());
+        QVERIFY(startFreeLook(b) >= 0);
+        from = b.texts.size();
+        const quint64 bId = quint64(b.waitForText("session-state")["you"].toInteger());
+        presenter.send({{"type", "session-handover"}, {"to", qint64(bId)}});
+        QCOMPARE(b.waitForText("free-look-ended", 20000, from)["reason"].toString(), "presenting");
+        QCOMPARE(b.waitForText("session-state", 20000, from)["role"].toString(), "presenter");
+
+        // Leaving while looking: "left", then session-left.
+        QVERIFY(startFreeLook(a) >= 0);
+        from = a.texts.size();
+        a.send({{"type", "session-leave"}});
+        QCOMPARE(a.waitForText("free-look-ended", 20000, from)["reason"].toString(), "left");
+        QVERIFY(!a.waitForText("session-left", 20000, from).isEmpty());
+
+        // A follower by invite may look on its own; the session's end ends it.
+        const qsizetype bFrom = b.texts.size();
+        b.send({{"type", "invite-create"}});
+        const QString code = b.waitForText("invite-created", 20000, bFrom)["code"].toString();
+        QVERIFY(!code.isEmpty());
+        RemoteTestClient student(server.port(), {"lucent.v4", "lucent.invite." + code});
+        QVERIFY(student.waitConnected());
+        QVERIFY(!student.waitForText("opened").isEmpty());
+        QVERIFY(startFreeLook(student) >= 0);
+        QVERIFY(ownFrame(student, {{"type", "camera"}, {"azimuth", 120}}));
+        from = student.texts.size();
+        presenter.send({{"type", "session-leave"}});
+        b.send({{"type", "session-leave"}});
+        QCOMPARE(student.waitForText("free-look-ended", 20000, from)["reason"].toString(),
+                 "session-ended");
+        QVERIFY(!student.waitForText("session-left", 20000, from).isEmpty());
+        QVERIFY(student.waitDisconnected());
+    }
+
+    // A version 3 follower knows no free look: the type is unknown there (fatal).
+    void versionThreeKnowsNoFreeLook() {
+        ServerProcess server;
+        QVERIFY(server.port());
+        RemoteTestClient old(server.port(), {"lucent.v3"});
+        QVERIFY(old.waitConnected() && old.authenticate());
+        old.send({{"type", "free-look"}, {"state", "start"}});
+        const QJsonObject error = old.waitForText("error");
+        QCOMPARE(error["code"].toString(), "unknown-type");
+        QVERIFY(error["message"].toString().contains("version 4"));
+        QVERIFY(old.waitDisconnected());
+        RemoteTestClient alone(server.port(), kV4);
+        QVERIFY(alone.waitConnected() && alone.authenticate());
+        alone.send({{"type", "free-look"}, {"state", "start"}});
+        QCOMPARE(alone.waitForText("error")["code"].toString(), "out-of-order"); // no session
+    }
+
+    // While the presenter drags, a looker's still may come cheaper (an
+    // interactive frame: the server was busy); the full still always follows,
+    // and it equals a local render of the looker's camera.
+    void aBusyServerSendsTheFullStillAfterwards() {
+        REQUIRE_DATA(kRealSeries);
+        ServerProcess server("cpu", realSeriesDir());
+        QVERIFY(server.port());
+        RemoteTestClient presenter(server.port(), kV4);
+        const QString session = presentOnlySeries(presenter);
+        QVERIFY(!session.isEmpty());
+        RemoteTestClient looker(server.port(), kV4);
+        QVERIFY(join(looker, session));
+        QVERIFY(startFreeLook(looker) >= 0);
+        presenter.send({{"type", "size"}, {"width", 384}, {"height", 384}}); // slower frames
+        ++presenter.seq;
+        for (int n = 1; n <= 20; ++n) {
+            presenter.change({{"type", "camera"}, {"azimuth", 3.0 * n}});
+            if (n == 2) {
+                looker.change({{"type", "camera"}, {"azimuth", -40}});
+            }
+            QTest::qWait(10);
+        }
+        QVERIFY(QTest::qWaitFor(
+            [&] {
+                return !looker.frames.isEmpty() && looker.frames.back().header.seq == looker.seq &&
+                       looker.frames.back().header.format == "png";
+            },
+            60000));
+        int cheaper = 0;
+        for (const ReceivedFrame& f : std::as_const(looker.frames)) {
+            cheaper += f.header.seq == looker.seq && f.header.format == "jpeg" ? 1 : 0;
+        }
+        qInfo("looker's frames of its camera made cheaper while busy: %d", cheaper);
+        const Volume volume = loadPath(realSeriesDir().toStdString());
+        CpuRayCaster cpu(volume);
+        const double db =
+            psnr(cpu.render(referenceDescription(volume, Camera{-40, 0, 1.0}, kSide)).image,
+                 looker.frames.back().decoded());
+        QVERIFY2(db >= 40.0, qPrintable(QString("%1 dB").arg(db)));
+        QVERIFY(presenter.waitForCurrentFrame());
+    }
+};
+
+QTEST_GUILESS_MAIN(TestRemoteFreeLook)
+#include "test_remote_freelook.moc"
