@@ -119,7 +119,15 @@ struct Writer {
         return {{"type", "invite-revoked"}, {"invite", r.invite}};
     }
     Json operator()(const FreeLookStarted& s) const {
-        return {{"type", "free-look-started"}, {"seq", s.seq}};
+        return {{"type", "free-look-started"},
+                {"seq", s.seq},
+                {"camera",
+                 {{"azimuth", s.azimuth},
+                  {"elevation", s.elevation},
+                  {"zoom", s.zoom},
+                  {"distance", s.distance},
+                  {"pan_right", s.panRight},
+                  {"pan_up", s.panUp}}}};
     }
     Json operator()(const FreeLookEnded& e) const {
         return {{"type", "free-look-ended"}, {"reason", e.reason}};
@@ -185,7 +193,14 @@ ServerMessage read(const Json& m, const std::string& type) {
         return InviteRevoked{jsonInteger<std::uint64_t>(m.at("invite"), "invite")};
     }
     if (type == "free-look-started") {
-        return FreeLookStarted{jsonInteger<std::uint64_t>(m.at("seq"), "seq")};
+        const Json& c = m.at("camera");
+        return FreeLookStarted{jsonInteger<std::uint64_t>(m.at("seq"), "seq"),
+                               c.at("azimuth").get<double>(),
+                               c.at("elevation").get<double>(),
+                               c.at("zoom").get<double>(),
+                               c.at("distance").get<double>(),
+                               c.at("pan_right").get<double>(),
+                               c.at("pan_up").get<double>()};
     }
     if (type == "free-look-ended") {
         return FreeLookEnded{m.at("reason").get<std::string>()};

@@ -86,10 +86,12 @@ struct InviteRevoked {
 };
 
 // Version 4, free look. To the follower: its own view starts (its frames follow,
-// the first numbered `seq`), or it ends (`reason`: own, recalled, series,
+// the first numbered `seq`; its camera as the session's was, in the keys of the
+// `camera` message), or it ends (`reason`: own, recalled, series,
 // presenting, left, session-ended) and the session's newest frame follows.
 struct FreeLookStarted {
     std::uint64_t seq = 0;
+    double azimuth = 0.0, elevation = 0.0, zoom = 1.0, distance = 0.0, panRight = 0.0, panUp = 0.0;
     bool operator==(const FreeLookStarted&) const = default;
 };
 struct FreeLookEnded {

@@ -13,6 +13,12 @@ namespace {
 
 Q_LOGGING_CATEGORY(lcFreeLook, "lucent.server.freelook")
 
+// free-look-started for a view: the seq of its next frame and its camera.
+FreeLookStarted started(const ViewStream& view) {
+    const Camera& c = view.camera();
+    return {view.seq(), c.azimuth, c.elevation, c.zoom, c.distance, c.panRight, c.panUp};
+}
+
 } // namespace
 
 bool appliesToFreeLook(const ClientMessage& message) {
@@ -47,7 +53,7 @@ ViewStream* FreeLookViews::viewOf(const ClientConnection& follower) const {
 
 void FreeLookViews::start(ClientConnection& follower) {
     if (ViewStream* own = viewOf(follower)) {
-        follower.sendJson(writeServerMessage(FreeLookStarted{own->seq()}));
+        follower.sendJson(writeServerMessage(started(*own)));
         return; // already on
     }
     if (!session_.series()) {
@@ -67,7 +73,7 @@ void FreeLookViews::start(ClientConnection& follower) {
     own->addMember(&follower);
     own->setPacer(&follower);
     looking_.append({&follower, own});
-    follower.sendJson(writeServerMessage(FreeLookStarted{session_.seq()}));
+    follower.sendJson(writeServerMessage(started(session_)));
     own->startAsCopyOf(session_);
     qCInfo(lcFreeLook) << "client" << follower.id() << "looks on its own;" << count()
                        << "in free look";

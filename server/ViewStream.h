@@ -38,6 +38,7 @@ public:
     quint64 id() const { return id_; }
     const std::shared_ptr<const SeriesEntry>& series() const { return series_; }
     std::uint64_t seq() const { return seq_; }
+    const Camera& camera() const { return description_.camera; }
     // The last frame sent (for members who join later); empty before the first.
     const QByteArray& lastFrame() const { return lastFrame_; }
 

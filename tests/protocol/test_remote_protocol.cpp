@@ -436,7 +436,7 @@ private slots:
             InviteCreated{3, "Zm9v", 1790000000, "/#invite=Zm9v", "http://h:1/#invite=Zm9v",
                           encodeQrCode("http://h:1/#invite=Zm9v")},
             InviteRevoked{3},
-            FreeLookStarted{42},
+            FreeLookStarted{42, 30.5, -12.0, 1.5, 400.0, -3.25, 7.0},
             FreeLookEnded{"recalled"},
             FreeLookState{3, 16},
         };

@@ -78,10 +78,24 @@ qint64 startFreeLook(RemoteTestClient& follower) {
     return qint64(follower.seq);
 }
 
-// The follower's frame of its own latest change (its own seq), waited for.
+// The lossless still of the follower's own latest change (its own seq), waited
+// for: a busy server may send a cheaper frame of it first (then nothing more is owed).
+const ReceivedFrame* settledFrame(RemoteTestClient& follower) {
+    (void)QTest::qWaitFor(
+        [&] {
+            return !follower.frames.isEmpty() &&
+                   follower.frames.back().header.seq == follower.seq &&
+                   follower.frames.back().header.format == "png";
+        },
+        60000);
+    const ReceivedFrame* last = follower.frames.isEmpty() ? nullptr : &follower.frames.back();
+    return last && last->header.seq == follower.seq && last->header.format == "png" ? last
+                                                                                    : nullptr;
+}
+
 const ReceivedFrame* ownFrame(RemoteTestClient& follower, const QJsonObject& change) {
     follower.change(change);
-    return follower.waitForCurrentFrame();
+    return settledFrame(follower);
 }
 
 // The presenter's newest frame equals the follower's next frame after `count`
@@ -91,6 +105,8 @@ void verifySnapBack(RemoteTestClient& presenter, RemoteTestClient& follower, qsi
     const ReceivedFrame* next = frameAfter(follower, count);
     QVERIFY2(next, qPrintable(what));
     const ReceivedFrame& theirs = presenter.frames.back();
+    QCOMPARE(next->header.width, theirs.header.width); // not an own frame, nor a cheaper one
+    QCOMPARE(next->header.height, theirs.header.height);
     const double db = psnr(theirs.decoded(), next->decoded());
     qInfo("snap back (%s): %.1f dB against the presenter's last frame", qPrintable(what), db);
     saveOnFailure(next->decoded(), "freelook_snapback_" + what + ".png", !(db >= 50.0));
@@ -163,7 +179,7 @@ private slots:
         presenter.change({{"type", "tf"}, {"preset", "ct-soft-tissue"}});
         QVERIFY(presenter.waitForCurrentFrame());
         ++looker.seq; // the followed message counts in its own view
-        const ReceivedFrame* soft = looker.waitForCurrentFrame();
+        const ReceivedFrame* soft = settledFrame(looker);
         QVERIFY(soft && looker.frames.size() > beforeTf);
         RenderDescription softTissue = referenceDescription(volume, Camera{70, 20, 1.0}, kSide);
         softTissue.transferFunction = loadPreset("ct-soft-tissue");
@@ -185,7 +201,13 @@ private slots:
         QCOMPARE(looker.waitForText("error", 20000, from)["code"].toString(), "not-presenter");
 
         // The place is free: the watcher looks; the presenter calls everyone back.
+        qsizetype watcherFrom = watcher.texts.size();
         QVERIFY(startFreeLook(watcher) >= 0);
+        // It starts from the session's camera, which the presenter turned to 20 degrees.
+        const QJsonObject camera =
+            watcher.waitForText("free-look-started", 20000, watcherFrom)["camera"].toObject();
+        QCOMPARE(camera["azimuth"].toDouble(), 20.0);
+        QCOMPARE(camera["zoom"].toDouble(), 1.0);
         QVERIFY(ownFrame(watcher, {{"type", "camera"}, {"azimuth", -60}, {"zoom", 1.5}}));
         from = watcher.texts.size();
         count = watcher.frames.size();
