@@ -100,6 +100,9 @@ public:
     // lifetime in seconds, or none (until the session ends, at most a day).
     void createInvite(std::optional<std::int64_t> lifetimeSeconds);
     void revokeInvite(std::uint64_t invite);
+    // Free look (protocol version 4): every follower looking on its own goes
+    // back to the session's view (freeLookChanged says how many look).
+    void recallFreeLook();
 
 signals:
     void sessionChanged(const QString& id);
@@ -107,6 +110,8 @@ signals:
     void inviteRevoked(quint64 invite);
     // Why an invite could not be made or revoked.
     void inviteRefused(const QString& why);
+    // How many followers of the session look on their own, of at most `limit`.
+    void freeLookChanged(int looking, int limit);
 
 private:
     enum class Phase { Idle, Connecting, Authenticating, Listing, Opening, Open };
