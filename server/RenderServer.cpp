@@ -4,6 +4,7 @@
 #include <QLoggingCategory>
 #include <QMetaObject>
 
+#include <algorithm>
 #include <stdexcept>
 
 #include <sys/stat.h>
@@ -161,11 +162,18 @@ void RenderServer::submit(const RenderJob& job) {
         return;
     }
     RenderJob waiting = job;
-    if (waiting.mayDegrade && waiting.quality == Quality::Still &&
-        (rendersOutstanding_ > 0 || !backgroundJobs_.empty())) {
+    const bool busy = rendersOutstanding_ > 0 || !backgroundJobs_.empty();
+    if (waiting.mayDegrade && busy) {
+        // Cheaper while others wait: a still as the fixed interactive frame, a
+        // drag's frame at most at half size and JPEG quality 60.
+        if (waiting.quality == Quality::Still) {
+            waiting.scale = kFixedInteractiveScale;
+            waiting.jpegQuality = kFixedInteractiveJpegQuality;
+        } else {
+            waiting.scale = std::min(waiting.scale, kBusyInteractiveScale);
+            waiting.jpegQuality = std::min(waiting.jpegQuality, kBusyInteractiveJpegQuality);
+        }
         waiting.quality = Quality::Interactive;
-        waiting.scale = kFixedInteractiveScale;
-        waiting.jpegQuality = kFixedInteractiveJpegQuality;
         waiting.degraded = true;
     }
     backgroundJobs_.push_back(std::move(waiting));

@@ -88,8 +88,9 @@ public:
     // Hands a job to the render thread. A background job (free look) waits
     // until no other job is outstanding there, so sessions and clients' own
     // views go first; one asked for while the render thread is busy (a job is
-    // outstanding or another background job waits) is, when mayDegrade, made an
-    // interactive frame (RenderedFrame::degraded).
+    // outstanding or another background job waits) is, when mayDegrade, made
+    // cheaper (RenderedFrame::degraded): a still an interactive frame, an
+    // interactive one at most kBusyInteractiveScale and kBusyInteractiveJpegQuality.
     void submit(const RenderJob& job);
 
     // Scans the store's files again (on a worker thread) and serves what it

@@ -46,6 +46,9 @@ struct RenderedFrame {
 // The `quality: interactive` frames: half the image size, twice the step, JPEG 85.
 inline constexpr double kFixedInteractiveScale = 0.5;
 inline constexpr int kFixedInteractiveJpegQuality = 85;
+// A free look's interactive frame while the server is busy: at most this.
+inline constexpr double kBusyInteractiveScale = 0.5;
+inline constexpr int kBusyInteractiveJpegQuality = 60;
 
 class RenderWorker : public QObject {
     Q_OBJECT

@@ -151,7 +151,7 @@ void ViewStream::deliver(const RenderedFrame& frame) {
             }
         }
     } else if (series_) {
-        if (adaptiveInFlight_) {
+        if (adaptiveInFlight_ && !frame.degraded) { // a cheaper frame says nothing of the view
             adaptive_.record(frame.frameMs);
         }
         if (frame.degraded && !renderWanted_ && !interacting_) {

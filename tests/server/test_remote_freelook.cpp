@@ -288,6 +288,53 @@ private slots:
         QVERIFY(student.waitDisconnected());
     }
 
+    // Ten followers look on their own among forty while the presenter turns the
+    // view: every other follower ends on the presenter's newest frame (the same
+    // bytes), and every looker on its own view's still.
+    void tenLookAmongForty() {
+        ServerProcess server; // the synthetic CT: many renders, quickly
+        QVERIFY(server.port());
+        RemoteTestClient presenter(server.port(), kV4);
+        const QString session = presentOnlySeries(presenter);
+        QVERIFY(!session.isEmpty());
+        std::vector<std::unique_ptr<RemoteTestClient>> followers;
+        for (int n = 0; n < 40; ++n) {
+            followers.push_back(std::make_unique<RemoteTestClient>(server.port(), kV4));
+            QVERIFY(join(*followers.back(), session));
+        }
+        for (int n = 0; n < 10; ++n) {
+            QVERIFY(startFreeLook(*followers[n]) >= 0);
+        }
+        QElapsedTimer clock;
+        clock.start();
+        for (int turn = 1; turn <= 8; ++turn) {
+            presenter.change({{"type", "camera"}, {"azimuth", 10.0 * turn}});
+            for (int n = 0; n < 10; ++n) {
+                followers[n]->change({{"type", "camera"}, {"azimuth", -15.0 * turn - n}});
+            }
+            QVERIFY(presenter.waitForCurrentFrame());
+        }
+        const double presenterMs = double(clock.elapsed()) / 8.0;
+        for (int n = 0; n < 10; ++n) {
+            QVERIFY2(settledFrame(*followers[n]), qPrintable(QString("looker %1").arg(n)));
+        }
+        const double allMs = double(clock.elapsed()) / 8.0;
+        qsizetype fewest = presenter.frames.size();
+        for (int n = 10; n < 40; ++n) {
+            RemoteTestClient& watcher = *followers[n];
+            QVERIFY(QTest::qWaitFor(
+                [&] {
+                    return !watcher.frames.isEmpty() &&
+                           watcher.frames.back().image == presenter.frames.back().image;
+                },
+                30000));
+            fewest = std::min(fewest, watcher.frames.size());
+        }
+        qInfo("10 lookers among 40 followers: %.0f ms per presenter turn, %.0f ms until every "
+              "looker's still too; the followers got at least %lld of the presenter's %lld frames",
+              presenterMs, allMs, qlonglong(fewest), qlonglong(presenter.frames.size()));
+    }
+
     // A version 3 follower knows no free look: the type is unknown there (fatal).
     void versionThreeKnowsNoFreeLook() {
         ServerProcess server;
