@@ -10,7 +10,7 @@
 #include <QJsonArray>
 #include <QTest>
 
-#include "RemoteTestFixture.h"
+#include "FreeLookClients.h"
 #include "core/image/ImageMetrics.h"
 #include "core/io/Catalog.h"
 #include "core/raycast/CpuRayCaster.h"
@@ -18,6 +18,7 @@
 
 using namespace lucent;
 using namespace lucent::test;
+using lucent::remote::FrameHeader;
 
 namespace {
 
@@ -35,67 +36,6 @@ void saveOnFailure(const ImageRGBA8& image, const QString& name, bool failed) {
             .save(QDir::temp().filePath(name));
         qWarning() << "saved" << QDir::temp().filePath(name);
     }
-}
-
-// The presenter creates a session showing the server's only series at kSide
-// (ct-bone, the CT default); its id, empty when it failed.
-QString presentOnlySeries(RemoteTestClient& presenter) {
-    if (!presenter.waitConnected() || !presenter.authenticate()) {
-        return {};
-    }
-    presenter.send({{"type", "session-create"}});
-    const QString id = presenter.waitForText("session-created")["session"].toString();
-    if (openOnlySeries(presenter, kSide).isEmpty() || presenter.waitForText("opened").isEmpty() ||
-        !presenter.waitForCurrentFrame()) {
-        return {};
-    }
-    return id;
-}
-
-bool join(RemoteTestClient& follower, const QString& session) {
-    if (!follower.waitConnected() || !follower.authenticate()) {
-        return false;
-    }
-    follower.send({{"type", "session-join"}, {"session", session}});
-    return !follower.waitForText("opened").isEmpty();
-}
-
-// Waits until the client holds more than `count` frames; the one at `count`, or null.
-const ReceivedFrame* frameAfter(RemoteTestClient& client, qsizetype count) {
-    (void)QTest::qWaitFor([&] { return client.frames.size() > count; }, 60000);
-    return client.frames.size() > count ? &client.frames[count] : nullptr;
-}
-
-// Free look on: the seq its first own frame carries; -1 when refused.
-qint64 startFreeLook(RemoteTestClient& follower) {
-    const qsizetype from = follower.texts.size();
-    follower.send({{"type", "free-look"}, {"state", "start"}});
-    const QJsonObject started = follower.waitForText("free-look-started", 20000, from);
-    if (started.isEmpty()) {
-        return -1;
-    }
-    follower.seq = std::uint64_t(started["seq"].toInteger());
-    return qint64(follower.seq);
-}
-
-// The lossless still of the follower's own latest change (its own seq), waited
-// for: a busy server may send a cheaper frame of it first (then nothing more is owed).
-const ReceivedFrame* settledFrame(RemoteTestClient& follower) {
-    (void)QTest::qWaitFor(
-        [&] {
-            return !follower.frames.isEmpty() &&
-                   follower.frames.back().header.seq == follower.seq &&
-                   follower.frames.back().header.format == "png";
-        },
-        60000);
-    const ReceivedFrame* last = follower.frames.isEmpty() ? nullptr : &follower.frames.back();
-    return last && last->header.seq == follower.seq && last->header.format == "png" ? last
-                                                                                    : nullptr;
-}
-
-const ReceivedFrame* ownFrame(RemoteTestClient& follower, const QJsonObject& change) {
-    follower.change(change);
-    return settledFrame(follower);
 }
 
 // The presenter's newest frame equals the follower's next frame after `count`
@@ -125,7 +65,7 @@ private slots:
         ServerProcess server("cpu", realSeriesDir(), {"--max-free-look", "1"});
         QVERIFY(server.port());
         RemoteTestClient presenter(server.port(), kV4);
-        const QString session = presentOnlySeries(presenter);
+        const QString session = presentOnlySeries(presenter, kSide);
         QVERIFY(!session.isEmpty());
         RemoteTestClient looker(server.port(), kV4), watcher(server.port(), kV4);
         QVERIFY(join(looker, session));
@@ -237,7 +177,7 @@ private slots:
         ServerProcess server("cpu", realSeriesDir());
         QVERIFY(server.port());
         RemoteTestClient presenter(server.port(), kV4);
-        const QString session = presentOnlySeries(presenter);
+        const QString session = presentOnlySeries(presenter, kSide);
         QVERIFY(!session.isEmpty());
         RemoteTestClient a(server.port(), kV4), b(server.port(), kV4);
         QVERIFY(join(a, session));
@@ -295,7 +235,7 @@ private slots:
         ServerProcess server; // the synthetic CT: many renders, quickly
         QVERIFY(server.port());
         RemoteTestClient presenter(server.port(), kV4);
-        const QString session = presentOnlySeries(presenter);
+        const QString session = presentOnlySeries(presenter, kSide);
         QVERIFY(!session.isEmpty());
         std::vector<std::unique_ptr<RemoteTestClient>> followers;
         for (int n = 0; n < 40; ++n) {
@@ -352,39 +292,41 @@ private slots:
         QCOMPARE(alone.waitForText("error")["code"].toString(), "out-of-order"); // no session
     }
 
-    // While the presenter drags, a looker's still may come cheaper (an
-    // interactive frame: the server was busy); the full still always follows,
-    // and it equals a local render of the looker's camera.
+    // A looker's still asked for while the presenter's frame is being rendered
+    // comes cheaper (the fixed interactive frame: the server was busy); the
+    // full still follows, and it equals a local render of the looker's camera.
     void aBusyServerSendsTheFullStillAfterwards() {
         REQUIRE_DATA(kRealSeries);
         ServerProcess server("cpu", realSeriesDir());
         QVERIFY(server.port());
         RemoteTestClient presenter(server.port(), kV4);
-        const QString session = presentOnlySeries(presenter);
+        const QString session = presentOnlySeries(presenter, kSide);
         QVERIFY(!session.isEmpty());
         RemoteTestClient looker(server.port(), kV4);
         QVERIFY(join(looker, session));
+        presenter.change({{"type", "size"}, {"width", 1024}, {"height", 1024}}); // slow frames
+        QVERIFY(presenter.waitForCurrentFrame());
         QVERIFY(startFreeLook(looker) >= 0);
-        presenter.send({{"type", "size"}, {"width", 384}, {"height", 384}}); // slower frames
-        ++presenter.seq;
-        for (int n = 1; n <= 20; ++n) {
-            presenter.change({{"type", "camera"}, {"azimuth", 3.0 * n}});
-            if (n == 2) {
-                looker.change({{"type", "camera"}, {"azimuth", -40}});
-            }
-            QTest::qWait(10);
-        }
-        QVERIFY(QTest::qWaitFor(
-            [&] {
-                return !looker.frames.isEmpty() && looker.frames.back().header.seq == looker.seq &&
-                       looker.frames.back().header.format == "png";
-            },
-            60000));
-        int cheaper = 0;
+        QVERIFY(ownFrame(looker, {{"type", "size"}, {"width", kSide}, {"height", kSide}}));
+        // The looker turns while the presenter's frame is being rendered.
+        presenter.change({{"type", "camera"}, {"azimuth", 30}});
+        QTest::qWait(30);
+        looker.change({{"type", "camera"}, {"azimuth", -40}});
+        QVERIFY(settledFrame(looker));
+        QList<FrameHeader> mine;
         for (const ReceivedFrame& f : std::as_const(looker.frames)) {
-            cheaper += f.header.seq == looker.seq && f.header.format == "jpeg" ? 1 : 0;
+            if (f.header.seq == looker.seq) {
+                mine.append(f.header);
+            }
         }
-        qInfo("looker's frames of its camera made cheaper while busy: %d", cheaper);
+        QCOMPARE(mine.size(), 2); // the cheaper frame, then the still
+        QCOMPARE(mine[0].format, "jpeg");
+        QCOMPARE(mine[0].scale, 0.5);
+        QCOMPARE(mine[0].width, kSide / 2);
+        QCOMPARE(mine[1].format, "png");
+        QCOMPARE(mine[1].width, kSide);
+        qInfo("busy: the looker's cheaper frame %.1f ms, its still %.1f ms",
+              mine[0].renderMs + mine[0].encodeMs, mine[1].renderMs + mine[1].encodeMs);
         const Volume volume = loadPath(realSeriesDir().toStdString());
         CpuRayCaster cpu(volume);
         const double db =
