@@ -124,12 +124,9 @@
     updateControls();
   }
 
-  function stopSteering(reason) {
+  function stopSteering(why) {
     cameraDirty = false;
-    const why = { recalled: "the presenter called everyone back",
-                  series: "the presenter opened another series",
-                  presenting: "you present now" }[reason];
-    setStatus("following the presenter" + (why ? " (" + why + ")" : ""), "good");
+    setStatus(why, "good");
     updateControls();
   }
 

@@ -10,6 +10,12 @@ window.createLucentFreeLook = (elements, handlers) => {
   let state = "off";
   let looking = 0;
   let presenting = false;
+  // What a follower is told when free look ends, by its reason.
+  const kEnded = {
+    recalled: "following the presenter (the presenter called everyone back)",
+    series: "following the presenter (the presenter opened another series)",
+    presenting: "you present now",
+  };
 
   function update() {
     elements.back.hidden = state === "off";
@@ -69,7 +75,7 @@ window.createLucentFreeLook = (elements, handlers) => {
       } else if (message.type === "free-look-ended") {
         state = "off";
         update();
-        handlers.onEnded(message.reason);
+        handlers.onEnded(kEnded[message.reason] || "following the presenter");
       } else if (message.type === "free-look-state") {
         looking = message.looking;
         update();
