@@ -179,6 +179,53 @@ private slots:
         const double recalled = psnr(presenter.frames.back().decoded(), canvasImage(driver));
         QVERIFY2(recalled >= 50.0, qPrintable(QString("%1 dB").arg(recalled)));
     }
+
+    // The presenter's page: how many look on their own, and "Bring everyone back".
+    void thePresenterBringsEveryoneBack() {
+        const BrowserTools tools = findBrowserTools();
+        if (!tools.missing().isEmpty()) {
+            QSKIP(qPrintable(tools.missing()));
+        }
+        if (!QFileInfo(kSeriesDir).isDir()) {
+            QSKIP(qPrintable("real data absent: " + kSeriesDir));
+        }
+        ServerProcess server("cpu", kSeriesDir);
+        QVERIFY2(server.started(), qPrintable(server.startError()));
+        WebDriver driver(tools);
+        QVERIFY2(driver.start(1000, 700), qPrintable(driver.error())); // wide: the panel stays
+        QVERIFY(driver.navigate(QString("http://127.0.0.1:%1/").arg(server.port())));
+        QVERIFY(driver.sendKeys(driver.findElement("#token"), kToken));
+        QVERIFY(driver.click(driver.findElement("#connect")));
+        QVERIFY(driver.waitUntil(
+            "return document.getElementById('series-list').options.length > 0;", 20000));
+        QVERIFY(driver.click(driver.findElement("#open")));
+        QVERIFY(driver.waitUntil("return window.lucent.stats.framesDrawn > 0;", 30000));
+        QVERIFY2(driver.click(driver.findElement("#start-session")), qPrintable(driver.error()));
+        QVERIFY2(driver.waitUntil("const s = window.lucent.session();"
+                                  "return s !== null && s.role === 'presenter';",
+                                  20000),
+                 qPrintable(status(driver)));
+        const QString sessionId = driver.execute("return window.lucent.session().id;").toString();
+        QVERIFY(driver.execute("return document.getElementById('recall-free-look').disabled;")
+                    .toBool());
+
+        // A student looks on their own: the page says so and may bring them back.
+        RemoteTestClient student(server.port(), {"lucent.v4"});
+        QVERIFY(student.waitConnected() && student.authenticate());
+        student.send({{"type", "session-join"}, {"session", sessionId}});
+        QVERIFY(!student.waitForText("opened").isEmpty());
+        student.send({{"type", "free-look"}, {"state", "start"}});
+        QVERIFY(!student.waitForText("free-look-started").isEmpty());
+        QVERIFY2(driver.waitUntil("const b = document.getElementById('recall-free-look');"
+                                  "return !b.hidden && !b.disabled && document.getElementById("
+                                  "'free-look-info').textContent.startsWith('1 follower');",
+                                  20000),
+                 qPrintable(status(driver)));
+        QVERIFY(driver.click(driver.findElement("#recall-free-look")));
+        QCOMPARE(student.waitForText("free-look-ended")["reason"].toString(), "recalled");
+        QVERIFY(driver.waitUntil("return document.getElementById('recall-free-look').disabled;",
+                                 20000));
+    }
 };
 
 QTEST_GUILESS_MAIN(TestWebFreeLook)
