@@ -68,7 +68,7 @@ private slots:
                                   "window.lucent.stats.framesDrawn > 0;",
                                   30000),
                  qPrintable(statusOf(driver)));
-        QCOMPARE(driver.execute("return window.lucent.protocolVersion();").toInt(), 3);
+        QCOMPARE(driver.execute("return window.lucent.protocolVersion();").toInt(), 4);
         QVERIFY(driver.execute("return window.lucent.invited();").toBool());
         // The code left the address bar; the page is the view alone.
         QVERIFY(!driver.execute("return location.href;").toString().contains(code));
