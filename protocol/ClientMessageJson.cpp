@@ -225,6 +225,15 @@ InteractionUpdate parseInteraction(const Json& m) {
     return {state == "start"};
 }
 
+FreeLook parseFreeLook(const Json& m) {
+    checkKeys(m, "free-look", {"state"});
+    const std::string state = requiredString(m, "state", "free-look");
+    if (state != "start" && state != "end") {
+        throwBadRequest("free-look: 'state' must be start or end");
+    }
+    return {state == "start"};
+}
+
 SessionJoin parseSessionJoin(const Json& m) {
     checkKeys(m, "session-join", {"session"});
     std::string id = requiredString(m, "session", "session-join");
@@ -367,6 +376,12 @@ ClientMessage parseTyped(const Json& m, const std::string& type, int version) {
     if (type == "interaction") {
         return parseInteraction(m);
     }
+    if (type == "free-look") {
+        return parseFreeLook(m);
+    }
+    if (type == "free-look-recall") {
+        return empty<FreeLookRecall>(m, type);
+    }
     if (type == "session-join") {
         return parseSessionJoin(m);
     }
@@ -433,6 +448,7 @@ struct FieldWriter {
         m["height"] = u.height;
     }
     void operator()(const InteractionUpdate& u) const { m["state"] = u.active ? "start" : "end"; }
+    void operator()(const FreeLook& f) const { m["state"] = f.active ? "start" : "end"; }
     void operator()(const SessionJoin& j) const { m["session"] = j.session; }
     void operator()(const SessionHandover& h) const { m["to"] = h.to; }
     // list, render, session-create, session-leave: the type alone.

@@ -31,6 +31,8 @@ constexpr TypeInfo kTypes[] = {
     {"pointer", 4, false},
     {"mark", 4, false},
     {"marks-clear", 4, false},
+    {"free-look", 4, false},
+    {"free-look-recall", 4, false},
 };
 static_assert(std::size(kTypes) == std::variant_size_v<ClientMessage>);
 

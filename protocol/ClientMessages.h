@@ -117,12 +117,24 @@ struct InviteRevoke {
     std::uint64_t invite = 0; // the number invite-created gave
     bool operator==(const InviteRevoke&) const = default;
 };
+// Version 4, a follower of a session: {"type":"free-look","state":"start"|"end"}:
+// its own view of the session's series (its camera, the presenter's look), or
+// back to the session's view.
+struct FreeLook {
+    bool active = false;
+    bool operator==(const FreeLook&) const = default;
+};
+// Version 4, the presenter: every follower in free look back to the session's view.
+struct FreeLookRecall {
+    bool operator==(const FreeLookRecall&) const = default;
+};
 
 using ClientMessage =
     std::variant<AuthRequest, ListRequest, OpenRequest, CameraUpdate, TransferFunctionUpdate,
                  ModeUpdate, ClipUpdate, QualityUpdate, SamplingUpdate, SizeUpdate, RenderRequest,
                  InteractionUpdate, SessionCreate, SessionJoin, SessionHandover, SessionLeave,
-                 InviteCreate, InviteRevoke, PointerUpdate, MarkPlace, MarksClear>;
+                 InviteCreate, InviteRevoke, PointerUpdate, MarkPlace, MarksClear, FreeLook,
+                 FreeLookRecall>;
 
 // True for the messages that change a view (and owe a frame).
 bool isViewMessage(const ClientMessage& message);

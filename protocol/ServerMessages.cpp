@@ -122,6 +122,23 @@ struct Writer {
     Json operator()(const PointerShown& p) const { return pointerShownJson(p); }
     Json operator()(const MarkShown& m) const { return markShownJson(m); }
     Json operator()(const MarksCleared&) const { return {{"type", "marks-cleared"}}; }
+    Json operator()(const FreeLookStarted& s) const {
+        return {{"type", "free-look-started"},
+                {"seq", s.seq},
+                {"camera",
+                 {{"azimuth", s.azimuth},
+                  {"elevation", s.elevation},
+                  {"zoom", s.zoom},
+                  {"distance", s.distance},
+                  {"pan_right", s.panRight},
+                  {"pan_up", s.panUp}}}};
+    }
+    Json operator()(const FreeLookEnded& e) const {
+        return {{"type", "free-look-ended"}, {"reason", e.reason}};
+    }
+    Json operator()(const FreeLookState& s) const {
+        return {{"type", "free-look-state"}, {"looking", s.looking}, {"limit", s.limit}};
+    }
 };
 
 ServerMessage read(const Json& m, const std::string& type) {
@@ -187,6 +204,23 @@ ServerMessage read(const Json& m, const std::string& type) {
     }
     if (type == "marks-cleared") {
         return MarksCleared{};
+    }
+    if (type == "free-look-started") {
+        const Json& c = m.at("camera");
+        return FreeLookStarted{jsonInteger<std::uint64_t>(m.at("seq"), "seq"),
+                               c.at("azimuth").get<double>(),
+                               c.at("elevation").get<double>(),
+                               c.at("zoom").get<double>(),
+                               c.at("distance").get<double>(),
+                               c.at("pan_right").get<double>(),
+                               c.at("pan_up").get<double>()};
+    }
+    if (type == "free-look-ended") {
+        return FreeLookEnded{m.at("reason").get<std::string>()};
+    }
+    if (type == "free-look-state") {
+        return FreeLookState{jsonInteger<int>(m.at("looking"), "looking"),
+                             jsonInteger<int>(m.at("limit"), "limit")};
     }
     throw ProtocolError("unknown-type", "unknown server message type '" + type.substr(0, 64) + "'",
                         false);

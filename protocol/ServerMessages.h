@@ -86,9 +86,30 @@ struct InviteRevoked {
     bool operator==(const InviteRevoked&) const = default;
 };
 
+// Version 4, free look. To the follower: its own view starts (its frames follow,
+// the first numbered `seq`; its camera as the session's was, in the keys of the
+// `camera` message), or it ends (`reason`: own, recalled, series,
+// presenting, left, session-ended) and the session's newest frame follows.
+struct FreeLookStarted {
+    std::uint64_t seq = 0;
+    double azimuth = 0.0, elevation = 0.0, zoom = 1.0, distance = 0.0, panRight = 0.0, panUp = 0.0;
+    bool operator==(const FreeLookStarted&) const = default;
+};
+struct FreeLookEnded {
+    std::string reason;
+    bool operator==(const FreeLookEnded&) const = default;
+};
+// To the presenter: how many followers look on their own, of at most `limit`.
+struct FreeLookState {
+    int looking = 0;
+    int limit = 0;
+    bool operator==(const FreeLookState&) const = default;
+};
+
 using ServerMessage =
     std::variant<Hello, SeriesListReply, Opened, ErrorReply, SessionCreated, SessionState,
-                 SessionLeft, InviteCreated, InviteRevoked, PointerShown, MarkShown, MarksCleared>;
+                 SessionLeft, InviteCreated, InviteRevoked, PointerShown, MarkShown, MarksCleared,
+                 FreeLookStarted, FreeLookEnded, FreeLookState>;
 
 // The message as compact JSON.
 std::string writeServerMessage(const ServerMessage& message);

@@ -108,6 +108,9 @@ public:
     void point(std::optional<glm::dvec2> at);
     void placeMark(const remote::MarkPlace& mark);
     void clearMarks();
+    // Free look (protocol version 4): every follower looking on its own goes
+    // back to the session's view (freeLookChanged says how many look).
+    void recallFreeLook();
 
 signals:
     void marksChanged();
@@ -116,6 +119,8 @@ signals:
     void inviteRevoked(quint64 invite);
     // Why an invite could not be made or revoked.
     void inviteRefused(const QString& why);
+    // How many followers of the session look on their own, of at most `limit`.
+    void freeLookChanged(int looking, int limit);
 
 private:
     enum class Phase { Idle, Connecting, Authenticating, Listing, Opening, Open };

@@ -39,9 +39,17 @@ void RemoteRenderBackend::revokeInvite(std::uint64_t invite) {
     }
 }
 
+void RemoteRenderBackend::recallFreeLook() {
+    if (!sessionId_.isEmpty() && serverVersion_ >= 4) {
+        send(remote::writeClientMessage(remote::FreeLookRecall{}));
+    }
+}
+
 bool RemoteRenderBackend::onSessionMessage(const remote::ServerMessage& message) {
     if (const auto* created = std::get_if<remote::SessionCreated>(&message)) {
         setSessionId(QString::fromStdString(created->session));
+    } else if (const auto* looks = std::get_if<remote::FreeLookState>(&message)) {
+        emit freeLookChanged(looks->looking, looks->limit);
     } else if (const auto* invite = std::get_if<remote::InviteCreated>(&message)) {
         emit inviteCreated(*invite);
     } else if (const auto* revoked = std::get_if<remote::InviteRevoked>(&message)) {
@@ -80,6 +88,7 @@ bool RemoteRenderBackend::isInviteRefusal(const QString& code, const QString& me
 void RemoteRenderBackend::setSessionId(const QString& id) {
     if (id != sessionId_) {
         sessionId_ = id;
+        emit freeLookChanged(0, 0); // a new session (or none): no one looks on their own yet
         emit sessionChanged(id);
     }
 }

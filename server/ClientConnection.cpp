@@ -144,7 +144,7 @@ void ClientConnection::onBytesWritten() {
     if (!pendingFrame_.isEmpty() && socket_->bytesToWrite() == 0) {
         socket_->sendBinaryMessage(std::exchange(pendingFrame_, {}));
     }
-    (session_ ? session_->view() : *ownView_).pump();
+    (session_ ? session_->viewOf(*this) : *ownView_).pump();
 }
 
 void ClientConnection::onBinary(const QByteArray&) {
@@ -208,12 +208,15 @@ void ClientConnection::handle(const ClientMessage& message) {
         } else {
             handleOpen(*open);
         }
+    } else if (std::holds_alternative<FreeLook>(message) ||
+               std::holds_alternative<FreeLookRecall>(message)) {
+        handleFreeLook(message);
     } else if (!isViewMessage(message)) {
         handleSession(message);
-    } else if (follower) {
+    } else if (ViewStream* controlled = controlledView(message); !controlled) {
         sendError("not-presenter", "this client does not hold control of the session", false);
     } else {
-        ViewStream& view = session_ ? session_->view() : *ownView_;
+        ViewStream& view = *controlled;
         if (!view.accepting()) {
             sendError("out-of-order", "open a series first", true);
             return;
@@ -224,6 +227,8 @@ void ClientConnection::handle(const ClientMessage& message) {
         }
         if (const auto error = view.apply(message)) {
             sendError("bad-request", *error, false);
+        } else if (session_ && !follower) {
+            session_->freeLook().follow(message);
         }
     }
 }

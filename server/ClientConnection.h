@@ -85,6 +85,10 @@ private:
     void authenticateInvite(const std::string& code);
     void handleInvite(const ClientMessage& message);
     bool refusedToInvitee(const ClientMessage& message);
+    // Free look (ClientFreeLook.cpp): free-look and free-look-recall; a view
+    // message of this client, sent to the view it controls (null: none).
+    void handleFreeLook(const ClientMessage& message);
+    ViewStream* controlledView(const ClientMessage& viewMessage);
     std::string linkOrigin() const;
     void closeNormally(const QString& reason);
     // pointer, mark and marks-clear (ClientMarks.cpp); false for other messages.

@@ -63,8 +63,9 @@ void ClientConnection::authenticateInvite(const std::string& code) {
 }
 
 bool ClientConnection::refusedToInvitee(const ClientMessage& message) {
-    if (invite_ == 0 || isViewMessage(message) || std::holds_alternative<SessionLeave>(message)) {
-        return false; // view messages: not-presenter, as for any follower
+    if (invite_ == 0 || isViewMessage(message) || std::holds_alternative<SessionLeave>(message) ||
+        std::holds_alternative<FreeLook>(message)) {
+        return false; // view messages: not-presenter, as for any follower; free look is following
     }
     sendError("forbidden",
               std::string(messageType(message)) +

@@ -4,6 +4,7 @@
 #include <QLoggingCategory>
 #include <QMetaObject>
 
+#include <algorithm>
 #include <stdexcept>
 
 #include <sys/stat.h>
@@ -159,6 +160,31 @@ std::shared_ptr<const SeriesEntry> RenderServer::findSeries(const std::string& u
 }
 
 void RenderServer::submit(const RenderJob& job) {
+    if (!job.background) {
+        dispatch(job);
+        return;
+    }
+    RenderJob waiting = job;
+    const bool busy = rendersOutstanding_ > 0 || !backgroundJobs_.empty();
+    if (waiting.mayDegrade && busy) {
+        // Cheaper while others wait: a still as the fixed interactive frame, a
+        // drag's frame at most at half size and JPEG quality 60.
+        if (waiting.quality == Quality::Still) {
+            waiting.scale = kFixedInteractiveScale;
+            waiting.jpegQuality = kFixedInteractiveJpegQuality;
+        } else {
+            waiting.scale = std::min(waiting.scale, kBusyInteractiveScale);
+            waiting.jpegQuality = std::min(waiting.jpegQuality, kBusyInteractiveJpegQuality);
+        }
+        waiting.quality = Quality::Interactive;
+        waiting.degraded = true;
+    }
+    backgroundJobs_.push_back(std::move(waiting));
+    dispatchBackground();
+}
+
+void RenderServer::dispatch(const RenderJob& job) {
+    ++rendersOutstanding_;
     QMetaObject::invokeMethod(
         worker_.get(), [worker = worker_.get(), job] { worker->render(job); },
         Qt::QueuedConnection);
@@ -168,6 +194,14 @@ void RenderServer::submitAnchors(const AnchorJob& job) {
     QMetaObject::invokeMethod(
         worker_.get(), [worker = worker_.get(), job] { worker->anchor(job); },
         Qt::QueuedConnection);
+}
+
+void RenderServer::dispatchBackground() {
+    if (rendersOutstanding_ == 0 && !backgroundJobs_.empty()) {
+        const RenderJob job = std::move(backgroundJobs_.front());
+        backgroundJobs_.pop_front();
+        dispatch(job);
+    }
 }
 
 void RenderServer::onNewConnection() {
@@ -190,9 +224,11 @@ void RenderServer::onNewConnection() {
 }
 
 void RenderServer::onFrameRendered(const RenderedFrame& frame) {
+    --rendersOutstanding_;
     if (const QPointer<ViewStream> view = views_.value(frame.view)) {
-        view->deliver(frame);
+        view->deliver(frame); // its next job, if any, goes ahead of waiting free look
     }
+    dispatchBackground();
 }
 
 void RenderServer::onAnchorsFound(const FoundAnchors& found) {

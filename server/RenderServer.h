@@ -12,6 +12,7 @@
 #include <QThreadPool>
 #include <QWebSocketServer>
 
+#include <deque>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -44,6 +45,7 @@ struct ServerOptions {
     int maxClients = 64;
     int maxSessions = 16;
     int maxSessionMembers = 64; // the presenter included
+    int maxFreeLook = 16;       // followers of one session in free look at once
     // Each client is pinged this often; one silent for three intervals (no
     // pong, no message) is dropped, which frees its place in a session.
     int keepaliveSeconds = 20;
@@ -82,6 +84,13 @@ public:
     int keepaliveSeconds() const { return options_.keepaliveSeconds; }
     const SeriesList& series() const { return series_; }
     std::shared_ptr<const SeriesEntry> findSeries(const std::string& uid) const;
+    int maxFreeLook() const { return options_.maxFreeLook; }
+    // Hands a job to the render thread. A background job (free look) waits
+    // until no other job is outstanding there, so sessions and clients' own
+    // views go first; one asked for while the render thread is busy (a job is
+    // outstanding or another background job waits) is, when mayDegrade, made
+    // cheaper (RenderedFrame::degraded): a still an interactive frame, an
+    // interactive one at most kBusyInteractiveScale and kBusyInteractiveJpegQuality.
     void submit(const RenderJob& job);
     // Anchors a mark on the render thread; the view's marks get the points (ViewMarks).
     void submitAnchors(const AnchorJob& job);
@@ -116,6 +125,8 @@ private:
     void onNewConnection();
     void onFrameRendered(const RenderedFrame& frame);
     void onAnchorsFound(const FoundAnchors& found);
+    void dispatch(const RenderJob& job);
+    void dispatchBackground();
     void copyFinished(const std::string& originalId, std::shared_ptr<const SeriesEntry> copy,
                       const QString& error);
     // Copies of an earlier run are stale (their sessions are gone): removed at start.
@@ -140,6 +151,8 @@ private:
     quint64 nextClientId_ = 1;
     QHash<quint64, QPointer<ViewStream>> views_;
     quint64 nextViewId_ = 1;
+    int rendersOutstanding_ = 0;           // handed to the render thread, not yet back
+    std::deque<RenderJob> backgroundJobs_; // free look, waiting for an idle render thread
     QHash<QString, QPointer<TeachingSession>> sessions_;
     InviteBook invites_;
     // De-identified copies by original series id, and who waits for one.

@@ -45,6 +45,7 @@ void RenderServer::registerView(ViewStream* view) {
 
 void RenderServer::unregisterView(quint64 id) {
     views_.remove(id);
+    std::erase_if(backgroundJobs_, [id](const RenderJob& job) { return job.view == id; });
 }
 
 TeachingSession* RenderServer::createSession(ClientConnection& presenter) {

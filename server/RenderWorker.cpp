@@ -61,6 +61,7 @@ void RenderWorker::render(const RenderJob& job) {
     RenderedFrame frame;
     frame.view = job.view;
     frame.seq = job.seq;
+    frame.degraded = job.degraded;
     try {
         RenderDescription description = job.description;
         const bool interactive = job.quality == Quality::Interactive;

@@ -30,6 +30,11 @@ struct RenderJob {
     double scale = 0.5;
     int jpegQuality = 85;
     std::uint64_t seq = 0;
+    // A follower's free look: rendered when the render thread has nothing else
+    // to do (RenderServer::submit()); a still may then be made cheaper.
+    bool background = false;
+    bool mayDegrade = false; // background only: a still may become an interactive frame
+    bool degraded = false;   // it did (the server was busy)
 };
 
 struct RenderedFrame {
@@ -38,6 +43,7 @@ struct RenderedFrame {
     std::uint64_t seq = 0;
     QByteArray message; // the binary frame message, ready to send; empty on error
     QString error;
+    bool degraded = false; // a still made interactive because the server was busy
 };
 
 // One mark of a view to anchor on the surface its points show (ViewMarks).
@@ -58,6 +64,9 @@ struct FoundAnchors {
 // The `quality: interactive` frames: half the image size, twice the step, JPEG 85.
 inline constexpr double kFixedInteractiveScale = 0.5;
 inline constexpr int kFixedInteractiveJpegQuality = 85;
+// A free look's interactive frame while the server is busy: at most this.
+inline constexpr double kBusyInteractiveScale = 0.5;
+inline constexpr int kBusyInteractiveJpegQuality = 60;
 
 class RenderWorker : public QObject {
     Q_OBJECT

@@ -19,7 +19,9 @@ Q_LOGGING_CATEGORY(lcSession, "lucent.server.session")
 TeachingSession::TeachingSession(QString id, ClientConnection& presenter, RenderServer& server,
                                  int maxMembers, QObject* parent)
     : QObject(parent), id_(std::move(id)), server_(server), maxMembers_(maxMembers),
-      view_(new ViewStream(server.newViewId(), server, this)), presenter_(&presenter) {
+      view_(new ViewStream(server.newViewId(), server, this)), presenter_(&presenter),
+      freeLook_(std::make_unique<FreeLookViews>(*view_, server, server.maxFreeLook(), this,
+                                                [this] { sendFreeLookState(); })) {
     members_.append(&presenter);
     view_->addMember(&presenter);
     view_->setPacer(&presenter);
@@ -45,7 +47,20 @@ void TeachingSession::join(ClientConnection& client) {
     }
 }
 
+ViewStream& TeachingSession::viewOf(const ClientConnection& member) {
+    ViewStream* own = freeLook_->viewOf(member);
+    return own ? *own : *view_;
+}
+
+void TeachingSession::sendFreeLookState() {
+    if (presenter_ && presenter_->version() >= 4) {
+        presenter_->sendJson(
+            writeServerMessage(FreeLookState{freeLook_->count(), freeLook_->limit()}));
+    }
+}
+
 bool TeachingSession::leave(ClientConnection& client) {
+    freeLook_->end(client, "left", false);
     members_.removeAll(&client);
     members_.removeAll(nullptr);
     view_->removeMember(&client);
@@ -57,6 +72,8 @@ bool TeachingSession::leave(ClientConnection& client) {
         if (presenter_) {
             qCInfo(lcSession) << "session: the presenter left; client" << presenter_->id()
                               << "presents";
+            freeLook_->end(*presenter_, "presenting", true);
+            sendFreeLookState();
         }
     }
     view_->pump(); // a new pacer may be ready
@@ -73,6 +90,7 @@ ClientConnection* TeachingSession::member(quint64 id) const {
 }
 
 void TeachingSession::dismissAll() {
+    freeLook_->endAll("session-ended", false);
     const auto members = members_;
     members_.clear();
     for (const auto& m : members) {
@@ -95,9 +113,11 @@ void TeachingSession::dropInvited(std::uint64_t invite) {
 bool TeachingSession::handover(quint64 to) {
     for (const auto& m : std::as_const(members_)) {
         if (m && m->id() == to) {
+            freeLook_->end(*m, "presenting", true);
             presenter_ = m;
             view_->setPacer(m);
             view_->pump();
+            sendFreeLookState();
             return true;
         }
     }
@@ -106,6 +126,7 @@ bool TeachingSession::handover(quint64 to) {
 
 void TeachingSession::share(std::shared_ptr<const SeriesEntry> original) {
     const std::uint64_t ticket = ++shareCount_;
+    freeLook_->endAll("series", true);
     openedMessage_.clear();
     view_->reset(*original);
     server_.deidentifiedCopy(

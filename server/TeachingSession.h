@@ -15,6 +15,7 @@
 #include <string>
 
 #include "core/io/SeriesEntry.h"
+#include "server/FreeLookViews.h"
 #include "server/ViewStream.h"
 
 namespace lucent::remote {
@@ -30,6 +31,9 @@ public:
 
     const QString& id() const { return id_; }
     ViewStream& view() { return *view_; }
+    // Followers who look on their own, and the view each watches.
+    FreeLookViews& freeLook() { return *freeLook_; }
+    ViewStream& viewOf(const ClientConnection& member);
     bool isPresenter(const ClientConnection& client) const { return presenter_ == &client; }
     int memberCount() const;
     bool full() const { return memberCount() >= maxMembers_; }
@@ -55,6 +59,8 @@ public:
 
     // {"type":"session-state",...} to every member (each told its own role).
     void broadcastState();
+    // {"type":"free-look-state",...} to the presenter (version 4).
+    void sendFreeLookState();
 
 private:
     void sendToAll(const std::string& json);
@@ -67,6 +73,7 @@ private:
     QPointer<ClientConnection> presenter_;
     std::string openedMessage_;    // what a member who joins later is sent
     std::uint64_t shareCount_ = 0; // a later share() supersedes a pending one
+    std::unique_ptr<FreeLookViews> freeLook_;
 };
 
 } // namespace lucent::remote

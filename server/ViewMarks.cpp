@@ -14,18 +14,40 @@ constexpr int kMarksVersion = 4;
 
 ViewMarks::ViewMarks(ViewStream& view, RenderServer& server) : view_(view), server_(server) {}
 
-void ViewMarks::sendToMembers(const std::string& json) const {
+void ViewMarks::sendToMembers(const std::string& json, bool onlookersToo) const {
     for (const auto& member : view_.members()) {
         if (member && member->version() >= kMarksVersion) {
             member->sendJson(json);
         }
+    }
+    if (onlookersToo) {
+        for (const auto& onlooker : onlookers_) {
+            if (onlooker && onlooker->version() >= kMarksVersion) {
+                onlooker->sendJson(json);
+            }
+        }
+    }
+}
+
+void ViewMarks::addOnlooker(ClientConnection& follower) {
+    onlookers_.removeAll(nullptr);
+    if (!onlookers_.contains(&follower)) {
+        onlookers_.append(&follower);
+    }
+}
+
+void ViewMarks::removeOnlooker(ClientConnection& follower, bool rejoins) {
+    onlookers_.removeAll(&follower);
+    onlookers_.removeAll(nullptr);
+    if (rejoins && !pointer_.empty() && follower.version() >= kMarksVersion) {
+        follower.sendJson(pointer_);
     }
 }
 
 void ViewMarks::point(const PointerUpdate& pointer) {
     const std::string json = writeServerMessage(PointerShown{pointer.at});
     pointer_ = pointer.at ? json : std::string();
-    sendToMembers(json);
+    sendToMembers(json, false);
 }
 
 void ViewMarks::hidePointer() {
@@ -66,7 +88,7 @@ void ViewMarks::anchored(const FoundAnchors& found) {
     }
     shown_.push_back(writeServerMessage(
         MarkShown{nextId_++, pending.place.kind, found.anchors, pending.place.text}));
-    sendToMembers(shown_.back());
+    sendToMembers(shown_.back(), true);
 }
 
 void ViewMarks::clear(bool always) {
@@ -74,7 +96,7 @@ void ViewMarks::clear(bool always) {
     shown_.clear();
     pending_.clear();
     if (had || always) {
-        sendToMembers(writeServerMessage(MarksCleared{}));
+        sendToMembers(writeServerMessage(MarksCleared{}), true);
     }
 }
 

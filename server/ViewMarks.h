@@ -7,6 +7,7 @@
 // next series; a member who joins later is sent them at once. Members whose
 // connection speaks a version before 4 are sent none of this.
 
+#include <QList>
 #include <QPointer>
 
 #include <cstdint>
@@ -44,9 +45,14 @@ public:
     void sendTo(ClientConnection& member) const;
     // The render thread's anchors for a mark placed here.
     void anchored(const FoundAnchors& found);
+    // A follower who looks on its own (free look) still sees the marks, projected
+    // on its own frames, but not the pointer, which points into the presenter's view.
+    void addOnlooker(ClientConnection& follower);
+    // Back to the view (or gone): the pointer, if shown, as it is now.
+    void removeOnlooker(ClientConnection& follower, bool rejoins);
 
 private:
-    void sendToMembers(const std::string& json) const;
+    void sendToMembers(const std::string& json, bool onlookersToo) const;
 
     struct Pending {
         MarkPlace place;
@@ -59,6 +65,7 @@ private:
     std::uint64_t nextTicket_ = 1;
     std::uint64_t nextId_ = 1;
     std::string pointer_; // the last pointer message; empty while hidden
+    QList<QPointer<ClientConnection>> onlookers_;
 };
 
 } // namespace lucent::remote

@@ -82,6 +82,18 @@ std::string ViewStream::show(std::shared_ptr<const SeriesEntry> series) {
     return opened;
 }
 
+void ViewStream::startAsCopyOf(const ViewStream& session) {
+    series_ = session.series_;
+    opening_ = session.opening_;
+    preset_ = session.preset_;
+    description_ = session.description_;
+    quality_ = session.quality_;
+    seq_ = session.seq_;
+    background_ = true;
+    renderWanted_ = true;
+    pump();
+}
+
 void ViewStream::close() {
     marks_->clear(false);
     series_.reset();
@@ -122,6 +134,8 @@ void ViewStream::pump() {
         id_, series_, description_, quality_, kFixedInteractiveScale, kFixedInteractiveJpegQuality,
         seq_};
     adaptiveInFlight_ = false;
+    job.background = background_;
+    job.mayDegrade = background_ && !std::exchange(upgradeOwed_, false);
     if (stillOwed_) {
         job.quality = Quality::Still;
         stillOwed_ = false;
@@ -148,8 +162,14 @@ void ViewStream::deliver(const RenderedFrame& frame) {
             }
         }
     } else if (series_) {
-        if (adaptiveInFlight_) {
+        if (adaptiveInFlight_ && !frame.degraded) { // a cheaper frame says nothing of the view
             adaptive_.record(frame.frameMs);
+        }
+        if (frame.degraded && !renderWanted_ && !interacting_) {
+            // Made cheaper while the server was busy: the full still when it is not.
+            stillOwed_ = true;
+            upgradeOwed_ = true;
+            renderWanted_ = true;
         }
         lastFrame_ = frame.message;
         for (const auto& member : std::as_const(members_)) {

@@ -39,6 +39,7 @@ public:
     quint64 id() const { return id_; }
     const std::shared_ptr<const SeriesEntry>& series() const { return series_; }
     std::uint64_t seq() const { return seq_; }
+    const Camera& camera() const { return description_.camera; }
     // The last frame sent (for members who join later); empty before the first.
     const QByteArray& lastFrame() const { return lastFrame_; }
 
@@ -53,6 +54,10 @@ public:
     // The member whose sending paces the renders.
     // (A new presenter: the last one's pointer is hidden.)
     void setPacer(ClientConnection* client);
+    // A follower's free look: the view starts as `session`'s (series, description,
+    // quality, seq) and owes a frame; its renders wait for an idle render thread
+    // and may be cheaper when it is busy (RenderServer::submit()).
+    void startAsCopyOf(const ViewStream& session);
 
     // open() = reset() + show(). Returns the {"type":"opened"} message (no
     // description: it may identify a patient).
@@ -96,6 +101,8 @@ private:
     bool renderInFlight_ = false;
     bool adaptiveInFlight_ = false; // the frame in flight was made with adaptive_
     bool renderWanted_ = false;
+    bool background_ = false;  // free look (startAsCopyOf)
+    bool upgradeOwed_ = false; // a still came degraded: the full one follows
     QByteArray lastFrame_;
     std::unique_ptr<ViewMarks> marks_;
 };

@@ -131,6 +131,10 @@ int main(int argc, char** argv) {
         {"max-sessions", "Teaching sessions at once.", "N", "16"},
         {"max-session-members", "Members of one teaching session, the presenter included.", "N",
          "64"},
+        {"max-free-look",
+         "Followers of one teaching session who may look on their own at once "
+         "(0: none).",
+         "N", "16"},
         {"keepalive", "Ping clients this often; drop one silent for three times as long.", "S",
          "20"},
         {"dicom-listen", "Receive C-STORE pushes into the store on this port (0: any free one).",
@@ -192,6 +196,11 @@ int serve(const QCommandLineParser& parser, const ServeHooks& hooks) {
     options.maxSessionMembers = parser.value("max-session-members").toInt(&ok);
     if (!ok || options.maxSessionMembers < 2) {
         err << "lucent-server: --max-session-members must be a number from 2\n";
+        return kUsage;
+    }
+    options.maxFreeLook = parser.value("max-free-look").toInt(&ok);
+    if (!ok || options.maxFreeLook < 0 || options.maxFreeLook > 4096) {
+        err << "lucent-server: --max-free-look must be a number from 0 to 4096\n";
         return kUsage;
     }
     if (!parser.isSet("store") || !parser.isSet("token-file")) {

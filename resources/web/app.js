@@ -54,9 +54,15 @@
   let sentSize = "";
   let protocolVersion = 0;      // the connection's, from hello
 
+  let gesture = false;           // a drag or wheel is under way on the canvas
   const canvasView = window.createLucentView($("view"), {
     onCamera: changeCamera,
     onInteraction: (active) => {
+      gesture = active;
+      if (!steering()) {
+        lookAround(); // a follower's gesture: free look (freelook.js)
+        return;
+      }
       if (!active) {
         flushCamera(true);
       }
@@ -71,8 +77,12 @@
   const marks = window.createLucentMarks($("view"), canvasView, {
     send, toolbar: $("mark-tools"), textInput: $("mark-text"),
   });
+  const freeLook = window.createLucentFreeLook(
+    { back: $("back-to-teacher"), recall: $("recall-free-look"), info: $("free-look-info") },
+    { send, onStarted: startSteering, onEnded: stopSteering });
   // Read by tests and handy in the console: counters and the view, never the token.
   window.lucent = { stats: canvasView.stats, view, session: () => session,
+                    freeLook: () => freeLook.active(),
                     protocolVersion: () => protocolVersion, invited: () => invite !== "",
                     shownInvite: () => shownInvite, marks: () => marks.drawn() };
 
@@ -90,6 +100,39 @@
 
   function controlling() {
     return authenticated && opened && (!session || session.role === "presenter");
+  }
+
+  // The camera and size this page sends: its own view, the session's as its
+  // presenter, or its own view in a session while in free look.
+  function steering() {
+    return controlling() || (authenticated && opened && freeLook.active());
+  }
+
+  // A follower of a version 4 server may look around on its own.
+  function lookAround() {
+    if (authenticated && opened && session && session.role === "follower" &&
+        protocolVersion >= 4) {
+      freeLook.request();
+    }
+  }
+
+  function startSteering(camera) {
+    Object.assign(view, { azimuth: camera.azimuth || 0, elevation: camera.elevation || 0,
+                          zoom: camera.zoom || 1, panRight: camera.pan_right || 0,
+                          panUp: camera.pan_up || 0 });
+    sentSize = "";
+    sendSize();
+    if (gesture) {
+      send({ type: "interaction", state: "start" });
+    }
+    setStatus("looking on your own: \"Back to teacher\" follows the presenter again", "good");
+    updateControls();
+  }
+
+  function stopSteering(why) {
+    cameraDirty = false;
+    setStatus(why, "good");
+    updateControls();
   }
 
   function setStatus(text, kind) {
@@ -119,7 +162,7 @@
     for (const el of document.querySelectorAll(".iso-only")) {
       el.hidden = view.mode !== "iso";
     }
-    canvasView.setEnabled(controlling());
+    canvasView.setEnabled(controlling() || (following && opened && protocolVersion >= 4));
     marks.setEnabled(controlling() && protocolVersion >= 4);
   }
 
@@ -164,6 +207,7 @@
   }
 
   function onClosed(event) {
+    freeLook.setRole(null);
     authenticated = false;
     opened = false;
     sentSize = "";
@@ -228,13 +272,16 @@
         onError(message);
         break;
       default:
-        onSessionMessage(message);
+        if (!freeLook.onMessage(message)) {
+          onSessionMessage(message);
+        }
     }
     updateControls();
   }
 
   function onError(message) {
     setStatus("error: " + message.message + " [" + message.code + "]", "bad");
+    freeLook.refused(message);
     if (joining && (message.code === "not-found" || message.code === "session-full")) {
       joining = null;
       session = null;
@@ -323,7 +370,7 @@
   function sendSize() {
     const { width, height } = canvasView.size();
     const size = width + "x" + height;
-    if (!controlling() || size === sentSize) {
+    if (!steering() || size === sentSize) {
       return;
     }
     sentSize = size;
@@ -335,7 +382,7 @@
   function flushCamera(now) {
     clearTimeout(cameraTimer);
     cameraTimer = 0;
-    if (!cameraDirty || !controlling()) {
+    if (!cameraDirty || !steering()) {
       return;
     }
     const wait = lastCameraSent + kCameraIntervalMs - performance.now();
@@ -361,6 +408,10 @@
   }
 
   function changeCamera(change) {
+    if (!steering()) {
+      lookAround(); // free look starts from the session's camera, not from here
+      return;
+    }
     view.azimuth = ((view.azimuth + (change.azimuth || 0)) % 360 + 360) % 360;
     view.elevation = Math.max(-89, Math.min(89, view.elevation + (change.elevation || 0)));
     view.zoom = Math.max(0.02, Math.min(50, view.zoom * (change.zoomFactor || 1)));
@@ -425,12 +476,14 @@
     } else if (message.type === "session-state") {
       joining = null;
       session = { id: message.session, role: message.role };
+      freeLook.setRole(protocolVersion >= 4 ? message.role : null);
       const others = Math.max(0, message.members - 1);
       ui.sessionInfo.textContent = message.role === "presenter"
         ? "presenting session " + message.session + " to " + others + " follower(s)"
         : "following session " + message.session + " (" + message.members + " members)";
     } else if (message.type === "session-left") {
       session = null;
+      freeLook.setRole(null);
       opened = false;
       showInvite(null);
       if (invite) {

@@ -399,6 +399,9 @@ private slots:
             MarkPlace{MarkKind::Arrow, {{0.1, 0.2}, {0.3, 0.4}}, {}},
             MarkPlace{MarkKind::Text, {{0.5, 0.5}}, "Foramen magnum"},
             MarksClear{},
+            FreeLook{true},
+            FreeLook{false},
+            FreeLookRecall{},
         };
         std::set<std::size_t> kinds;
         for (const ClientMessage& m : all) {
@@ -443,6 +446,9 @@ private slots:
             MarkShown{7, MarkKind::Circle, {{1.5, -2.25, 30.0}, {4.0, 5.0, 6.0}}, {}},
             MarkShown{8, MarkKind::Text, {{0.0, 0.0, 0.0}}, "Sella"},
             MarksCleared{},
+            FreeLookStarted{42, 30.5, -12.0, 1.5, 400.0, -3.25, 7.0},
+            FreeLookEnded{"recalled"},
+            FreeLookState{3, 16},
         };
         std::set<std::size_t> kinds;
         for (const ServerMessage& m : all) {
@@ -620,6 +626,48 @@ private slots:
             QVERIFY2(errorCode(bad, &fatal, 3) == "bad-request", bad);
             QVERIFY(!fatal);
         }
+    }
+
+    // Free look came with version 4: older connections know no such type (fatal
+    // unknown-type, as an old server answers); bad fields are bad-request naming them.
+    void freeLookNeedsVersionFour() {
+        const char* start = R"({"type":"free-look","state":"start"})";
+        const char* recall = R"({"type":"free-look-recall"})";
+        for (const int old : {1, 2, 3}) {
+            bool fatal = false;
+            std::string message;
+            QCOMPARE(errorCode(start, &fatal, old, &message), "unknown-type");
+            QVERIFY(fatal);
+            QVERIFY2(message.find("version 4") != std::string::npos, message.c_str());
+            QCOMPARE(errorCode(recall, nullptr, old), "unknown-type");
+        }
+        QVERIFY(parseClientMessage(start, 4) == ClientMessage{FreeLook{true}});
+        QVERIFY(parseClientMessage(R"({"type":"free-look","state":"end"})", 4) ==
+                ClientMessage{FreeLook{false}});
+        QVERIFY(parseClientMessage(recall, 4) == ClientMessage{FreeLookRecall{}});
+        QCOMPARE(messageTypeVersion("free-look"), 4);
+        QCOMPARE(messageTypeVersion("free-look-recall"), 4);
+        QVERIFY(!isViewMessage(FreeLook{true}));
+        QCOMPARE(writeClientMessage(FreeLook{true}), R"({"state":"start","type":"free-look"})");
+        const std::pair<const char*, const char*> bad[] = {
+            {R"({"type":"free-look"})", "'state'"},
+            {R"({"type":"free-look","state":"on"})", "'state'"},
+            {R"({"type":"free-look","state":1})", "'state'"},
+            {R"({"type":"free-look","state":"start","camera":{}})", "'camera'"},
+            {R"({"type":"free-look-recall","all":true})", "'all'"},
+        };
+        for (const auto& [text, key] : bad) {
+            bool fatal = true;
+            std::string message;
+            QVERIFY2(errorCode(text, &fatal, 4, &message) == "bad-request", text);
+            QVERIFY(!fatal);
+            QVERIFY2(message.find(key) != std::string::npos, message.c_str());
+            QVERIFY2(message.starts_with("free-look"), message.c_str());
+        }
+        QCOMPARE(writeServerMessage(FreeLookEnded{"own"}),
+                 R"({"reason":"own","type":"free-look-ended"})");
+        QCOMPARE(writeServerMessage(FreeLookState{2, 16}),
+                 R"({"limit":16,"looking":2,"type":"free-look-state"})");
     }
 
     // libqrencode's matrix against the format's invariants (ISO/IEC 18004): a

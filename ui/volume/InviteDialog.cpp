@@ -22,7 +22,8 @@ InviteDialog::InviteDialog(RemoteRenderBackend& backend, QWidget* parent)
       present_(new QPushButton(this)), lifetime_(new QComboBox(this)),
       invite_(new QPushButton(tr("&Create Invite"), this)), link_(new QLineEdit(this)),
       copy_(new QPushButton(tr("C&opy Link"), this)), qr_(new QrCodeView(this)),
-      expiry_(new QLabel(this)), revoke_(new QPushButton(tr("&Revoke"), this)) {
+      expiry_(new QLabel(this)), revoke_(new QPushButton(tr("&Revoke"), this)),
+      freeLook_(new QLabel(this)), recall_(new QPushButton(tr("&Bring Everyone Back"), this)) {
     setWindowTitle(tr("Invite Students"));
     status_->setWordWrap(true);
     lifetime_->addItem(tr("Until the session ends (at most a day)"), 0);
@@ -46,6 +47,10 @@ InviteDialog::InviteDialog(RemoteRenderBackend& backend, QWidget* parent)
     layout->addWidget(qr_, 1);
     layout->addWidget(expiry_);
     layout->addWidget(revoke_);
+    auto* freeLookRow = new QHBoxLayout;
+    freeLookRow->addWidget(freeLook_, 1);
+    freeLookRow->addWidget(recall_);
+    layout->addLayout(freeLookRow);
     layout->addWidget(buttons);
     connect(buttons, &QDialogButtonBox::rejected, this, &QDialog::reject);
 
@@ -58,6 +63,9 @@ InviteDialog::InviteDialog(RemoteRenderBackend& backend, QWidget* parent)
     connect(copy_, &QPushButton::clicked, this,
             [this] { QGuiApplication::clipboard()->setText(link_->text()); });
     connect(revoke_, &QPushButton::clicked, this, [this] { backend_.revokeInvite(shown_); });
+    connect(recall_, &QPushButton::clicked, &backend_, &RemoteRenderBackend::recallFreeLook);
+    connect(&backend_, &RemoteRenderBackend::freeLookChanged, this,
+            [this](int looking) { showFreeLook(looking); });
     connect(&backend_, &RemoteRenderBackend::sessionChanged, this, [this] {
         clearInvite(backend_.presenting() && backend_.sessionId().isEmpty()
                         ? tr("The session ended with the connection: its invites are void.")
@@ -75,7 +83,15 @@ InviteDialog::InviteDialog(RemoteRenderBackend& backend, QWidget* parent)
     connect(&backend_, &RemoteRenderBackend::inviteRefused, this,
             [this](const QString& why) { expiry_->setText(why); });
     clearInvite({});
+    showFreeLook(0);
     showSession();
+}
+
+void InviteDialog::showFreeLook(int looking) {
+    freeLook_->setText(looking == 0
+                           ? tr("Every student follows your view.")
+                           : tr("%n student(s) look around on their own.", nullptr, looking));
+    recall_->setEnabled(looking > 0);
 }
 
 void InviteDialog::showSession() {
@@ -84,8 +100,8 @@ void InviteDialog::showSession() {
     present_->setText(presenting ? tr("&Stop Presenting") : tr("&Present to Students"));
     if (!presenting) {
         status_->setText(tr("The 3D view renders on %1. Present it as a teaching session to "
-                            "invite students: they watch it, de-identified, and can do nothing "
-                            "else.")
+                            "invite students: they watch it, de-identified, and may look around "
+                            "on their own, nothing else.")
                              .arg(backend_.settings().url.toDisplayString()));
     } else if (session.isEmpty()) {
         status_->setText(tr("Starting the session: %1").arg(backend_.statusMessage()));

@@ -3,7 +3,8 @@
 // teaching session and hands out invites to it: a join link (copied with a
 // button) and its QR code for the lecture hall's screen, when it expires, and
 // revoke. An invite lets a student only follow this session, on the
-// de-identified copy (docs/protocol.md, "Invites").
+// de-identified copy (docs/protocol.md, "Invites"), and look around on their
+// own (free look): the dialog says how many do and brings everyone back.
 
 #include <QDialog>
 
@@ -34,11 +35,14 @@ public:
     QLineEdit* linkEdit() const { return link_; }
     QrCodeView* qrView() const { return qr_; }
     QLabel* statusLabel() const { return status_; }
+    QLabel* freeLookLabel() const { return freeLook_; }
+    QPushButton* recallButton() const { return recall_; }
 
 private:
     void showSession();
     void showInvite(const remote::InviteCreated& invite);
     void clearInvite(const QString& why);
+    void showFreeLook(int looking);
 
     RemoteRenderBackend& backend_;
     QLabel* status_;
@@ -50,6 +54,8 @@ private:
     QrCodeView* qr_;
     QLabel* expiry_;
     QPushButton* revoke_;
+    QLabel* freeLook_;
+    QPushButton* recall_;
     std::uint64_t shown_ = 0; // the invite on screen
 };
 
