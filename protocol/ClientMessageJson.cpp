@@ -7,6 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "protocol/SliceMessageJson_p.h"
+
 namespace lucent::remote {
 namespace {
 
@@ -328,6 +330,9 @@ ClientMessage parseTyped(const Json& m, const std::string& type, int version) {
     if (type == "invite-revoke") {
         return parseInviteRevoke(m);
     }
+    if (type == "slices") {
+        return parseSlicesRequest(m);
+    }
     if (type == "open") {
         checkKeys(m, type, {"series"});
         return OpenRequest{requiredString(m, "series", type)};
@@ -397,6 +402,7 @@ struct FieldWriter {
     }
     void operator()(const InviteRevoke& r) const { m["invite"] = r.invite; }
     void operator()(const OpenRequest& o) const { m["series"] = o.series; }
+    void operator()(const SlicesRequest& r) const { writeSlicesRequest(m, r); }
     void operator()(const OptionUpdate& u) const { writeOptions(m, u); }
     void operator()(const TransferFunctionUpdate& u) const {
         if (u.preset) {

@@ -28,6 +28,7 @@ constexpr TypeInfo kTypes[] = {
     {"session-leave", 1, false},
     {"invite-create", 3, false},
     {"invite-revoke", 3, false},
+    {"slices", 4, false},
 };
 static_assert(std::size(kTypes) == std::variant_size_v<ClientMessage>);
 

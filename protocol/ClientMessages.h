@@ -13,6 +13,7 @@
 #include "core/tf/TransferFunction.h"
 #include "protocol/OptionValues.h"
 #include "protocol/ProtocolVersion.h"
+#include "protocol/SliceMessages.h"
 
 namespace lucent::remote {
 
@@ -121,7 +122,7 @@ using ClientMessage =
     std::variant<AuthRequest, ListRequest, OpenRequest, CameraUpdate, TransferFunctionUpdate,
                  ModeUpdate, ClipUpdate, QualityUpdate, SamplingUpdate, SizeUpdate, RenderRequest,
                  InteractionUpdate, SessionCreate, SessionJoin, SessionHandover, SessionLeave,
-                 InviteCreate, InviteRevoke>;
+                 InviteCreate, InviteRevoke, SlicesRequest>;
 
 // True for the messages that change a view (and owe a frame).
 bool isViewMessage(const ClientMessage& message);

@@ -3,30 +3,33 @@
 #include <nlohmann/json.hpp>
 
 #include "protocol/JsonIntegers.h"
+#include "protocol/SliceMessageJson_p.h"
 
 namespace lucent::remote {
 
 using Json = nlohmann::json;
 
 std::string frameMessage(const FrameHeader& header, std::string_view imageBytes) {
-    const std::string json = Json{
-        {"width", header.width},
-        {"height", header.height},
-        {"format", header.format},
-        {"seq", header.seq},
-        {"quality", qualityName(header.quality)},
-        {"render_ms", header.renderMs},
-        {"encode_ms", header.encodeMs},
-        {"scale", header.scale},
-        {"jpeg_quality",
-         header.jpegQuality}}.dump();
-    const auto n = static_cast<std::uint32_t>(json.size());
+    Json json = Json{{"width", header.width},
+                     {"height", header.height},
+                     {"format", header.format},
+                     {"seq", header.seq},
+                     {"quality", qualityName(header.quality)},
+                     {"render_ms", header.renderMs},
+                     {"encode_ms", header.encodeMs},
+                     {"scale", header.scale},
+                     {"jpeg_quality", header.jpegQuality}};
+    if (header.slice) {
+        writeSliceFrameInfo(json, *header.slice);
+    }
+    const std::string text = json.dump();
+    const auto n = static_cast<std::uint32_t>(text.size());
     std::string out;
-    out.reserve(4 + json.size() + imageBytes.size());
+    out.reserve(4 + text.size() + imageBytes.size());
     for (int shift : {24, 16, 8, 0}) {
         out.push_back(static_cast<char>((n >> shift) & 0xffu));
     }
-    out += json;
+    out += text;
     out += imageBytes;
     return out;
 }
@@ -65,7 +68,12 @@ ParsedFrame parseFrameMessage(std::string_view message) {
             h.contains("jpeg_quality")
                 ? jsonInteger<int>(h.at("jpeg_quality"), "frame: header: jpeg_quality")
                 : 0;
+        if (h.contains("view")) {
+            f.header.slice = readSliceFrameInfo(h);
+        }
     } catch (const Json::exception& e) {
+        throw malformed(std::string("header: ") + e.what());
+    } catch (const std::invalid_argument& e) {
         throw malformed(std::string("header: ") + e.what());
     }
     f.image = message.substr(4 + n);

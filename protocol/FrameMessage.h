@@ -3,11 +3,13 @@
 // length N, N bytes of header JSON, then the encoded image.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 
 #include "protocol/ClientMessages.h"
 #include "protocol/ProtocolError.h"
+#include "protocol/SliceMessages.h"
 
 namespace lucent::remote {
 
@@ -24,6 +26,9 @@ struct FrameHeader {
     // 0.5 or 0.35) and the JPEG quality (60..85); 1 and 0 for PNG stills.
     double scale = 1.0;
     int jpegQuality = 0;
+    // Version 4: a slice frame (a grey PNG still; `seq` counts the view's slices
+    // messages) says its view and plane; none for a frame of the 3D view.
+    std::optional<SliceFrameInfo> slice;
     bool operator==(const FrameHeader&) const = default;
 };
 

@@ -14,6 +14,7 @@
 #include "protocol/ProtocolError.h"
 #include "protocol/ProtocolVersion.h"
 #include "protocol/QrCode.h"
+#include "protocol/SliceMessages.h"
 
 namespace lucent::remote {
 
@@ -21,6 +22,8 @@ namespace lucent::remote {
 struct Hello {
     int version = kProtocolVersion;
     std::string backend; // "cpu", "gl: <renderer>, <version>"
+    // Version 4: the MPR window presets a client may name in `slices` (none before).
+    std::vector<WindowPresetInfo> windowPresets;
     bool operator==(const Hello&) const = default;
 };
 // One series of the `series` reply (never a patient's name, id or birth date).
@@ -40,6 +43,8 @@ struct Opened {
     glm::ivec3 dims{0};
     double radiusMm = 0.0; // the volume's bounding sphere, which zoom 1 fits
     std::string preset;
+    // Version 4: the volume's centre (LPS mm), where MPR slices start their crosshair.
+    std::optional<glm::dvec3> centre;
     bool operator==(const Opened&) const = default;
 };
 struct ErrorReply {
@@ -87,6 +92,9 @@ struct InviteRevoked {
 
 using ServerMessage = std::variant<Hello, SeriesListReply, Opened, ErrorReply, SessionCreated,
                                    SessionState, SessionLeft, InviteCreated, InviteRevoked>;
+
+// The hello of a connection that speaks `version`: from version 4 with the MPR window presets.
+Hello helloFor(int version, std::string backend);
 
 // The message as compact JSON.
 std::string writeServerMessage(const ServerMessage& message);

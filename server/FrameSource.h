@@ -7,10 +7,12 @@
 #include <QString>
 
 #include <memory>
+#include <stdexcept>
 
 #include "core/image/Image.h"
 #include "core/io/SeriesEntry.h"
 #include "core/scene/RenderDescription.h"
+#include "core/volume/Volume.h"
 
 namespace lucent::remote {
 
@@ -26,6 +28,11 @@ public:
     // failure, with a message for the client.
     virtual ImageRGBA8 render(const std::shared_ptr<const SeriesEntry>& series,
                               const RenderDescription& description) = 0;
+    // The whole volume of `series`, for MPR slices. Throws where no rank holds it whole.
+    virtual const Volume& volume(const std::shared_ptr<const SeriesEntry>& /*series*/) {
+        throw std::runtime_error("MPR slices need the whole volume in the server's process; "
+                                 "this server renders it in parts on several ranks");
+    }
 };
 
 } // namespace lucent::remote

@@ -65,4 +65,8 @@ ImageRGBA8 LocalFrameSource::render(const std::shared_ptr<const SeriesEntry>& en
     return series.renderer->render(d).image;
 }
 
+const Volume& LocalFrameSource::volume(const std::shared_ptr<const SeriesEntry>& entry) {
+    return *loaded(entry).volume;
+}
+
 } // namespace lucent::remote

@@ -20,6 +20,7 @@ public:
     void stop() override;
     ImageRGBA8 render(const std::shared_ptr<const SeriesEntry>& series,
                       const RenderDescription& description) override;
+    const Volume& volume(const std::shared_ptr<const SeriesEntry>& series) override;
 
 private:
     struct LoadedSeries;

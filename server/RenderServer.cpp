@@ -74,10 +74,12 @@ RenderServer::RenderServer(ServerOptions options, SeriesList storeSeries, Series
           options_.frameSource ? options_.frameSource()
                                : std::make_unique<LocalFrameSource>(options_.backend))) {
     qRegisterMetaType<lucent::remote::RenderedFrame>();
+    qRegisterMetaType<lucent::remote::RenderedSlices>();
     scanPool_.setMaxThreadCount(1);
     worker_->moveToThread(&renderThread_);
     renderThread_.setObjectName("lucent-render");
     connect(worker_.get(), &RenderWorker::frameRendered, this, &RenderServer::onFrameRendered);
+    connect(worker_.get(), &RenderWorker::slicesRendered, this, &RenderServer::onSlicesRendered);
     connect(socketServer_, &QWebSocketServer::newConnection, this, &RenderServer::onNewConnection);
     // A client that offers a lucent.v<N> this server speaks gets it (its token may
     // ride in another subprotocol).
@@ -161,6 +163,12 @@ void RenderServer::submit(const RenderJob& job) {
         Qt::QueuedConnection);
 }
 
+void RenderServer::submitSlices(const SliceJob& job) {
+    QMetaObject::invokeMethod(
+        worker_.get(), [worker = worker_.get(), job] { worker->renderSlices(job); },
+        Qt::QueuedConnection);
+}
+
 void RenderServer::onNewConnection() {
     while (QWebSocket* socket = socketServer_->nextPendingConnection()) {
         const quint64 id = nextClientId_++;
@@ -183,6 +191,12 @@ void RenderServer::onNewConnection() {
 void RenderServer::onFrameRendered(const RenderedFrame& frame) {
     if (const QPointer<ViewStream> view = views_.value(frame.view)) {
         view->deliver(frame);
+    }
+}
+
+void RenderServer::onSlicesRendered(const RenderedSlices& slices) {
+    if (const QPointer<ViewStream> view = views_.value(slices.view)) {
+        view->slices().deliver(slices);
     }
 }
 

@@ -83,6 +83,7 @@ public:
     const SeriesList& series() const { return series_; }
     std::shared_ptr<const SeriesEntry> findSeries(const std::string& uid) const;
     void submit(const RenderJob& job);
+    void submitSlices(const SliceJob& job);
 
     // Scans the store's files again (on a worker thread) and serves what it
     // holds from then on; `done` runs on this thread when the new list is in
@@ -113,6 +114,7 @@ public:
 private:
     void onNewConnection();
     void onFrameRendered(const RenderedFrame& frame);
+    void onSlicesRendered(const RenderedSlices& slices);
     void copyFinished(const std::string& originalId, std::shared_ptr<const SeriesEntry> copy,
                       const QString& error);
     // Copies of an earlier run are stale (their sessions are gone): removed at start.

@@ -90,4 +90,17 @@ void RenderWorker::render(const RenderJob& job) {
     emit frameRendered(frame);
 }
 
+void RenderWorker::renderSlices(const SliceJob& job) {
+    RenderedSlices slices;
+    try {
+        slices = renderSliceFrames(frames_->volume(job.series), job);
+    } catch (const std::exception& e) {
+        slices.view = job.view;
+        slices.seq = job.seq;
+        slices.generation = job.generation;
+        slices.error = QString::fromUtf8(e.what());
+    }
+    emit slicesRendered(slices);
+}
+
 } // namespace lucent::remote

@@ -14,6 +14,7 @@
 #include "core/scene/RenderDescription.h"
 #include "protocol/ProtocolMessages.h"
 #include "server/FrameSource.h"
+#include "server/SliceFrames.h"
 
 namespace lucent::remote {
 
@@ -54,9 +55,12 @@ public:
     void stop();
     // Renders and encodes; emits frameRendered() (with an error on failure).
     void render(const lucent::remote::RenderJob& job);
+    // MPR slices of the series' whole volume; emits slicesRendered() (with an error on failure).
+    void renderSlices(const lucent::remote::SliceJob& job);
 
 signals:
     void frameRendered(const lucent::remote::RenderedFrame& frame);
+    void slicesRendered(const lucent::remote::RenderedSlices& slices);
 
 private:
     std::unique_ptr<FrameSource> frames_;

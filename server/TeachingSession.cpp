@@ -40,6 +40,7 @@ void TeachingSession::join(ClientConnection& client) {
         if (!view_->lastFrame().isEmpty()) {
             client.offerFrame(view_->lastFrame());
         }
+        view_->slices().offerLastFrames(client);
     }
 }
 

@@ -9,7 +9,8 @@
 namespace lucent::remote {
 
 ViewStream::ViewStream(quint64 id, RenderServer& server, QObject* parent)
-    : QObject(parent), id_(id), server_(server) {
+    : QObject(parent), id_(id), server_(server),
+      slices_(std::make_unique<SliceStream>(*this, server)) {
     server_.registerView(this);
 }
 
@@ -57,6 +58,7 @@ void ViewStream::reset(const SeriesEntry& like) {
     interacting_ = false;
     stillOwed_ = false;
     lastFrame_.clear();
+    slices_->reset();
     changed();
 }
 
@@ -65,8 +67,9 @@ std::string ViewStream::show(std::shared_ptr<const SeriesEntry> series) {
     opening_ = false;
     renderWanted_ = true;
     // The volume's bounding sphere, which zoom 1 fits: clients turn pixels into pan mm.
-    const std::string opened = writeServerMessage(
-        Opened{series_->id, series_->geometry.dims, volumeRadius(series_->geometry), preset_});
+    const std::string opened = writeServerMessage(Opened{series_->id, series_->geometry.dims,
+                                                         volumeRadius(series_->geometry), preset_,
+                                                         volumeCentre(series_->geometry)});
     // The caller sends `opened` first; the frame follows from the event loop.
     QMetaObject::invokeMethod(this, &ViewStream::pump, Qt::QueuedConnection);
     return opened;
@@ -77,6 +80,7 @@ void ViewStream::close() {
     opening_ = false;
     renderWanted_ = false;
     lastFrame_.clear();
+    slices_->reset();
 }
 
 std::optional<std::string> ViewStream::apply(const ClientMessage& message) {
@@ -102,6 +106,7 @@ void ViewStream::changed() {
 }
 
 void ViewStream::pump() {
+    slices_->pump();
     if (!renderWanted_ || renderInFlight_ || !series_ || !pacer_ || !pacer_->readyForFrame()) {
         return;
     }

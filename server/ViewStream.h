@@ -23,6 +23,7 @@
 #include "protocol/AdaptiveQuality.h"
 #include "protocol/ProtocolMessages.h"
 #include "server/RenderWorker.h"
+#include "server/SliceStream.h"
 
 namespace lucent::remote {
 
@@ -46,6 +47,10 @@ public:
     int memberCount() const;
     // The member whose sending paces the renders.
     void setPacer(ClientConnection* client) { pacer_ = client; }
+    ClientConnection* pacer() const { return pacer_; }
+    const QList<QPointer<ClientConnection>>& members() const { return members_; }
+    // Its MPR slices (version 4), reset with the series.
+    SliceStream& slices() { return *slices_; }
 
     // open() = reset() + show(). Returns the {"type":"opened"} message (no
     // description: it may identify a patient).
@@ -90,6 +95,7 @@ private:
     bool adaptiveInFlight_ = false; // the frame in flight was made with adaptive_
     bool renderWanted_ = false;
     QByteArray lastFrame_;
+    std::unique_ptr<SliceStream> slices_;
 };
 
 } // namespace lucent::remote

@@ -17,6 +17,7 @@
     inviteBox: $("invite-box"), inviteLink: $("invite-link"), copyInvite: $("copy-invite"),
     inviteQr: $("invite-qr"), inviteExpiry: $("invite-expiry"),
     revokeInvite: $("revoke-invite"),
+    viewport: $("viewport"), layout: $("layout"), windowPreset: $("window-preset"),
   };
 
   // The protocol versions this page speaks, newest first, offered in the
@@ -66,8 +67,30 @@
     onReset: () => resetView(),
     onError: (text) => setStatus(text, "bad"),
   });
+  // MPR slices (version 4): slices.js; the layout and the window picker here.
+  const sliceViews = window.createLucentSlices(
+    { axial: $("slice-axial"), coronal: $("slice-coronal"), sagittal: $("slice-sagittal") },
+    { send,
+      onFrame: (header) => {
+        if (ui.layout.value === "3d" && !controlling()) {
+          setLayout("both"); // a follower sees the presenter's slices
+        }
+        const preset = sliceViews.state.presets.find(
+          (p) => p.center === header.window.center && p.width === header.window.width);
+        ui.windowPreset.value = preset ? preset.name : "";
+      },
+      onError: (text) => setStatus(text, "bad") });
+
+  function setLayout(layout) {
+    ui.layout.value = layout;
+    ui.viewport.className = "viewport layout-" + layout;
+    sliceViews.setActive(layout !== "3d");
+    requestAnimationFrame(() => canvasView.resize());
+  }
+
   // Read by tests and handy in the console: counters and the view, never the token.
-  window.lucent = { stats: canvasView.stats, view, session: () => session,
+  window.lucent = { stats: canvasView.stats, view, session: () => session, slices: sliceViews,
+                    setLayout,
                     protocolVersion: () => protocolVersion, invited: () => invite !== "",
                     shownInvite: () => shownInvite };
 
@@ -115,6 +138,9 @@
       el.hidden = view.mode !== "iso";
     }
     canvasView.setEnabled(controlling());
+    ui.layout.disabled = protocolVersion < 4 || !opened;
+    ui.windowPreset.disabled = protocolVersion < 4 || !controlling();
+    sliceViews.setEnabled(protocolVersion >= 4 && controlling());
   }
 
   // --- connection -----------------------------------------------------------
@@ -150,7 +176,7 @@
     socket.onmessage = (event) => {
       if (typeof event.data === "string") {
         onText(event.data);
-      } else if (!canvasView.showFrame(event.data)) {
+      } else if (!sliceViews.takeFrame(event.data) && !canvasView.showFrame(event.data)) {
         setStatus("the server sent a frame that is not readable", "bad");
       }
     };
@@ -187,6 +213,7 @@
       case "hello":
         authenticated = true;
         protocolVersion = message.version;
+        showWindowPresets(message.window_presets || []);
         backoffMs = kBackoffFirstMs;
         setStatus("connected (" + message.backend + ")", "good");
         if (invite) {
@@ -302,6 +329,17 @@
     restoring = false;
     ui.preset.value = view.preset;
     ui.mode.value = view.mode;
+    updateControls();
+    sliceViews.restart(message.centre || null);
+  }
+
+  function showWindowPresets(presets) {
+    sliceViews.setPresets(presets);
+    ui.windowPreset.replaceChildren(new Option("custom", ""));
+    presets.forEach((p, i) => {
+      ui.windowPreset.append(new Option((i + 1) + " " + p.name + " (" + p.center + "/" +
+                                        p.width + ")", p.name));
+    });
   }
 
   function sendSize() {
@@ -392,6 +430,12 @@
     }
   });
   ui.resetView.addEventListener("click", resetView);
+  ui.layout.addEventListener("change", () => setLayout(ui.layout.value));
+  ui.windowPreset.addEventListener("change", () => {
+    if (ui.windowPreset.value) {
+      sliceViews.applyPreset(ui.windowPreset.value);
+    }
+  });
 
   // --- teaching sessions ----------------------------------------------------
 
