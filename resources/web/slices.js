@@ -12,6 +12,10 @@ window.createLucentSlices = (cells, handlers) => {
   const kViews = ["axial", "coronal", "sagittal"];
   const kSendIntervalMs = 33; // at most ~30 slices messages a second
   const kMaxSide = 1024;      // the protocol allows 2048; a browser cell needs less
+  // The controller takes the server's crosshair and window (clamped to the volume, or
+  // the default window) only once it has sent nothing for this long: a frame of an
+  // older message must not undo a newer scroll.
+  const kSettleMs = 300;
   const kColours = { axial: "#4c9aff", coronal: "#6bd68a", sagittal: "#ffb454" };
 
   const state = { crosshair: null, window: null, presets: [], active: false };
@@ -22,6 +26,8 @@ window.createLucentSlices = (cells, handlers) => {
   let sendTimer = 0;
   let lastSent = 0;
   let sentSize = "";
+  let settleTimer = 0;
+  let newestHeader = null;
 
   for (const name of kViews) {
     const cell = cells[name];
@@ -76,8 +82,27 @@ window.createLucentSlices = (cells, handlers) => {
       return;
     }
     dirty = false;
+    sendNow(message(false));
+  }
+
+  function sendNow(m) {
     lastSent = performance.now();
-    handlers.send(message(false));
+    handlers.send(m);
+    clearTimeout(settleTimer);
+    settleTimer = setTimeout(adoptServerState, kSettleMs + 10);
+  }
+
+  // The newest frame's crosshair and window become the state: at once for a
+  // follower, after kSettleMs without a message for the controller.
+  function adoptServerState() {
+    const settled = !dirty && !sendTimer && performance.now() - lastSent >= kSettleMs &&
+                    !Object.values(views).some((v) => v.drag);
+    if (!newestHeader || (enabled && !settled)) {
+      return;
+    }
+    state.crosshair = newestHeader.crosshair;
+    state.window = newestHeader.window;
+    drawOverlays();
   }
 
   function changed() {
@@ -91,6 +116,7 @@ window.createLucentSlices = (cells, handlers) => {
   // the whole state again.
   function restart(centre) {
     if (centre) {
+      newestHeader = null;
       state.crosshair = centre.slice();
       state.window = null; // the server starts from the volume's default window
     }
@@ -99,7 +125,7 @@ window.createLucentSlices = (cells, handlers) => {
     }
     sentSize = "";
     dirty = false;
-    handlers.send(message(true));
+    sendNow(message(true));
   }
 
   function setWindow(center, width) {
@@ -112,7 +138,7 @@ window.createLucentSlices = (cells, handlers) => {
     if (preset && enabled) {
       state.window = { center: preset.center, width: preset.width };
       dirty = false;
-      handlers.send(Object.assign(message(false), { window: preset.name }));
+      sendNow(Object.assign(message(false), { window: preset.name }));
     }
   }
 
@@ -158,13 +184,12 @@ window.createLucentSlices = (cells, handlers) => {
         view.image.getContext("2d").drawImage(bitmap, 0, 0);
         bitmap.close();
         view.header = item.header;
-        // The server's crosshair and window (clamped, or the presenter's) are the state.
-        if (!view.drag) {
-          state.crosshair = item.header.crosshair;
-          state.window = item.header.window;
+        if (!newestHeader || item.header.seq >= newestHeader.seq) {
+          newestHeader = item.header;
         }
         stats.lastHeader[view.name] = item.header;
         stats.framesDrawn += 1;
+        adoptServerState();
         drawOverlays();
       })
       .catch(() => handlers.onError("a slice could not be decoded"))
@@ -322,7 +347,7 @@ window.createLucentSlices = (cells, handlers) => {
       if (active) {
         restart(null);
       } else if (enabled) {
-        handlers.send({ type: "slices", views: [] });
+        sendNow({ type: "slices", views: [] });
       }
     },
     // Gestures and messages only while the user controls the view.
