@@ -10,6 +10,7 @@
 #include <QDir>
 #include <QFileInfo>
 #include <QJsonArray>
+#include <QJsonDocument>
 #include <QTest>
 
 #include <memory>
@@ -223,6 +224,30 @@ void TestWebSlices::slicesEqualTheDesktopsMpr() {
                                       .arg(vec3(before["crosshair"]).x, 0, 'g', 17)));
     for (const char* view : kViews) {
         QVERIFY2(!compareWithDesktop(driver, view, "click").isEmpty(), view);
+    }
+
+    // A right drag: right widens the window, down raises the level, one unit a pixel.
+    QVERIFY2(
+        driver.drag(driver.findElement("#slice-axial .slice-overlay"), "mouse", 0, 0, 40, 20, 4, 2),
+        qPrintable(driver.error()));
+    QVERIFY2(waitForSlices(driver, "h.window.center === 420 && h.window.width === 1840"),
+             qPrintable(QJsonDocument(driver.execute(kReadSlice, {"axial"})["header"].toObject())
+                            .toJson(QJsonDocument::Compact)));
+    for (const char* view : kViews) {
+        QVERIFY2(!compareWithDesktop(driver, view, "right-drag").isEmpty(), view);
+    }
+
+    // Phone width: the slices stack, each as wide as the page, sized anew.
+    const int wide = driver.execute(kReadSlice, {"axial"})["header"].toObject()["width"].toInt();
+    QVERIFY(driver.setWindowSize(390, 800));
+    QVERIFY2(
+        waitForSlices(driver, QString("h.width !== %1 && h.width === Math.round(document."
+                                      "getElementById('slice-' + h.view).getBoundingClientRect()."
+                                      "width)")
+                                  .arg(wide)),
+        qPrintable(driver.consoleLog()));
+    for (const char* view : kViews) {
+        QVERIFY2(!compareWithDesktop(driver, view, "phone").isEmpty(), view);
     }
     const QString console = driver.consoleLog();
     QVERIFY2(!console.contains("SEVERE"), qPrintable(console));
