@@ -210,6 +210,20 @@ private slots:
         QVERIFY2(error["message"].toString().contains("'window'"),
                  qPrintable(error["message"].toString()));
         QVERIFY(!client.disconnected);
+        // Figures: 512 x 512 slices of all three views (render is sampling and windowing).
+        client.send({{"type", "slices"},
+                     {"views", QJsonArray{"axial", "coronal", "sagittal"}},
+                     {"crosshair", QJsonArray{mid.x, mid.y, mid.z}},
+                     {"window", QJsonObject{{"center", 40.0}, {"width", 400.0}}},
+                     {"size", QJsonArray{512, 512}}});
+        slices = slicesOf(client, 4, kAll); // the refused message is not counted
+        QCOMPARE(slices.size(), std::size_t(3));
+        for (const auto& [view, frame] : slices) {
+            QCOMPARE(frame.header.width, 512);
+            qInfo("%s 512x512: render %.1f ms, encode %.1f ms, %lld bytes",
+                  remote::sliceViewName(view).data(), frame.header.renderMs, frame.header.encodeMs,
+                  static_cast<long long>(frame.image.size()));
+        }
         // The 3D view still gets its frames.
         client.send({{"type", "render"}});
         QVERIFY(QTest::qWaitFor([&] { return !client.frames.isEmpty(); }, 60000));
