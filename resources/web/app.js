@@ -326,11 +326,13 @@
       Object.assign(view, { azimuth: 0, elevation: 0, zoom: 1, panRight: 0, panUp: 0,
                             mode: "dvr", preset: message.preset });
     }
+    const restored = restoring;
     restoring = false;
     ui.preset.value = view.preset;
     ui.mode.value = view.mode;
     updateControls();
-    sliceViews.restart(message.centre || null);
+    // After a reconnect the slices' crosshair and window are the user's, sent again.
+    sliceViews.restart(restored && sliceViews.state.crosshair ? null : message.centre || null);
   }
 
   function showWindowPresets(presets) {

@@ -251,6 +251,29 @@ void TestWebSlices::slicesEqualTheDesktopsMpr() {
     }
     const QString console = driver.consoleLog();
     QVERIFY2(!console.contains("SEVERE"), qPrintable(console));
+
+    // The server goes away and comes back: the page restores the slices' crosshair and window.
+    const QJsonObject last = driver.execute(kReadSlice, {"axial"})["header"].toObject();
+    const int drawn = driver.execute("return window.lucent.slices.stats.framesDrawn;").toInt();
+    server.stop();
+    QVERIFY(driver.waitUntil(
+        "return document.getElementById('status').textContent.includes('reconnecting');", 20000));
+    const QString restarted = server.start();
+    QVERIFY2(restarted.isEmpty(), qPrintable(restarted));
+    const glm::dvec3 at = vec3(last["crosshair"]);
+    QVERIFY2(waitForSlices(driver,
+                           QString("window.lucent.slices.stats.framesDrawn > %1 && "
+                                   "h.window.width === 1840 && h.window.center === 420 && "
+                                   "Math.abs(h.crosshair[0] - (%2)) < 1e-6 && "
+                                   "Math.abs(h.crosshair[2] - (%3)) < 1e-6")
+                               .arg(drawn + 2)
+                               .arg(at.x, 0, 'g', 17)
+                               .arg(at.z, 0, 'g', 17),
+                           60000),
+             qPrintable(driver.consoleLog()));
+    for (const char* view : kViews) {
+        QVERIFY2(!compareWithDesktop(driver, view, "reconnect").isEmpty(), view);
+    }
 }
 
 void TestWebSlices::followerSeesThePresentersSlices() {
