@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "protocol/MarkMessageJson.h"
+#include "protocol/SliceMessageJson_p.h"
 
 namespace lucent::remote {
 namespace {
@@ -348,6 +349,9 @@ ClientMessage parseTyped(const Json& m, const std::string& type, int version) {
     if (type == "marks-clear") {
         return empty<MarksClear>(m, type);
     }
+    if (type == "slices") {
+        return parseSlicesRequest(m);
+    }
     if (type == "open") {
         checkKeys(m, type, {"series"});
         return OpenRequest{requiredString(m, "series", type)};
@@ -425,6 +429,7 @@ struct FieldWriter {
     void operator()(const PointerUpdate& p) const { writePointerUpdate(m, p); }
     void operator()(const MarkPlace& p) const { writeMarkPlace(m, p); }
     void operator()(const OpenRequest& o) const { m["series"] = o.series; }
+    void operator()(const SlicesRequest& r) const { writeSlicesRequest(m, r); }
     void operator()(const OptionUpdate& u) const { writeOptions(m, u); }
     void operator()(const TransferFunctionUpdate& u) const {
         if (u.preset) {

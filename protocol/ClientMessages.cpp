@@ -33,6 +33,7 @@ constexpr TypeInfo kTypes[] = {
     {"marks-clear", 4, false},
     {"free-look", 4, false},
     {"free-look-recall", 4, false},
+    {"slices", 4, false},
 };
 static_assert(std::size(kTypes) == std::variant_size_v<ClientMessage>);
 

@@ -14,6 +14,7 @@
 #include "protocol/MarkMessages.h"
 #include "protocol/OptionValues.h"
 #include "protocol/ProtocolVersion.h"
+#include "protocol/SliceMessages.h"
 
 namespace lucent::remote {
 
@@ -134,7 +135,7 @@ using ClientMessage =
                  ModeUpdate, ClipUpdate, QualityUpdate, SamplingUpdate, SizeUpdate, RenderRequest,
                  InteractionUpdate, SessionCreate, SessionJoin, SessionHandover, SessionLeave,
                  InviteCreate, InviteRevoke, PointerUpdate, MarkPlace, MarksClear, FreeLook,
-                 FreeLookRecall>;
+                 FreeLookRecall, SlicesRequest>;
 
 // True for the messages that change a view (and owe a frame).
 bool isViewMessage(const ClientMessage& message);

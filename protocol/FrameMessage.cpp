@@ -3,32 +3,36 @@
 #include <nlohmann/json.hpp>
 
 #include "protocol/JsonIntegers.h"
+#include "protocol/SliceMessageJson_p.h"
 
 namespace lucent::remote {
 
 using Json = nlohmann::json;
 
 std::string frameMessage(const FrameHeader& header, std::string_view imageBytes) {
-    Json fields = Json{{"width", header.width},
-                       {"height", header.height},
-                       {"format", header.format},
-                       {"seq", header.seq},
-                       {"quality", qualityName(header.quality)},
-                       {"render_ms", header.renderMs},
-                       {"encode_ms", header.encodeMs},
-                       {"scale", header.scale},
-                       {"jpeg_quality", header.jpegQuality}};
+    Json json = Json{{"width", header.width},
+                     {"height", header.height},
+                     {"format", header.format},
+                     {"seq", header.seq},
+                     {"quality", qualityName(header.quality)},
+                     {"render_ms", header.renderMs},
+                     {"encode_ms", header.encodeMs},
+                     {"scale", header.scale},
+                     {"jpeg_quality", header.jpegQuality}};
     if (header.projection) {
-        fields["projection"] = *header.projection;
+        json["projection"] = *header.projection;
     }
-    const std::string json = fields.dump();
-    const auto n = static_cast<std::uint32_t>(json.size());
+    if (header.slice) {
+        writeSliceFrameInfo(json, *header.slice);
+    }
+    const std::string text = json.dump();
+    const auto n = static_cast<std::uint32_t>(text.size());
     std::string out;
-    out.reserve(4 + json.size() + imageBytes.size());
+    out.reserve(4 + text.size() + imageBytes.size());
     for (int shift : {24, 16, 8, 0}) {
         out.push_back(static_cast<char>((n >> shift) & 0xffu));
     }
-    out += json;
+    out += text;
     out += imageBytes;
     return out;
 }
@@ -73,7 +77,12 @@ ParsedFrame parseFrameMessage(std::string_view message) {
             }
             f.header.projection = p->get<std::array<double, 12>>();
         }
+        if (h.contains("view")) {
+            f.header.slice = readSliceFrameInfo(h);
+        }
     } catch (const Json::exception& e) {
+        throw malformed(std::string("header: ") + e.what());
+    } catch (const std::invalid_argument& e) {
         throw malformed(std::string("header: ") + e.what());
     }
     f.image = message.substr(4 + n);

@@ -10,6 +10,7 @@
 
 #include "protocol/ClientMessages.h"
 #include "protocol/ProtocolError.h"
+#include "protocol/SliceMessages.h"
 
 namespace lucent::remote {
 
@@ -30,6 +31,9 @@ struct FrameHeader {
     // to (u w, v w, w), u and v fractions of the image ((0, 0) its top-left corner):
     // where a mark anchored in the patient lies on this frame.
     std::optional<std::array<double, 12>> projection;
+    // Version 4: a slice frame (a grey PNG still; `seq` counts the view's slices
+    // messages) says its view and plane; none for a frame of the 3D view.
+    std::optional<SliceFrameInfo> slice;
     bool operator==(const FrameHeader&) const = default;
 };
 

@@ -15,5 +15,7 @@ namespace lucent::remote {
 // dropped (frames are opaque). Throws std::invalid_argument for a size that
 // does not match and std::runtime_error when zlib fails.
 std::string encodePng(std::span<const std::uint8_t> rgba, int width, int height);
+// `grey`: width x height 8-bit pixels (MPR slices), as an 8-bit grey PNG.
+std::string encodeGreyPng(std::span<const std::uint8_t> grey, int width, int height);
 
 } // namespace lucent::remote

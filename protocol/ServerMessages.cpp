@@ -4,6 +4,7 @@
 
 #include "protocol/JsonIntegers.h"
 #include "protocol/MarkMessageJson.h"
+#include "protocol/SliceMessageJson_p.h"
 
 namespace lucent::remote {
 namespace {
@@ -73,7 +74,11 @@ QrCode readQr(const Json& j) {
 
 struct Writer {
     Json operator()(const Hello& h) const {
-        return {{"type", "hello"}, {"version", h.version}, {"backend", h.backend}};
+        Json m = {{"type", "hello"}, {"version", h.version}, {"backend", h.backend}};
+        if (!h.windowPresets.empty()) {
+            m["window_presets"] = windowPresetsJson(h.windowPresets);
+        }
+        return m;
     }
     Json operator()(const SeriesListReply& l) const {
         Json list = Json::array();
@@ -86,11 +91,15 @@ struct Writer {
         return {{"type", "series"}, {"series", list}};
     }
     Json operator()(const Opened& o) const {
-        return {{"type", "opened"},
-                {"series", o.series},
-                {"dims", dims(o.dims)},
-                {"radius_mm", o.radiusMm},
-                {"preset", o.preset}};
+        Json m = {{"type", "opened"},
+                  {"series", o.series},
+                  {"dims", dims(o.dims)},
+                  {"radius_mm", o.radiusMm},
+                  {"preset", o.preset}};
+        if (o.centre) {
+            m["centre"] = {o.centre->x, o.centre->y, o.centre->z};
+        }
+        return m;
     }
     Json operator()(const ErrorReply& e) const {
         return {{"type", "error"}, {"code", e.code}, {"message", e.message}, {"fatal", e.fatal}};
@@ -144,7 +153,9 @@ struct Writer {
 ServerMessage read(const Json& m, const std::string& type) {
     if (type == "hello") {
         return Hello{jsonInteger<int>(m.at("version"), "version"),
-                     m.at("backend").get<std::string>()};
+                     m.at("backend").get<std::string>(),
+                     m.contains("window_presets") ? readWindowPresets(m.at("window_presets"))
+                                                  : std::vector<WindowPresetInfo>{}};
     }
     if (type == "series") {
         SeriesListReply l;
@@ -156,8 +167,14 @@ ServerMessage read(const Json& m, const std::string& type) {
         return l;
     }
     if (type == "opened") {
-        return Opened{m.at("series").get<std::string>(), readDims(m.at("dims")),
-                      m.value("radius_mm", 0.0), m.value("preset", std::string())};
+        Opened o{m.at("series").get<std::string>(), readDims(m.at("dims")),
+                 m.value("radius_mm", 0.0), m.value("preset", std::string()), std::nullopt};
+        if (m.contains("centre")) {
+            const Json& c = m.at("centre");
+            o.centre =
+                glm::dvec3(c.at(0).get<double>(), c.at(1).get<double>(), c.at(2).get<double>());
+        }
+        return o;
     }
     if (type == "error") {
         return ErrorReply{m.at("code").get<std::string>(), m.at("message").get<std::string>(),
@@ -230,6 +247,11 @@ ServerMessage read(const Json& m, const std::string& type) {
 
 std::string writeServerMessage(const ServerMessage& message) {
     return std::visit(Writer{}, message).dump();
+}
+
+Hello helloFor(int version, std::string backend) {
+    return Hello{version, std::move(backend),
+                 version >= 4 ? windowPresetInfos() : std::vector<WindowPresetInfo>{}};
 }
 
 ServerMessage parseServerMessage(std::string_view text) {

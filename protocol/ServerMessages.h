@@ -15,6 +15,7 @@
 #include "protocol/ProtocolError.h"
 #include "protocol/ProtocolVersion.h"
 #include "protocol/QrCode.h"
+#include "protocol/SliceMessages.h"
 
 namespace lucent::remote {
 
@@ -22,6 +23,8 @@ namespace lucent::remote {
 struct Hello {
     int version = kProtocolVersion;
     std::string backend; // "cpu", "gl: <renderer>, <version>"
+    // Version 4: the MPR window presets a client may name in `slices` (none before).
+    std::vector<WindowPresetInfo> windowPresets;
     bool operator==(const Hello&) const = default;
 };
 // One series of the `series` reply (never a patient's name, id or birth date).
@@ -41,6 +44,8 @@ struct Opened {
     glm::ivec3 dims{0};
     double radiusMm = 0.0; // the volume's bounding sphere, which zoom 1 fits
     std::string preset;
+    // Version 4: the volume's centre (LPS mm), where MPR slices start their crosshair.
+    std::optional<glm::dvec3> centre;
     bool operator==(const Opened&) const = default;
 };
 struct ErrorReply {
@@ -110,6 +115,9 @@ using ServerMessage =
     std::variant<Hello, SeriesListReply, Opened, ErrorReply, SessionCreated, SessionState,
                  SessionLeft, InviteCreated, InviteRevoked, PointerShown, MarkShown, MarksCleared,
                  FreeLookStarted, FreeLookEnded, FreeLookState>;
+
+// The hello of a connection that speaks `version`: from version 4 with the MPR window presets.
+Hello helloFor(int version, std::string backend);
 
 // The message as compact JSON.
 std::string writeServerMessage(const ServerMessage& message);

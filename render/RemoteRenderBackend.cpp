@@ -441,8 +441,9 @@ void RemoteRenderBackend::onBinary(const QByteArray& message) {
     try {
         const auto frame = remote::parseFrameMessage(
             std::string_view(message.constData(), std::size_t(message.size())));
-        if (phase_ != Phase::Open || firstViewSeq_ == 0 || frame.header.seq < firstViewSeq_) {
-            return; // the server's defaults, or a series no longer wanted
+        if (phase_ != Phase::Open || firstViewSeq_ == 0 || frame.header.seq < firstViewSeq_ ||
+            frame.header.slice) {
+            return; // the server's defaults, a series no longer wanted, or an MPR slice (v4)
         }
         QImage decoded;
         const char* format = frame.header.format == "png" ? "PNG" : "JPEG";

@@ -122,27 +122,29 @@ void ClientConnection::sendError(const std::string& code, const std::string& mes
     }
 }
 
-void ClientConnection::offerFrame(const QByteArray& message) {
+void ClientConnection::offerFrame(const QByteArray& message, int channel) {
     if (!socket_ || closing_) {
         return;
     }
-    if (socket_->bytesToWrite() == 0 && pendingFrame_.isEmpty()) {
+    if (socket_->bytesToWrite() == 0 && pendingFrames_.empty()) {
         socket_->sendBinaryMessage(message);
     } else {
-        pendingFrame_ = message; // a newer frame replaces the one waiting
+        pendingFrames_[channel] = message; // a newer frame replaces the one waiting
     }
 }
 
 bool ClientConnection::readyForFrame() const {
-    return socket_ && !closing_ && socket_->bytesToWrite() == 0 && pendingFrame_.isEmpty();
+    return socket_ && !closing_ && socket_->bytesToWrite() == 0 && pendingFrames_.empty();
 }
 
 void ClientConnection::onBytesWritten() {
     if (!socket_ || closing_) {
         return;
     }
-    if (!pendingFrame_.isEmpty() && socket_->bytesToWrite() == 0) {
-        socket_->sendBinaryMessage(std::exchange(pendingFrame_, {}));
+    if (!pendingFrames_.empty() && socket_->bytesToWrite() == 0) {
+        for (const auto& [channel, frame] : std::exchange(pendingFrames_, {})) {
+            socket_->sendBinaryMessage(frame);
+        }
     }
     (session_ ? session_->viewOf(*this) : *ownView_).pump();
 }
@@ -173,7 +175,7 @@ void ClientConnection::authenticate(const std::string& token) {
     authenticated_ = true;
     authTimer_.stop();
     qCInfo(lcClient) << "client" << id_ << "authenticated, protocol version" << version_;
-    sendJson(writeServerMessage(Hello{version_, server_.backendDescription().toStdString()}));
+    sendJson(writeServerMessage(helloFor(version_, server_.backendDescription().toStdString())));
 }
 
 void ClientConnection::handle(const ClientMessage& message) {
@@ -211,6 +213,15 @@ void ClientConnection::handle(const ClientMessage& message) {
     } else if (std::holds_alternative<FreeLook>(message) ||
                std::holds_alternative<FreeLookRecall>(message)) {
         handleFreeLook(message);
+    } else if (const auto* slices = std::get_if<SlicesRequest>(&message)) {
+        ViewStream& view = session_ ? session_->view() : *ownView_;
+        if (follower) {
+            sendError("not-presenter", "this client does not hold control of the session", false);
+        } else if (!view.accepting()) {
+            sendError("out-of-order", "open a series first", true);
+        } else {
+            view.slices().apply(*slices);
+        }
     } else if (!isViewMessage(message)) {
         handleSession(message);
     } else if (ViewStream* controlled = controlledView(message); !controlled) {

@@ -13,6 +13,7 @@
 #include <QWebSocket>
 
 #include <cstdint>
+#include <map>
 #include <string>
 
 #include "protocol/ProtocolMessages.h"
@@ -58,8 +59,9 @@ public:
     // Sends an error; a fatal one closes the connection after it.
     void sendError(const std::string& code, const std::string& message, bool fatal);
     // A finished frame of the view it watches: sent now, or kept (replacing
-    // any older one) until the socket has written what it holds.
-    void offerFrame(const QByteArray& message);
+    // any older one of its channel: 0 the 3D view, sliceChannel() a slice view)
+    // until the socket has written what it holds.
+    void offerFrame(const QByteArray& message, int channel = 0);
     // Nothing unsent: the next render may start for a view it paces.
     bool readyForFrame() const;
     // Leaves its teaching session, if any (on a close too).
@@ -108,9 +110,9 @@ private:
     std::uint64_t invite_ = 0;
     bool closing_ = false;
 
-    ViewStream* ownView_;               // child: the view when in no session
-    QPointer<TeachingSession> session_; // when in one
-    QByteArray pendingFrame_;
+    ViewStream* ownView_;                     // child: the view when in no session
+    QPointer<TeachingSession> session_;       // when in one
+    std::map<int, QByteArray> pendingFrames_; // by channel
 
     double cameraTokens_ = kCameraBurst;
     QElapsedTimer cameraClock_;

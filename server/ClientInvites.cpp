@@ -58,12 +58,13 @@ void ClientConnection::authenticateInvite(const std::string& code) {
     authTimer_.stop();
     qCInfo(lcInvite) << "client" << id_ << "authenticated by invite" << invite_
                      << ", protocol version" << version_;
-    sendJson(writeServerMessage(Hello{version_, server_.backendDescription().toStdString()}));
+    sendJson(writeServerMessage(helloFor(version_, server_.backendDescription().toStdString())));
     joinSession(*session);
 }
 
 bool ClientConnection::refusedToInvitee(const ClientMessage& message) {
-    if (invite_ == 0 || isViewMessage(message) || std::holds_alternative<SessionLeave>(message) ||
+    if (invite_ == 0 || isViewMessage(message) || std::holds_alternative<SlicesRequest>(message) ||
+        std::holds_alternative<SessionLeave>(message) ||
         std::holds_alternative<FreeLook>(message)) {
         return false; // view messages: not-presenter, as for any follower; free look is following
     }

@@ -10,10 +10,12 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <stdexcept>
 
 #include "core/image/Image.h"
 #include "core/io/SeriesEntry.h"
 #include "core/scene/RenderDescription.h"
+#include "core/volume/Volume.h"
 
 namespace lucent::remote {
 
@@ -35,6 +37,11 @@ public:
     virtual std::vector<glm::dvec3> surfaceAnchors(const std::shared_ptr<const SeriesEntry>& series,
                                                    const RenderDescription& description,
                                                    const std::vector<glm::dvec2>& fractions) = 0;
+    // The whole volume of `series`, for MPR slices. Throws where no rank holds it whole.
+    virtual const Volume& volume(const std::shared_ptr<const SeriesEntry>& /*series*/) {
+        throw std::runtime_error("MPR slices need the whole volume in the server's process; "
+                                 "this server renders it in parts on several ranks");
+    }
 };
 
 } // namespace lucent::remote

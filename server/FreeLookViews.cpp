@@ -70,7 +70,7 @@ void FreeLookViews::start(ClientConnection& follower) {
         return;
     }
     session_.removeMember(&follower);
-    session_.marks().addOnlooker(follower);
+    session_.addOnlooker(&follower);
     auto* own = new ViewStream(server_.newViewId(), server_, owner_);
     own->addMember(&follower);
     own->setPacer(&follower);
@@ -93,12 +93,13 @@ void FreeLookViews::end(ClientConnection& follower, const std::string& reason, b
     own->removeMember(&follower);
     own->deleteLater(); // a frame in flight for it finds no member
     follower.sendJson(writeServerMessage(FreeLookEnded{reason}));
-    session_.marks().removeOnlooker(follower, rejoin);
+    session_.removeOnlooker(&follower);
     if (rejoin) {
         session_.addMember(&follower);
         if (!session_.lastFrame().isEmpty()) {
             follower.offerFrame(session_.lastFrame()); // replaces an own frame not yet sent
         }
+        session_.marks().rejoined(follower);
     }
     qCInfo(lcFreeLook) << "client" << follower.id() << "free look ended:" << reason.c_str();
     changed_();

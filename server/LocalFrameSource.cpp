@@ -75,4 +75,8 @@ LocalFrameSource::surfaceAnchors(const std::shared_ptr<const SeriesEntry>& entry
     return lucent::surfaceAnchors(d, fractions);
 }
 
+const Volume& LocalFrameSource::volume(const std::shared_ptr<const SeriesEntry>& entry) {
+    return *loaded(entry).volume;
+}
+
 } // namespace lucent::remote

@@ -23,6 +23,7 @@ public:
     std::vector<glm::dvec3> surfaceAnchors(const std::shared_ptr<const SeriesEntry>& series,
                                            const RenderDescription& description,
                                            const std::vector<glm::dvec2>& fractions) override;
+    const Volume& volume(const std::shared_ptr<const SeriesEntry>& series) override;
 
 private:
     struct LoadedSeries;

@@ -76,12 +76,14 @@ RenderServer::RenderServer(ServerOptions options, SeriesList storeSeries, Series
           options_.frameSource ? options_.frameSource()
                                : std::make_unique<LocalFrameSource>(options_.backend))) {
     qRegisterMetaType<lucent::remote::RenderedFrame>();
+    qRegisterMetaType<lucent::remote::RenderedSlices>();
     scanPool_.setMaxThreadCount(1);
     worker_->moveToThread(&renderThread_);
     renderThread_.setObjectName("lucent-render");
     connect(worker_.get(), &RenderWorker::frameRendered, this, &RenderServer::onFrameRendered);
     qRegisterMetaType<lucent::remote::FoundAnchors>();
     connect(worker_.get(), &RenderWorker::anchorsFound, this, &RenderServer::onAnchorsFound);
+    connect(worker_.get(), &RenderWorker::slicesRendered, this, &RenderServer::onSlicesRendered);
     connect(socketServer_, &QWebSocketServer::newConnection, this, &RenderServer::onNewConnection);
     // A client that offers a lucent.v<N> this server speaks gets it (its token may
     // ride in another subprotocol).
@@ -204,6 +206,12 @@ void RenderServer::dispatchBackground() {
     }
 }
 
+void RenderServer::submitSlices(const SliceJob& job) {
+    QMetaObject::invokeMethod(
+        worker_.get(), [worker = worker_.get(), job] { worker->renderSlices(job); },
+        Qt::QueuedConnection);
+}
+
 void RenderServer::onNewConnection() {
     while (QWebSocket* socket = socketServer_->nextPendingConnection()) {
         const quint64 id = nextClientId_++;
@@ -234,6 +242,12 @@ void RenderServer::onFrameRendered(const RenderedFrame& frame) {
 void RenderServer::onAnchorsFound(const FoundAnchors& found) {
     if (const QPointer<ViewStream> view = views_.value(found.view)) {
         view->marks().anchored(found);
+    }
+}
+
+void RenderServer::onSlicesRendered(const RenderedSlices& slices) {
+    if (const QPointer<ViewStream> view = views_.value(slices.view)) {
+        view->slices().deliver(slices);
     }
 }
 

@@ -94,6 +94,7 @@ public:
     void submit(const RenderJob& job);
     // Anchors a mark on the render thread; the view's marks get the points (ViewMarks).
     void submitAnchors(const AnchorJob& job);
+    void submitSlices(const SliceJob& job);
 
     // Scans the store's files again (on a worker thread) and serves what it
     // holds from then on; `done` runs on this thread when the new list is in
@@ -127,6 +128,7 @@ private:
     void onAnchorsFound(const FoundAnchors& found);
     void dispatch(const RenderJob& job);
     void dispatchBackground();
+    void onSlicesRendered(const RenderedSlices& slices);
     void copyFinished(const std::string& originalId, std::shared_ptr<const SeriesEntry> copy,
                       const QString& error);
     // Copies of an earlier run are stale (their sessions are gone): removed at start.

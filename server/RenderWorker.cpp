@@ -108,4 +108,17 @@ void RenderWorker::anchor(const AnchorJob& job) {
     emit anchorsFound(found);
 }
 
+void RenderWorker::renderSlices(const SliceJob& job) {
+    RenderedSlices slices;
+    try {
+        slices = renderSliceFrames(frames_->volume(job.series), job);
+    } catch (const std::exception& e) {
+        slices.view = job.view;
+        slices.seq = job.seq;
+        slices.generation = job.generation;
+        slices.error = QString::fromUtf8(e.what());
+    }
+    emit slicesRendered(slices);
+}
+
 } // namespace lucent::remote

@@ -17,6 +17,7 @@
 #include "core/scene/RenderDescription.h"
 #include "protocol/ProtocolMessages.h"
 #include "server/FrameSource.h"
+#include "server/SliceFrames.h"
 
 namespace lucent::remote {
 
@@ -83,10 +84,13 @@ public:
     void render(const lucent::remote::RenderJob& job);
     // Anchors a mark; emits anchorsFound() (with an error on failure).
     void anchor(const lucent::remote::AnchorJob& job);
+    // MPR slices of the series' whole volume; emits slicesRendered() (with an error on failure).
+    void renderSlices(const lucent::remote::SliceJob& job);
 
 signals:
     void frameRendered(const lucent::remote::RenderedFrame& frame);
     void anchorsFound(const lucent::remote::FoundAnchors& found);
+    void slicesRendered(const lucent::remote::RenderedSlices& slices);
 
 private:
     std::unique_ptr<FrameSource> frames_;

@@ -44,6 +44,7 @@ void TeachingSession::join(ClientConnection& client) {
             client.offerFrame(view_->lastFrame());
         }
         view_->marks().sendTo(client);
+        view_->slices().offerLastFrames(client);
     }
 }
 

@@ -21,7 +21,7 @@ void ViewMarks::sendToMembers(const std::string& json, bool onlookersToo) const 
         }
     }
     if (onlookersToo) {
-        for (const auto& onlooker : onlookers_) {
+        for (const auto& onlooker : view_.onlookers()) {
             if (onlooker && onlooker->version() >= kMarksVersion) {
                 onlooker->sendJson(json);
             }
@@ -29,17 +29,8 @@ void ViewMarks::sendToMembers(const std::string& json, bool onlookersToo) const 
     }
 }
 
-void ViewMarks::addOnlooker(ClientConnection& follower) {
-    onlookers_.removeAll(nullptr);
-    if (!onlookers_.contains(&follower)) {
-        onlookers_.append(&follower);
-    }
-}
-
-void ViewMarks::removeOnlooker(ClientConnection& follower, bool rejoins) {
-    onlookers_.removeAll(&follower);
-    onlookers_.removeAll(nullptr);
-    if (rejoins && !pointer_.empty() && follower.version() >= kMarksVersion) {
+void ViewMarks::rejoined(ClientConnection& follower) const {
+    if (!pointer_.empty() && follower.version() >= kMarksVersion) {
         follower.sendJson(pointer_);
     }
 }

@@ -7,7 +7,6 @@
 // next series; a member who joins later is sent them at once. Members whose
 // connection speaks a version before 4 are sent none of this.
 
-#include <QList>
 #include <QPointer>
 
 #include <cstdint>
@@ -45,11 +44,10 @@ public:
     void sendTo(ClientConnection& member) const;
     // The render thread's anchors for a mark placed here.
     void anchored(const FoundAnchors& found);
-    // A follower who looks on its own (free look) still sees the marks, projected
-    // on its own frames, but not the pointer, which points into the presenter's view.
-    void addOnlooker(ClientConnection& follower);
-    // Back to the view (or gone): the pointer, if shown, as it is now.
-    void removeOnlooker(ClientConnection& follower, bool rejoins);
+    // The view's onlookers (followers in free look) get the marks, projected on
+    // their own frames, but not the pointer, which points into the presenter's
+    // view: a follower back from free look gets the pointer as it is now.
+    void rejoined(ClientConnection& follower) const;
 
 private:
     void sendToMembers(const std::string& json, bool onlookersToo) const;
@@ -65,7 +63,6 @@ private:
     std::uint64_t nextTicket_ = 1;
     std::uint64_t nextId_ = 1;
     std::string pointer_; // the last pointer message; empty while hidden
-    QList<QPointer<ClientConnection>> onlookers_;
 };
 
 } // namespace lucent::remote

@@ -10,8 +10,8 @@
 namespace lucent::remote {
 
 ViewStream::ViewStream(quint64 id, RenderServer& server, QObject* parent)
-    : QObject(parent), id_(id), server_(server),
-      marks_(std::make_unique<ViewMarks>(*this, server)) {
+    : QObject(parent), id_(id), server_(server), marks_(std::make_unique<ViewMarks>(*this, server)),
+      slices_(std::make_unique<SliceStream>(*this, server)) {
     server_.registerView(this);
 }
 
@@ -38,6 +38,18 @@ void ViewStream::setPacer(ClientConnection* client) {
         marks_->hidePointer();
     }
     pacer_ = client;
+}
+
+void ViewStream::addOnlooker(ClientConnection* client) {
+    onlookers_.removeAll(nullptr);
+    if (!onlookers_.contains(client)) {
+        onlookers_.append(client);
+    }
+}
+
+void ViewStream::removeOnlooker(ClientConnection* client) {
+    onlookers_.removeAll(client);
+    onlookers_.removeAll(nullptr);
 }
 
 int ViewStream::memberCount() const {
@@ -67,6 +79,7 @@ void ViewStream::reset(const SeriesEntry& like) {
     stillOwed_ = false;
     lastFrame_.clear();
     marks_->clear(false); // marks lie on the series they were placed on
+    slices_->reset();
     changed();
 }
 
@@ -75,8 +88,9 @@ std::string ViewStream::show(std::shared_ptr<const SeriesEntry> series) {
     opening_ = false;
     renderWanted_ = true;
     // The volume's bounding sphere, which zoom 1 fits: clients turn pixels into pan mm.
-    const std::string opened = writeServerMessage(
-        Opened{series_->id, series_->geometry.dims, volumeRadius(series_->geometry), preset_});
+    const std::string opened = writeServerMessage(Opened{series_->id, series_->geometry.dims,
+                                                         volumeRadius(series_->geometry), preset_,
+                                                         volumeCentre(series_->geometry)});
     // The caller sends `opened` first; the frame follows from the event loop.
     QMetaObject::invokeMethod(this, &ViewStream::pump, Qt::QueuedConnection);
     return opened;
@@ -100,6 +114,7 @@ void ViewStream::close() {
     opening_ = false;
     renderWanted_ = false;
     lastFrame_.clear();
+    slices_->reset();
 }
 
 std::optional<std::string> ViewStream::apply(const ClientMessage& message) {
@@ -125,6 +140,7 @@ void ViewStream::changed() {
 }
 
 void ViewStream::pump() {
+    slices_->pump();
     if (!renderWanted_ || renderInFlight_ || !series_ || !pacer_ || !pacer_->readyForFrame()) {
         return;
     }

@@ -23,6 +23,7 @@
 #include "protocol/AdaptiveQuality.h"
 #include "protocol/ProtocolMessages.h"
 #include "server/RenderWorker.h"
+#include "server/SliceStream.h"
 
 namespace lucent::remote {
 
@@ -44,6 +45,11 @@ public:
     const QByteArray& lastFrame() const { return lastFrame_; }
 
     const QList<QPointer<ClientConnection>>& members() const { return members_; }
+    // Followers of this (a session's) view who look on their own (free look):
+    // they still get its marks and slices, not its frames or its pointer.
+    void addOnlooker(ClientConnection* client);
+    void removeOnlooker(ClientConnection* client);
+    const QList<QPointer<ClientConnection>>& onlookers() const { return onlookers_; }
     const RenderDescription& description() const { return description_; }
     // Its pointer and marks (ViewMarks.h); a new series clears them.
     ViewMarks& marks() { return *marks_; }
@@ -58,6 +64,9 @@ public:
     // quality, seq) and owes a frame; its renders wait for an idle render thread
     // and may be cheaper when it is busy (RenderServer::submit()).
     void startAsCopyOf(const ViewStream& session);
+    ClientConnection* pacer() const { return pacer_; }
+    // Its MPR slices (version 4), reset with the series.
+    SliceStream& slices() { return *slices_; }
 
     // open() = reset() + show(). Returns the {"type":"opened"} message (no
     // description: it may identify a patient).
@@ -87,6 +96,7 @@ private:
     quint64 id_;
     RenderServer& server_;
     QList<QPointer<ClientConnection>> members_;
+    QList<QPointer<ClientConnection>> onlookers_;
     QPointer<ClientConnection> pacer_;
 
     std::shared_ptr<const SeriesEntry> series_;
@@ -105,6 +115,7 @@ private:
     bool upgradeOwed_ = false; // a still came degraded: the full one follows
     QByteArray lastFrame_;
     std::unique_ptr<ViewMarks> marks_;
+    std::unique_ptr<SliceStream> slices_;
 };
 
 } // namespace lucent::remote

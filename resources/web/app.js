@@ -17,6 +17,7 @@
     inviteBox: $("invite-box"), inviteLink: $("invite-link"), copyInvite: $("copy-invite"),
     inviteQr: $("invite-qr"), inviteExpiry: $("invite-expiry"),
     revokeInvite: $("revoke-invite"),
+    viewport: $("viewport"), layout: $("layout"), windowPreset: $("window-preset"),
   };
 
   // The protocol versions this page speaks, newest first, offered in the
@@ -80,9 +81,30 @@
   const freeLook = window.createLucentFreeLook(
     { back: $("back-to-teacher"), recall: $("recall-free-look"), info: $("free-look-info") },
     { send, onStarted: startSteering, onEnded: stopSteering });
+  // MPR slices (version 4): slices.js; the layout and the window picker here.
+  const sliceViews = window.createLucentSlices(
+    { axial: $("slice-axial"), coronal: $("slice-coronal"), sagittal: $("slice-sagittal") },
+    { send,
+      onFrame: (header) => {
+        if (ui.layout.value === "3d" && !controlling()) {
+          setLayout("both"); // a follower sees the presenter's slices
+        }
+        const preset = sliceViews.state.presets.find(
+          (p) => p.center === header.window.center && p.width === header.window.width);
+        ui.windowPreset.value = preset ? preset.name : "";
+      },
+      onError: (text) => setStatus(text, "bad") });
+
+  function setLayout(layout) {
+    ui.layout.value = layout;
+    ui.viewport.className = "viewport layout-" + layout;
+    sliceViews.setActive(layout !== "3d");
+    requestAnimationFrame(() => canvasView.resize());
+  }
+
   // Read by tests and handy in the console: counters and the view, never the token.
-  window.lucent = { stats: canvasView.stats, view, session: () => session,
-                    freeLook: () => freeLook.active(),
+  window.lucent = { stats: canvasView.stats, view, session: () => session, slices: sliceViews,
+                    setLayout, freeLook: () => freeLook.active(),
                     protocolVersion: () => protocolVersion, invited: () => invite !== "",
                     shownInvite: () => shownInvite, marks: () => marks.drawn() };
 
@@ -164,6 +186,9 @@
     }
     canvasView.setEnabled(controlling() || (following && opened && protocolVersion >= 4));
     marks.setEnabled(controlling() && protocolVersion >= 4);
+    ui.layout.disabled = protocolVersion < 4 || !opened;
+    ui.windowPreset.disabled = protocolVersion < 4 || !controlling();
+    sliceViews.setEnabled(protocolVersion >= 4 && controlling());
   }
 
   // --- connection -----------------------------------------------------------
@@ -199,7 +224,7 @@
     socket.onmessage = (event) => {
       if (typeof event.data === "string") {
         onText(event.data);
-      } else if (!canvasView.showFrame(event.data)) {
+      } else if (!sliceViews.takeFrame(event.data) && !canvasView.showFrame(event.data)) {
         setStatus("the server sent a frame that is not readable", "bad");
       }
     };
@@ -237,6 +262,7 @@
       case "hello":
         authenticated = true;
         protocolVersion = message.version;
+        showWindowPresets(message.window_presets || []);
         backoffMs = kBackoffFirstMs;
         setStatus("connected (" + message.backend + ")", "good");
         if (invite) {
@@ -362,9 +388,22 @@
       Object.assign(view, { azimuth: 0, elevation: 0, zoom: 1, panRight: 0, panUp: 0,
                             mode: "dvr", preset: message.preset });
     }
+    const restored = restoring;
     restoring = false;
     ui.preset.value = view.preset;
     ui.mode.value = view.mode;
+    updateControls();
+    // After a reconnect the slices' crosshair and window are the user's, sent again.
+    sliceViews.restart(restored && sliceViews.state.crosshair ? null : message.centre || null);
+  }
+
+  function showWindowPresets(presets) {
+    sliceViews.setPresets(presets);
+    ui.windowPreset.replaceChildren(new Option("custom", ""));
+    presets.forEach((p, i) => {
+      ui.windowPreset.append(new Option((i + 1) + " " + p.name + " (" + p.center + "/" +
+                                        p.width + ")", p.name));
+    });
   }
 
   function sendSize() {
@@ -459,6 +498,12 @@
     }
   });
   ui.resetView.addEventListener("click", resetView);
+  ui.layout.addEventListener("change", () => setLayout(ui.layout.value));
+  ui.windowPreset.addEventListener("change", () => {
+    if (ui.windowPreset.value) {
+      sliceViews.applyPreset(ui.windowPreset.value);
+    }
+  });
 
   // --- teaching sessions ----------------------------------------------------
 

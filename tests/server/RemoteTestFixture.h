@@ -59,8 +59,10 @@ public:
         QObject::connect(&socket_, &QWebSocket::binaryMessageReceived, [this](const QByteArray& b) {
             const auto parsed =
                 remote::parseFrameMessage(std::string_view(b.constData(), std::size_t(b.size())));
-            frames.append(
-                {parsed.header, QByteArray(parsed.image.data(), qsizetype(parsed.image.size()))});
+            // MPR slices (version 4) apart from the 3D view's frames.
+            (parsed.header.slice ? sliceFrames : frames)
+                .append({parsed.header,
+                         QByteArray(parsed.image.data(), qsizetype(parsed.image.size()))});
         });
         QObject::connect(&socket_, &QWebSocket::disconnected, [this] { disconnected = true; });
         const QUrl url(QString("ws://127.0.0.1:%1/").arg(port));
@@ -132,6 +134,7 @@ public:
 
     QList<QJsonObject> texts;
     QList<ReceivedFrame> frames;
+    QList<ReceivedFrame> sliceFrames; // version 4: MPR slice frames (header.slice set)
     bool disconnected = false;
     std::uint64_t seq = 0;
 

@@ -10,6 +10,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "core/mpr/CrosshairSlice.h"
 #include "ui/mpr/DevicePlane.h"
 #include "ui/mpr/MprCursor.h"
 #include "ui/mpr/SliceOverlay.h"
@@ -58,19 +59,11 @@ void SliceView::setVolume(std::shared_ptr<const Volume> volume) {
 
 SlicePlane SliceView::plane() const {
     const bool none = !volume_ || volume_->empty();
-    const VolumeGeometry g = none ? VolumeGeometry{} : volume_->geometry();
-    const glm::dvec3 mid = none ? cursor_->point() : volumeCentre(g);
-    // The pixel size fits the unrotated plane: turning a plane does not zoom it.
-    SlicePlane p = standardPlane(g, orientation_, mid, width(), height());
-    const glm::dmat3& rotation = cursor_->rotation(orientation_);
-    p.u = rotation * p.u;
-    p.v = rotation * p.v;
-    p.pixelSize /= zoom_;
+    SlicePlane p = crosshairPlane(none ? VolumeGeometry{} : volume_->geometry(), orientation_,
+                                  cursor_->point(), width(), height(),
+                                  cursor_->rotation(orientation_), zoom_, pan_);
     p.slabThickness = slabThickness_;
     p.slabMode = slabMode_;
-    // Through the crosshair point along the normal, centred on the volume (plus the pan).
-    const glm::dvec3 n = p.normal();
-    p.centre = mid + n * glm::dot(cursor_->point() - mid, n) + p.u * pan_.x + p.v * pan_.y;
     return p;
 }
 
@@ -182,13 +175,11 @@ QImage SliceView::image() {
     const double width = cursor_->windowWidth();
     if (!imageValid_ || center != imageCenter_ || width != imageWidth_ ||
         image_.size() != QSize(p.width, p.height) || image_.devicePixelRatio() != ratio) {
+        const std::vector<std::uint8_t> grey = windowedGrey(samples_, center, width);
         image_ = QImage(p.width, p.height, QImage::Format_Grayscale8);
         for (int y = 0; y < p.height; ++y) {
-            uchar* line = image_.scanLine(y);
-            const float* row = samples_.data() + static_cast<std::size_t>(y) * p.width;
-            for (int x = 0; x < p.width; ++x) {
-                line[x] = windowToGrey(row[x], center, width);
-            }
+            std::copy_n(grey.data() + static_cast<std::size_t>(y) * p.width, p.width,
+                        image_.scanLine(y));
         }
         image_.setDevicePixelRatio(ratio);
         imageCenter_ = center;
