@@ -313,6 +313,35 @@ InviteRevoke parseInviteRevoke(const Json& m) {
     return {it->get<std::uint64_t>()};
 }
 
+RecordRequest parseRecord(const Json& m) {
+    checkKeys(m, "record", {"state"});
+    const std::string state = requiredString(m, "state", "record");
+    if (state != "start" && state != "stop") {
+        throwBadRequest("record: 'state' must be start or stop");
+    }
+    return {state == "start"};
+}
+
+// The id names a file in the store: letters, digits, '-' and '_' only.
+ReplayRequest parseReplay(const Json& m) {
+    checkKeys(m, "replay", {"recording", "pace"});
+    ReplayRequest r{requiredString(m, "recording", "replay"), ReplayPace::Original};
+    if (r.recording.size() > kMaxRecordingIdBytes ||
+        r.recording.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                      "0123456789-_") != std::string::npos) {
+        throwBadRequest("replay: 'recording' must be a recording's id (at most " +
+                        std::to_string(kMaxRecordingIdBytes) + " letters, digits, '-' and '_')");
+    }
+    if (m.contains("pace")) {
+        const std::string pace = requiredString(m, "pace", "replay");
+        if (pace != "original" && pace != "step") {
+            throwBadRequest("replay: 'pace' must be original or step");
+        }
+        r.pace = pace == "step" ? ReplayPace::Step : ReplayPace::Original;
+    }
+    return r;
+}
+
 template <class T> T empty(const Json& m, const std::string& type) {
     checkKeys(m, type, {});
     return T{};
@@ -361,6 +390,21 @@ ClientMessage parseTyped(const Json& m, const std::string& type, int version) {
     }
     if (type == "session-handover") {
         return parseSessionHandover(m);
+    }
+    if (type == "record") {
+        return parseRecord(m);
+    }
+    if (type == "replay") {
+        return parseReplay(m);
+    }
+    if (type == "recording-list") {
+        return empty<RecordingListRequest>(m, type);
+    }
+    if (type == "replay-step") {
+        return empty<ReplayStep>(m, type);
+    }
+    if (type == "replay-stop") {
+        return empty<ReplayStop>(m, type);
     }
     if (type == "list") {
         return empty<ListRequest>(m, type);
@@ -422,6 +466,11 @@ struct FieldWriter {
     void operator()(const InteractionUpdate& u) const { m["state"] = u.active ? "start" : "end"; }
     void operator()(const SessionJoin& j) const { m["session"] = j.session; }
     void operator()(const SessionHandover& h) const { m["to"] = h.to; }
+    void operator()(const RecordRequest& r) const { m["state"] = r.start ? "start" : "stop"; }
+    void operator()(const ReplayRequest& r) const {
+        m["recording"] = r.recording;
+        m["pace"] = replayPaceName(r.pace);
+    }
     // list, render, session-create, session-leave: the type alone.
     template <class T>
     requires std::is_empty_v<T>

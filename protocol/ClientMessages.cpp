@@ -28,6 +28,11 @@ constexpr TypeInfo kTypes[] = {
     {"session-leave", 1, false},
     {"invite-create", 3, false},
     {"invite-revoke", 3, false},
+    {"record", 4, false},
+    {"recording-list", 4, false},
+    {"replay", 4, false},
+    {"replay-step", 4, false},
+    {"replay-stop", 4, false},
 };
 static_assert(std::size(kTypes) == std::variant_size_v<ClientMessage>);
 
@@ -39,6 +44,10 @@ const TypeInfo& info(const ClientMessage& message) {
 
 const char* qualityName(Quality quality) {
     return quality == Quality::Interactive ? "interactive" : "still";
+}
+
+const char* replayPaceName(ReplayPace pace) {
+    return pace == ReplayPace::Step ? "step" : "original";
 }
 
 bool isViewMessage(const ClientMessage& message) {

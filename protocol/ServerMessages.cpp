@@ -118,6 +118,37 @@ struct Writer {
     Json operator()(const InviteRevoked& r) const {
         return {{"type", "invite-revoked"}, {"invite", r.invite}};
     }
+    Json operator()(const RecordingStarted& r) const {
+        return {{"type", "recording-started"}, {"recording", r.recording}};
+    }
+    Json operator()(const RecordingStopped& r) const {
+        return {{"type", "recording-stopped"},
+                {"recording", r.recording},
+                {"views", r.views},
+                {"duration_ms", r.durationMs},
+                {"reason", r.reason}};
+    }
+    Json operator()(const RecordingList& l) const {
+        Json list = Json::array();
+        for (const RecordingSummary& r : l.recordings) {
+            list.push_back({{"id", r.id},
+                            {"series", r.series},
+                            {"duration_ms", r.durationMs},
+                            {"views", r.views},
+                            {"created", r.created}});
+        }
+        return {{"type", "recordings"}, {"recordings", list}};
+    }
+    Json operator()(const ReplayProgress& p) const {
+        return {{"type", "replay-progress"},
+                {"recording", p.recording},
+                {"view", p.view},
+                {"views", p.views},
+                {"seq", p.seq}};
+    }
+    Json operator()(const ReplayEnded& e) const {
+        return {{"type", "replay-ended"}, {"recording", e.recording}, {"reason", e.reason}};
+    }
 };
 
 ServerMessage read(const Json& m, const std::string& type) {
@@ -174,6 +205,35 @@ ServerMessage read(const Json& m, const std::string& type) {
     }
     if (type == "invite-revoked") {
         return InviteRevoked{jsonInteger<std::uint64_t>(m.at("invite"), "invite")};
+    }
+    if (type == "recording-started") {
+        return RecordingStarted{m.at("recording").get<std::string>()};
+    }
+    if (type == "recording-stopped") {
+        return RecordingStopped{m.at("recording").get<std::string>(),
+                                jsonInteger<int>(m.at("views"), "views"),
+                                jsonInteger<std::int64_t>(m.at("duration_ms"), "duration_ms"),
+                                m.at("reason").get<std::string>()};
+    }
+    if (type == "recordings") {
+        RecordingList l;
+        for (const Json& r : m.at("recordings")) {
+            l.recordings.push_back({r.at("id").get<std::string>(),
+                                    r.at("series").get<std::string>(),
+                                    jsonInteger<std::int64_t>(r.at("duration_ms"), "duration_ms"),
+                                    jsonInteger<int>(r.at("views"), "views"),
+                                    jsonInteger<std::int64_t>(r.at("created"), "created")});
+        }
+        return l;
+    }
+    if (type == "replay-progress") {
+        return ReplayProgress{m.at("recording").get<std::string>(),
+                              jsonInteger<int>(m.at("view"), "view"),
+                              jsonInteger<int>(m.at("views"), "views"),
+                              jsonInteger<std::uint64_t>(m.at("seq"), "seq")};
+    }
+    if (type == "replay-ended") {
+        return ReplayEnded{m.at("recording").get<std::string>(), m.at("reason").get<std::string>()};
     }
     throw ProtocolError("unknown-type", "unknown server message type '" + type.substr(0, 64) + "'",
                         false);

@@ -3,7 +3,9 @@
 #include <QLoggingCategory>
 #include <QWebSocketHandshakeOptions>
 
+#include "server/RecordingReplay.h"
 #include "server/RenderServer.h"
+#include "server/SessionRecorder.h"
 #include "server/TeachingSession.h"
 #include "server/ViewStream.h"
 
@@ -54,6 +56,7 @@ ClientConnection::ClientConnection(quint64 id, QWebSocket* socket, RenderServer&
     connect(socket, &QWebSocket::disconnected, this, [this] {
         qCInfo(lcClient) << "client" << id_ << "disconnected";
         closing_ = true;
+        viewChanging();
         leaveSession();
         emit closed(id_);
     });
@@ -206,7 +209,10 @@ void ClientConnection::handle(const ClientMessage& message) {
         } else {
             handleOpen(*open);
         }
+    } else if (isRecordingControl(message)) {
+        handleRecording(message);
     } else if (!isViewMessage(message)) {
+        viewChanging(); // session-create, -join, -leave, -handover
         handleSession(message);
     } else if (follower) {
         sendError("not-presenter", "this client does not hold control of the session", false);
@@ -220,8 +226,11 @@ void ClientConnection::handle(const ClientMessage& message) {
             sendError("rate-limited", "too many camera updates; this one was dropped", false);
             return;
         }
+        stopReplay("view"); // the presenter takes the view back
         if (const auto error = view.apply(message)) {
             sendError("bad-request", *error, false);
+        } else {
+            recordAccepted(message);
         }
     }
 }
@@ -248,6 +257,7 @@ void ClientConnection::handleOpen(const OpenRequest& open) {
         return;
     }
     qCInfo(lcClient) << "client" << id_ << "opened a series";
+    viewChanging();
     if (session_) {
         session_->share(std::move(series)); // every member gets `opened` when it is ready
     } else {

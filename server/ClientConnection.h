@@ -13,13 +13,16 @@
 #include <QWebSocket>
 
 #include <cstdint>
+#include <memory>
 #include <string>
 
 #include "protocol/ProtocolMessages.h"
 
 namespace lucent::remote {
 
+class RecordingReplay;
 class RenderServer;
+class SessionRecorder;
 class TeachingSession;
 class ViewStream;
 
@@ -86,6 +89,16 @@ private:
     void handleInvite(const ClientMessage& message);
     bool refusedToInvitee(const ClientMessage& message);
     std::string linkOrigin() const;
+    // Recording and replay (ClientRecordings.cpp): record, recording-list,
+    // replay, replay-step, replay-stop; what this client's view accepted, kept
+    // by its recording; both end when the view changes hands or series.
+    void handleRecording(const ClientMessage& message);
+    void startRecording();
+    void startReplay(const ReplayRequest& request);
+    void recordAccepted(const ClientMessage& message);
+    void stopRecording(const std::string& reason);
+    void stopReplay(const std::string& reason);
+    void viewChanging();
     void closeNormally(const QString& reason);
     void handleOpen(const OpenRequest& open);
     void sendList();
@@ -105,6 +118,8 @@ private:
     ViewStream* ownView_;               // child: the view when in no session
     QPointer<TeachingSession> session_; // when in one
     QByteArray pendingFrame_;
+    std::unique_ptr<SessionRecorder> recorder_; // while this client records
+    std::unique_ptr<RecordingReplay> replay_;   // while it replays
 
     double cameraTokens_ = kCameraBurst;
     QElapsedTimer cameraClock_;

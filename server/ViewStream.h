@@ -38,6 +38,8 @@ public:
     quint64 id() const { return id_; }
     const std::shared_ptr<const SeriesEntry>& series() const { return series_; }
     std::uint64_t seq() const { return seq_; }
+    // What the view shows now (its volume null): a recording's start.
+    const RenderDescription& description() const { return description_; }
     // The last frame sent (for members who join later); empty before the first.
     const QByteArray& lastFrame() const { return lastFrame_; }
 
