@@ -345,5 +345,5 @@ private:
     }
 };
 
-QTEST_MAIN(TestRemoteRecordings)
+QTEST_GUILESS_MAIN(TestRemoteRecordings)
 #include "test_remote_recordings.moc"
