@@ -394,6 +394,13 @@ private slots:
             InviteCreate{3600, "https://lecture.example.org:8443"},
             InviteCreate{},
             InviteRevoke{4},
+            RecordRequest{true},
+            RecordRequest{false},
+            RecordingListRequest{},
+            ReplayRequest{"k3mx9q2rbt7vwz4n", ReplayPace::Step},
+            ReplayRequest{"k3mx9q2rbt7vwz4n", ReplayPace::Original},
+            ReplayStep{},
+            ReplayStop{},
         };
         std::set<std::size_t> kinds;
         for (const ClientMessage& m : all) {
@@ -433,6 +440,12 @@ private slots:
             InviteCreated{3, "Zm9v", 1790000000, "/#invite=Zm9v", "http://h:1/#invite=Zm9v",
                           encodeQrCode("http://h:1/#invite=Zm9v")},
             InviteRevoked{3},
+            RecordingStarted{"k3mx9q2rbt7vwz4n"},
+            RecordingStopped{"k3mx9q2rbt7vwz4n", 6, 12345, "stopped"},
+            RecordingList{{{"k3mx9q2rbt7vwz4n", "1.3.12", 12345, 6, 1790000000123}}},
+            RecordingList{},
+            ReplayProgress{"k3mx9q2rbt7vwz4n", 2, 6, 17},
+            ReplayEnded{"k3mx9q2rbt7vwz4n", "end"},
         };
         std::set<std::size_t> kinds;
         for (const ServerMessage& m : all) {
