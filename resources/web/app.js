@@ -66,10 +66,11 @@
     onReset: () => resetView(),
     onError: (text) => setStatus(text, "bad"),
   });
+  const recordings = window.createLucentRecordings({ send });
   // Read by tests and handy in the console: counters and the view, never the token.
   window.lucent = { stats: canvasView.stats, view, session: () => session,
                     protocolVersion: () => protocolVersion, invited: () => invite !== "",
-                    shownInvite: () => shownInvite };
+                    shownInvite: () => shownInvite, recordings: () => recordings.state() };
 
   // https://host:port/#invite=CODE: the code rides in the fragment, which no
   // request and no Referer carries; it is taken out of the address bar at once
@@ -115,6 +116,8 @@
       el.hidden = view.mode !== "iso";
     }
     canvasView.setEnabled(controlling());
+    recordings.update({ present: controlling() && protocolVersion >= 4,
+                        list: authenticated && !invite && protocolVersion >= 4 });
   }
 
   // --- connection -----------------------------------------------------------
@@ -164,6 +167,7 @@
     if (session && session.role === "presenter") {
       session = null; // the server hands the session on; we come back on our own view
     }
+    recordings.reset(); // the server stored what was recorded; a replay ended with the socket
     updateControls();
     if (stopReconnecting) {
       return;
@@ -194,6 +198,9 @@
           break;
         }
         send({ type: "list" });
+        if (protocolVersion >= 4) {
+          recordings.list();
+        }
         if (session) { // a follower comes back to its session
           joinSession(session.id);
         }
@@ -212,7 +219,9 @@
         onError(message);
         break;
       default:
-        onSessionMessage(message);
+        if (!recordings.onMessage(message)) {
+          onSessionMessage(message);
+        }
     }
     updateControls();
   }
@@ -276,8 +285,8 @@
     view.series = message.series;
     view.radius = message.radius_mm || 0;
     setStatus("showing a " + message.dims.join("x") + " volume", "good");
-    if (!controlling()) { // a follower sees what the presenter chose
-      ui.preset.value = message.preset;
+    if (!controlling() || recordings.replaying()) { // a follower sees what the presenter chose,
+      ui.preset.value = message.preset;             // a replay what the recording holds
       return;
     }
     sendSize();
@@ -307,7 +316,7 @@
   function sendSize() {
     const { width, height } = canvasView.size();
     const size = width + "x" + height;
-    if (!controlling() || size === sentSize) {
+    if (!controlling() || recordings.replaying() || size === sentSize) {
       return;
     }
     sentSize = size;
