@@ -101,7 +101,10 @@ void ClientConnection::start() {
     }
 }
 
-ClientConnection::~ClientConnection() = default;
+ClientConnection::~ClientConnection() {
+    closing_ = true;         // nothing more is sent
+    stopRecording("closed"); // the server stops: what was recorded is kept
+}
 
 void ClientConnection::sendJson(const std::string& json) {
     if (socket_ && !closing_) {

@@ -25,7 +25,9 @@ Q_LOGGING_CATEGORY(lcRecording, "lucent.server.recording")
 void ClientConnection::handleRecording(const ClientMessage& message) {
     const std::string type(messageType(message));
     if (std::holds_alternative<RecordingListRequest>(message)) {
-        sendJson(writeServerMessage(RecordingList{listRecordings(server_.storeDir())}));
+        const auto& store = server_.storeDir();
+        sendJson(writeServerMessage(RecordingList{store.empty() ? std::vector<RecordingSummary>{}
+                                                                : listRecordings(store)}));
         return;
     }
     if (session_ && !session_->isPresenter(*this)) {

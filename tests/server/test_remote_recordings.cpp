@@ -266,6 +266,45 @@ private slots:
         QVERIFY2(db >= kMinReplayPsnr, qPrintable(QString("%1 dB").arg(db)));
     }
 
+    // A recording ends with its view (another open, a dropped connection) and is kept.
+    void aRecordingEndsWithItsView() {
+        RemoteTestClient client(server_->port(), {"lucent.v4"});
+        QVERIFY(client.waitConnected());
+        QVERIFY(client.authenticate());
+        QVERIFY(!client.waitForText("hello").isEmpty());
+        client.send({{"type", "record"}, {"state", "start"}});
+        QCOMPARE(client.waitForText("error")["code"].toString(),
+                 QString("bad-request")); // no series
+        const QString uid = openOnlySeries(client, kSide);
+        QVERIFY(!uid.isEmpty());
+        QVERIFY(client.waitForCurrentFrame());
+        qsizetype from = client.texts.size();
+        client.send({{"type", "record"}, {"state", "start"}});
+        QVERIFY(!textAfter(client, "recording-started", from).isEmpty());
+        client.change({{"type", "camera"}, {"azimuth", 90}});
+        QVERIFY(client.waitForCurrentFrame());
+        from = client.texts.size();
+        client.change({{"type", "open"}, {"series", uid}});
+        const QJsonObject stopped = textAfter(client, "recording-stopped", from);
+        QCOMPARE(stopped["reason"].toString(), QString("view"));
+        QCOMPARE(stopped["views"].toInt(), 2);
+        QVERIFY(QFile::exists(server_->storeDir() + "/recordings/" +
+                              stopped["recording"].toString() + ".jsonl"));
+
+        // Dropped mid-recording: what was recorded reaches the store.
+        QVERIFY(client.waitForCurrentFrame());
+        from = client.texts.size();
+        client.send({{"type", "record"}, {"state", "start"}});
+        const QString id = textAfter(client, "recording-started", from)["recording"].toString();
+        QVERIFY(!id.isEmpty());
+        client.change({{"type", "camera"}, {"azimuth", 45}});
+        QVERIFY(client.waitForCurrentFrame());
+        client.abort();
+        const QString file = server_->storeDir() + "/recordings/" + id + ".jsonl";
+        QVERIFY2(QTest::qWaitFor([&] { return QFile::exists(file); }, 10000), qPrintable(file));
+        QCOMPARE(remote::readRecording(file.toStdString()).header.views, 2);
+    }
+
     // lucent-cli movie --replay: at the original pace (frame k the view k/fps s
     // in) and stepped (frame k recorded view k).
     void movieOfTheRecording() {
