@@ -27,7 +27,7 @@ namespace lucent::remote {
 inline constexpr int kRecordingFormat = 1;
 // A recording stops by itself at the first of these.
 inline constexpr std::int64_t kMaxRecordingMs = 2 * 60 * 60 * 1000;
-inline constexpr std::size_t kMaxRecordedMessages = 100000;
+inline constexpr std::size_t kMaxRecordedMessages = 250000;
 inline constexpr std::size_t kMaxRecordingBytes = std::size_t(32) << 20;
 
 // A file that is not a whole recording: the message names the file and line.

@@ -159,6 +159,8 @@ void ClientConnection::startReplay(const ReplayRequest& request) {
         sendJson(view.show(std::move(series)));
     }
     RecordingReplay::Hooks hooks;
+    // Messages isRecordedMessage() keeps that are not view messages (pointer,
+    // marks) go to the session's members here.
     hooks.apply = [view = QPointer<ViewStream>(&view)](const ClientMessage& m) {
         if (view && isViewMessage(m)) {
             (void)view->apply(m); // a recording's messages were checked when it was read

@@ -358,6 +358,11 @@ private slots:
         QCOMPARE(refused.exitCode, 3);
         QVERIFY2(refused.err.contains("records series"), qPrintable(refused.err));
         QVERIFY(!QFile::exists(other));
+        const CliRun missing =
+            runCli({"movie", dataPath(kCt), "--replay", dir.filePath("none.jsonl"), "-o", other});
+        QCOMPARE(missing.exitCode, 3);
+        QVERIFY2(missing.err.contains("none.jsonl: cannot read the recording"),
+                 qPrintable(missing.err));
         const CliRun usage = runCli(
             {"movie", dataPath(kCt), "--replay", recordingFile_, "-o", other, "--turntable", "90"});
         QCOMPARE(usage.exitCode, 2);
