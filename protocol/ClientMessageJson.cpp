@@ -7,6 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "protocol/RecordingMessageJson_p.h"
+
 namespace lucent::remote {
 namespace {
 
@@ -313,35 +315,6 @@ InviteRevoke parseInviteRevoke(const Json& m) {
     return {it->get<std::uint64_t>()};
 }
 
-RecordRequest parseRecord(const Json& m) {
-    checkKeys(m, "record", {"state"});
-    const std::string state = requiredString(m, "state", "record");
-    if (state != "start" && state != "stop") {
-        throwBadRequest("record: 'state' must be start or stop");
-    }
-    return {state == "start"};
-}
-
-// The id names a file in the store: letters, digits, '-' and '_' only.
-ReplayRequest parseReplay(const Json& m) {
-    checkKeys(m, "replay", {"recording", "pace"});
-    ReplayRequest r{requiredString(m, "recording", "replay"), ReplayPace::Original};
-    if (r.recording.size() > kMaxRecordingIdBytes ||
-        r.recording.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                                      "0123456789-_") != std::string::npos) {
-        throwBadRequest("replay: 'recording' must be a recording's id (at most " +
-                        std::to_string(kMaxRecordingIdBytes) + " letters, digits, '-' and '_')");
-    }
-    if (m.contains("pace")) {
-        const std::string pace = requiredString(m, "pace", "replay");
-        if (pace != "original" && pace != "step") {
-            throwBadRequest("replay: 'pace' must be original or step");
-        }
-        r.pace = pace == "step" ? ReplayPace::Step : ReplayPace::Original;
-    }
-    return r;
-}
-
 template <class T> T empty(const Json& m, const std::string& type) {
     checkKeys(m, type, {});
     return T{};
@@ -391,20 +364,8 @@ ClientMessage parseTyped(const Json& m, const std::string& type, int version) {
     if (type == "session-handover") {
         return parseSessionHandover(m);
     }
-    if (type == "record") {
-        return parseRecord(m);
-    }
-    if (type == "replay") {
-        return parseReplay(m);
-    }
-    if (type == "recording-list") {
-        return empty<RecordingListRequest>(m, type);
-    }
-    if (type == "replay-step") {
-        return empty<ReplayStep>(m, type);
-    }
-    if (type == "replay-stop") {
-        return empty<ReplayStop>(m, type);
+    if (auto recording = parseRecordingMessage(m, type)) {
+        return std::move(*recording);
     }
     if (type == "list") {
         return empty<ListRequest>(m, type);
