@@ -95,6 +95,7 @@ private:
     void handleRecording(const ClientMessage& message);
     void startRecording();
     void startReplay(const ReplayRequest& request);
+    void beginReplay(const ReplayRequest& request, Recording recording);
     void recordAccepted(const ClientMessage& message);
     void stopRecording(const std::string& reason);
     void stopReplay(const std::string& reason);

@@ -4,8 +4,13 @@
 // recording of the store into its view; in a session the followers watch it
 // from the de-identified copy. Followers by invite may do neither (forbidden,
 // refusedToInvitee); followers by token may list.
+#include <QFuture>
 #include <QLoggingCategory>
+#include <QPromise>
+#include <QThreadPool>
 #include <QTimer>
+
+#include <memory>
 
 #include "server/ClientConnection.h"
 #include "server/RecordingReplay.h"
@@ -19,6 +24,28 @@ namespace lucent::remote {
 namespace {
 
 Q_LOGGING_CATEGORY(lcRecording, "lucent.server.recording")
+
+struct LoadedRecording {
+    std::shared_ptr<Recording> recording; // null when it could not be read
+    std::string error;
+};
+
+QFuture<LoadedRecording> readInBackground(std::filesystem::path file) {
+    auto promise = std::make_shared<QPromise<LoadedRecording>>();
+    QFuture<LoadedRecording> future = promise->future();
+    QThreadPool::globalInstance()->start([promise, file = std::move(file)] {
+        promise->start();
+        LoadedRecording loaded;
+        try {
+            loaded.recording = std::make_shared<Recording>(readRecording(file));
+        } catch (const RecordingError& e) {
+            loaded.error = e.what();
+        }
+        promise->addResult(std::move(loaded));
+        promise->finish();
+    });
+    return future;
+}
 
 } // namespace
 
@@ -125,14 +152,22 @@ void ClientConnection::startReplay(const ReplayRequest& request) {
         sendError("not-found", "replay: no recording '" + request.recording + "'", false);
         return;
     }
-    Recording recording;
-    try {
-        recording = readRecording(file);
-    } catch (const RecordingError& e) {
-        // The store's own path only: the recording's id, never a patient's file.
-        qCWarning(lcRecording) << "recording" << request.recording.c_str() << "unreadable";
-        sendError("render-failed", std::string("replay: ") + e.what(), false);
-        return;
+    // Off the event loop: the largest recording takes seconds to read, and the
+    // server's other views go on meanwhile.
+    readInBackground(file).then(this, [this, request](const LoadedRecording& loaded) {
+        if (!loaded.recording) {
+            // The store's own path only: the recording's id, never a patient's file.
+            qCWarning(lcRecording) << "recording" << request.recording.c_str() << "unreadable";
+            sendError("render-failed", "replay: " + loaded.error, false);
+            return;
+        }
+        beginReplay(request, std::move(*loaded.recording));
+    });
+}
+
+void ClientConnection::beginReplay(const ReplayRequest& request, Recording recording) {
+    if (closing_ || recorder_ || (session_ && !session_->isPresenter(*this))) {
+        return; // it started recording or handed over while the recording was read
     }
     auto series = server_.findSeries(recording.header.series);
     if (!series) {

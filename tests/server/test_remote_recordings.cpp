@@ -231,6 +231,18 @@ private slots:
             presenter.send(message);
             QCOMPARE(textAfter(presenter, "error", before)["code"].toString(), code);
         }
+        // A recording file that is not whole: refused naming its line, the view kept.
+        QFile broken(server_->storeDir() + "/recordings/broken.jsonl");
+        QVERIFY(broken.open(QIODevice::WriteOnly));
+        broken.write("{\"lucent_recording\":1}\n");
+        broken.close();
+        from = presenter.texts.size();
+        presenter.send({{"type", "replay"}, {"recording", "broken"}});
+        const QJsonObject unreadable = textAfter(presenter, "error", from);
+        QCOMPARE(unreadable["code"].toString(), QString("render-failed"));
+        QVERIFY2(unreadable["message"].toString().contains("broken.jsonl:1: 'series'"),
+                 qPrintable(unreadable["message"].toString()));
+        QVERIFY(broken.remove());
         // A follower by token does not control the view.
         const qsizetype before = follower.texts.size();
         follower.send({{"type", "record"}, {"state", "start"}});
