@@ -256,9 +256,18 @@ private slots:
         RemoteTestClient client(server_->port(), {"lucent.v4"});
         QVERIFY(client.waitConnected());
         QVERIFY(client.authenticate());
+        QElapsedTimer clock;
+        clock.start();
         client.send({{"type", "replay"}, {"recording", recordingId_}});
         const QJsonObject ended = client.waitForText("replay-ended", 60000);
+        const qint64 replayMs = clock.elapsed();
         QCOMPARE(ended["reason"].toString(), QString("end"));
+        // Not faster than it was recorded: the last message came at its time.
+        const std::int64_t lastMs =
+            remote::readRecording(recordingFile_.toStdString()).messages.back().atMs;
+        qInfo("original pace: the last recorded message at %lld ms, replayed by %lld ms",
+              static_cast<long long>(lastMs), static_cast<long long>(replayMs));
+        QVERIFY(replayMs >= lastMs);
         QVERIFY(!client.waitForText("opened").isEmpty());
         int lastView = -1;
         std::uint64_t lastSeq = 0;
