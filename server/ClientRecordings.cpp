@@ -215,6 +215,7 @@ void ClientConnection::stopReplay(const std::string& reason) {
         return;
     }
     sendJson(writeServerMessage(ReplayEnded{replay_->id(), reason}));
+    replay_->cancel();
     // Later: this may run inside the replay's own call.
     replay_.release()->deleteLater();
 }

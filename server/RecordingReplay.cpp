@@ -37,7 +37,15 @@ void RecordingReplay::report() {
     }
 }
 
+void RecordingReplay::cancel() {
+    cancelled_ = true;
+    timer_.stop();
+}
+
 void RecordingReplay::step() {
+    if (cancelled_) {
+        return;
+    }
     if (!view_) {
         hooks_.ended("view");
         return;
@@ -65,7 +73,10 @@ void RecordingReplay::step() {
 }
 
 void RecordingReplay::tick() {
-    if (!view_) {
+    if (cancelled_) {
+        return;
+    }
+    if (!view_ || !view_->accepting()) { // gone, or its de-identified copy failed
         hooks_.ended("view");
         return;
     }

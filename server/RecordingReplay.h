@@ -39,6 +39,9 @@ public:
     void begin();
     // Stepped: applies the messages up to the next recorded view.
     void step();
+    // Ended: nothing more is applied (its owner deletes it later; a timer
+    // that comes first must not play on).
+    void cancel();
 
 private:
     void tick();
@@ -56,6 +59,7 @@ private:
     QTimer timer_;
     QElapsedTimer clock_;
     bool clockStarted_ = false;
+    bool cancelled_ = false;
 };
 
 } // namespace lucent::remote

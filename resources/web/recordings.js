@@ -43,9 +43,12 @@ window.createLucentRecordings = (options) => {
     ui.record.classList.toggle("recording", recording !== null);
     ui.list.disabled = !state.list;
     ui.refresh.disabled = !state.list;
+    // One replay at a time: Stop replay before another (the page sends no view
+    // message while one runs, and would not tell the two replays' ends apart).
     const chosen = ui.list.selectedIndex >= 0;
-    ui.play.disabled = !state.present || recording !== null || !chosen;
-    ui.step.disabled = ui.play.disabled && !(replay && replay.pace === "step");
+    const canStart = state.present && recording === null && chosen && replay === null;
+    ui.play.disabled = !canStart;
+    ui.step.disabled = !canStart && !(state.present && replay && replay.pace === "step");
     ui.stop.disabled = replay === null;
   }
 
