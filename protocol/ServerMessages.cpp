@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "protocol/ClientMessageJson.h"
 #include "protocol/JsonIntegers.h"
 
 namespace lucent::remote {
@@ -68,6 +69,27 @@ QrCode readQr(const Json& j) {
         }
     }
     return qr;
+}
+
+// A camera as the camera message's keys, written and read by that message's
+// own writer and reader.
+Json cameraJson(const CameraUpdate& camera) {
+    Json j = Json::parse(writeClientMessage(camera));
+    j.erase("type");
+    return j;
+}
+
+CameraUpdate readCamera(const Json& j) {
+    if (!j.is_object()) {
+        throw ProtocolError("malformed", "'camera' must be an object", true);
+    }
+    Json message = j;
+    message["type"] = "camera";
+    try {
+        return std::get<CameraUpdate>(parseClientMessage(message.dump()));
+    } catch (const ProtocolError& e) {
+        throw ProtocolError("malformed", std::string("'camera': ") + e.what(), true);
+    }
 }
 
 struct Writer {
@@ -147,7 +169,10 @@ struct Writer {
                 {"seq", p.seq}};
     }
     Json operator()(const ReplayEnded& e) const {
-        return {{"type", "replay-ended"}, {"recording", e.recording}, {"reason", e.reason}};
+        return {{"type", "replay-ended"},
+                {"recording", e.recording},
+                {"reason", e.reason},
+                {"camera", cameraJson(e.camera)}};
     }
 };
 
@@ -233,7 +258,8 @@ ServerMessage read(const Json& m, const std::string& type) {
                               jsonInteger<std::uint64_t>(m.at("seq"), "seq")};
     }
     if (type == "replay-ended") {
-        return ReplayEnded{m.at("recording").get<std::string>(), m.at("reason").get<std::string>()};
+        return ReplayEnded{m.at("recording").get<std::string>(), m.at("reason").get<std::string>(),
+                           m.contains("camera") ? readCamera(m.at("camera")) : CameraUpdate{}};
     }
     throw ProtocolError("unknown-type", "unknown server message type '" + type.substr(0, 64) + "'",
                         false);

@@ -11,6 +11,7 @@
 
 #include <glm/glm.hpp>
 
+#include "protocol/ClientMessages.h"
 #include "protocol/ProtocolError.h"
 #include "protocol/ProtocolVersion.h"
 #include "protocol/QrCode.h"
@@ -121,9 +122,12 @@ struct ReplayProgress {
     std::uint64_t seq = 0;
     bool operator==(const ReplayProgress&) const = default;
 };
+// `camera`: the view's camera when the replay ended (the camera message's
+// keys), so that a client that keeps its own camera goes on from there.
 struct ReplayEnded {
     std::string recording;
     std::string reason;
+    CameraUpdate camera;
     bool operator==(const ReplayEnded&) const = default;
 };
 

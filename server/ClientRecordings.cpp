@@ -214,7 +214,9 @@ void ClientConnection::stopReplay(const std::string& reason) {
     if (!replay_) {
         return;
     }
-    sendJson(writeServerMessage(ReplayEnded{replay_->id(), reason}));
+    const ViewStream& view = session_ ? session_->view() : *ownView_;
+    sendJson(writeServerMessage(ReplayEnded{
+        replay_->id(), reason, CameraUpdate{optionUpdate(kWireCamera, view.description())}}));
     replay_->cancel();
     // Later: this may run inside the replay's own call.
     replay_.release()->deleteLater();

@@ -66,7 +66,15 @@
     onReset: () => resetView(),
     onError: (text) => setStatus(text, "bad"),
   });
-  const recordings = window.createLucentRecordings({ send });
+  // After a replay the view goes on from the recording's last camera, at this page's size.
+  const recordings = window.createLucentRecordings({ send, onReplayEnded: (message) => {
+    const c = message.camera || {};
+    Object.assign(view, { azimuth: c.azimuth ?? view.azimuth, elevation: c.elevation ?? view.elevation,
+                          zoom: c.zoom ?? view.zoom, panRight: c.pan_right ?? view.panRight,
+                          panUp: c.pan_up ?? view.panUp });
+    sentSize = "";
+    sendSize();
+  } });
   // Read by tests and handy in the console: counters and the view, never the token.
   window.lucent = { stats: canvasView.stats, view, session: () => session,
                     protocolVersion: () => protocolVersion, invited: () => invite !== "",

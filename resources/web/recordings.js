@@ -85,6 +85,9 @@ window.createLucentRecordings = (options) => {
       case "replay-ended":
         replay = null;
         ui.info.textContent = message.reason === "end" ? "replay finished" : "replay stopped";
+        if (options.onReplayEnded) {
+          options.onReplayEnded(message);
+        }
         break;
       default:
         return false;

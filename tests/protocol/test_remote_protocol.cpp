@@ -445,7 +445,9 @@ private slots:
             RecordingList{{{"k3mx9q2rbt7vwz4n", "1.3.12", 12345, 6, 1790000000123}}},
             RecordingList{},
             ReplayProgress{"k3mx9q2rbt7vwz4n", 2, 6, 17},
-            ReplayEnded{"k3mx9q2rbt7vwz4n", "end"},
+            ReplayEnded{"k3mx9q2rbt7vwz4n", "end", {}},
+            ReplayEnded{"k3mx9q2rbt7vwz4n", "stopped",
+                        CameraUpdate{optionUpdate(kWireCamera, unusualDescription())}},
         };
         std::set<std::size_t> kinds;
         for (const ServerMessage& m : all) {

@@ -6,6 +6,8 @@
 #include <QFileInfo>
 #include <QTest>
 
+#include <cmath>
+
 #include "WebDriver.h"
 #include "WebServerFixture.h"
 
@@ -124,7 +126,17 @@ private slots:
                                   20000),
                  qPrintable(statusOf(driver)));
 
-        // Play: the original pace, to its end.
+        // Play: the original pace, to its end, after the page turned away from the
+        // recorded camera; it goes on from the recording's last camera.
+        const double recordedAzimuth =
+            driver.execute("return window.lucent.view.azimuth;").toDouble();
+        drawn = framesDrawn(driver);
+        QVERIFY2(driver.drag(driver.findElement("#view"), "mouse", 40, 0, 300, 30, 6),
+                 qPrintable(driver.error()));
+        QVERIFY2(waitForFrameAfter(driver, drawn), qPrintable(statusOf(driver)));
+        QTest::qWait(500);
+        QVERIFY(std::abs(driver.execute("return window.lucent.view.azimuth;").toDouble() -
+                         recordedAzimuth) > 1.0);
         drawn = framesDrawn(driver);
         QVERIFY2(press(driver, "play-recording"), qPrintable(driver.error() + statusOf(driver)));
         QVERIFY2(driver.waitUntil("return window.lucent.recordings().replay !== null;", 20000),
@@ -134,6 +146,9 @@ private slots:
                                   60000),
                  qPrintable(statusOf(driver)));
         QVERIFY2(waitForFrameAfter(driver, drawn), qPrintable(statusOf(driver)));
+        QVERIFY2(std::abs(driver.execute("return window.lucent.view.azimuth;").toDouble() -
+                          recordedAzimuth) < 1e-6,
+                 qPrintable(statusOf(driver)));
     }
 };
 
