@@ -46,7 +46,8 @@ void replayRequest(const QCommandLineParser& p, MovieRequest& r) {
         }
         return;
     }
-    for (const char* other : {"turntable", "cine-axis", "frames", "preset", "tf", "window"}) {
+    for (const char* other :
+         {"turntable", "cine-axis", "frames", "preset", "tf", "window", "series"}) {
         if (p.isSet(other)) {
             throw UsageError(std::string("--") + other +
                              " is not for --replay: the recording holds the views");
