@@ -50,7 +50,7 @@ void replayRequest(const QCommandLineParser& p, MovieRequest& r) {
          {"turntable", "cine-axis", "frames", "preset", "tf", "window", "series"}) {
         if (p.isSet(other)) {
             throw UsageError(std::string("--") + other +
-                             " is not for --replay: the recording holds the views");
+                             " is not for --replay: the recording holds the series and its views");
         }
     }
     const QString pace = p.value("replay-pace");
