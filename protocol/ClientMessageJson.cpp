@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "protocol/MarkMessageJson.h"
+#include "protocol/RecordingMessageJson_p.h"
 #include "protocol/SliceMessageJson_p.h"
 
 namespace lucent::remote {
@@ -392,6 +393,9 @@ ClientMessage parseTyped(const Json& m, const std::string& type, int version) {
     if (type == "session-handover") {
         return parseSessionHandover(m);
     }
+    if (auto recording = parseRecordingMessage(m, type)) {
+        return std::move(*recording);
+    }
     if (type == "list") {
         return empty<ListRequest>(m, type);
     }
@@ -456,6 +460,11 @@ struct FieldWriter {
     void operator()(const FreeLook& f) const { m["state"] = f.active ? "start" : "end"; }
     void operator()(const SessionJoin& j) const { m["session"] = j.session; }
     void operator()(const SessionHandover& h) const { m["to"] = h.to; }
+    void operator()(const RecordRequest& r) const { m["state"] = r.start ? "start" : "stop"; }
+    void operator()(const ReplayRequest& r) const {
+        m["recording"] = r.recording;
+        m["pace"] = replayPaceName(r.pace);
+    }
     // list, render, session-create, session-leave: the type alone.
     template <class T>
     requires std::is_empty_v<T>

@@ -34,6 +34,11 @@ constexpr TypeInfo kTypes[] = {
     {"free-look", 4, false},
     {"free-look-recall", 4, false},
     {"slices", 4, false},
+    {"record", 4, false},
+    {"recording-list", 4, false},
+    {"replay", 4, false},
+    {"replay-step", 4, false},
+    {"replay-stop", 4, false},
 };
 static_assert(std::size(kTypes) == std::variant_size_v<ClientMessage>);
 
@@ -45,6 +50,10 @@ const TypeInfo& info(const ClientMessage& message) {
 
 const char* qualityName(Quality quality) {
     return quality == Quality::Interactive ? "interactive" : "still";
+}
+
+const char* replayPaceName(ReplayPace pace) {
+    return pace == ReplayPace::Step ? "step" : "original";
 }
 
 bool isViewMessage(const ClientMessage& message) {

@@ -130,12 +130,39 @@ struct FreeLookRecall {
     bool operator==(const FreeLookRecall&) const = default;
 };
 
+// Version 4, recording and replay (protocol/Recording.h): {"type":"record",
+// "state":"start"|"stop"}; the store's recordings; a recording replayed into the
+// client's view (or its session), at the pace it was recorded or a view a step.
+struct RecordRequest {
+    bool start = true;
+    bool operator==(const RecordRequest&) const = default;
+};
+struct RecordingListRequest {
+    bool operator==(const RecordingListRequest&) const = default;
+};
+enum class ReplayPace { Original, Step };
+const char* replayPaceName(ReplayPace pace);
+// A recording's id is at most this long, of letters, digits, '-' and '_'.
+inline constexpr std::size_t kMaxRecordingIdBytes = 64;
+struct ReplayRequest {
+    std::string recording; // an id from recording-started or recordings
+    ReplayPace pace = ReplayPace::Original;
+    bool operator==(const ReplayRequest&) const = default;
+};
+struct ReplayStep {
+    bool operator==(const ReplayStep&) const = default;
+};
+struct ReplayStop {
+    bool operator==(const ReplayStop&) const = default;
+};
+
 using ClientMessage =
     std::variant<AuthRequest, ListRequest, OpenRequest, CameraUpdate, TransferFunctionUpdate,
                  ModeUpdate, ClipUpdate, QualityUpdate, SamplingUpdate, SizeUpdate, RenderRequest,
                  InteractionUpdate, SessionCreate, SessionJoin, SessionHandover, SessionLeave,
                  InviteCreate, InviteRevoke, PointerUpdate, MarkPlace, MarksClear, FreeLook,
-                 FreeLookRecall, SlicesRequest>;
+                 FreeLookRecall, SlicesRequest, RecordRequest, RecordingListRequest, ReplayRequest,
+                 ReplayStep, ReplayStop>;
 
 // True for the messages that change a view (and owe a frame).
 bool isViewMessage(const ClientMessage& message);

@@ -11,5 +11,6 @@
 #include "protocol/ProtocolError.h"
 #include "protocol/ProtocolVersion.h"
 #include "protocol/QrCode.h"
+#include "protocol/Recording.h"
 #include "protocol/ServerMessages.h"
 #include "protocol/ViewMessages.h"

@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "protocol/ClientMessageJson.h"
 #include "protocol/JsonIntegers.h"
 #include "protocol/MarkMessageJson.h"
 #include "protocol/SliceMessageJson_p.h"
@@ -70,6 +71,27 @@ QrCode readQr(const Json& j) {
         }
     }
     return qr;
+}
+
+// A camera as the camera message's keys, written and read by that message's
+// own writer and reader.
+Json cameraJson(const CameraUpdate& camera) {
+    Json j = Json::parse(writeClientMessage(camera));
+    j.erase("type");
+    return j;
+}
+
+CameraUpdate readCamera(const Json& j) {
+    if (!j.is_object()) {
+        throw ProtocolError("malformed", "'camera' must be an object", true);
+    }
+    Json message = j;
+    message["type"] = "camera";
+    try {
+        return std::get<CameraUpdate>(parseClientMessage(message.dump()));
+    } catch (const ProtocolError& e) {
+        throw ProtocolError("malformed", std::string("'camera': ") + e.what(), true);
+    }
 }
 
 struct Writer {
@@ -147,6 +169,40 @@ struct Writer {
     }
     Json operator()(const FreeLookState& s) const {
         return {{"type", "free-look-state"}, {"looking", s.looking}, {"limit", s.limit}};
+    }
+    Json operator()(const RecordingStarted& r) const {
+        return {{"type", "recording-started"}, {"recording", r.recording}};
+    }
+    Json operator()(const RecordingStopped& r) const {
+        return {{"type", "recording-stopped"},
+                {"recording", r.recording},
+                {"views", r.views},
+                {"duration_ms", r.durationMs},
+                {"reason", r.reason}};
+    }
+    Json operator()(const RecordingList& l) const {
+        Json list = Json::array();
+        for (const RecordingSummary& r : l.recordings) {
+            list.push_back({{"id", r.id},
+                            {"series", r.series},
+                            {"duration_ms", r.durationMs},
+                            {"views", r.views},
+                            {"created", r.created}});
+        }
+        return {{"type", "recordings"}, {"recordings", list}};
+    }
+    Json operator()(const ReplayProgress& p) const {
+        return {{"type", "replay-progress"},
+                {"recording", p.recording},
+                {"view", p.view},
+                {"views", p.views},
+                {"seq", p.seq}};
+    }
+    Json operator()(const ReplayEnded& e) const {
+        return {{"type", "replay-ended"},
+                {"recording", e.recording},
+                {"reason", e.reason},
+                {"camera", cameraJson(e.camera)}};
     }
 };
 
@@ -238,6 +294,36 @@ ServerMessage read(const Json& m, const std::string& type) {
     if (type == "free-look-state") {
         return FreeLookState{jsonInteger<int>(m.at("looking"), "looking"),
                              jsonInteger<int>(m.at("limit"), "limit")};
+    }
+    if (type == "recording-started") {
+        return RecordingStarted{m.at("recording").get<std::string>()};
+    }
+    if (type == "recording-stopped") {
+        return RecordingStopped{m.at("recording").get<std::string>(),
+                                jsonInteger<int>(m.at("views"), "views"),
+                                jsonInteger<std::int64_t>(m.at("duration_ms"), "duration_ms"),
+                                m.at("reason").get<std::string>()};
+    }
+    if (type == "recordings") {
+        RecordingList l;
+        for (const Json& r : m.at("recordings")) {
+            l.recordings.push_back({r.at("id").get<std::string>(),
+                                    r.at("series").get<std::string>(),
+                                    jsonInteger<std::int64_t>(r.at("duration_ms"), "duration_ms"),
+                                    jsonInteger<int>(r.at("views"), "views"),
+                                    jsonInteger<std::int64_t>(r.at("created"), "created")});
+        }
+        return l;
+    }
+    if (type == "replay-progress") {
+        return ReplayProgress{m.at("recording").get<std::string>(),
+                              jsonInteger<int>(m.at("view"), "view"),
+                              jsonInteger<int>(m.at("views"), "views"),
+                              jsonInteger<std::uint64_t>(m.at("seq"), "seq")};
+    }
+    if (type == "replay-ended") {
+        return ReplayEnded{m.at("recording").get<std::string>(), m.at("reason").get<std::string>(),
+                           m.contains("camera") ? readCamera(m.at("camera")) : CameraUpdate{}};
     }
     throw ProtocolError("unknown-type", "unknown server message type '" + type.substr(0, 64) + "'",
                         false);

@@ -11,6 +11,7 @@
 
 #include <glm/glm.hpp>
 
+#include "protocol/ClientMessages.h"
 #include "protocol/MarkMessages.h"
 #include "protocol/ProtocolError.h"
 #include "protocol/ProtocolVersion.h"
@@ -110,11 +111,56 @@ struct FreeLookState {
     int limit = 0;
     bool operator==(const FreeLookState&) const = default;
 };
+// Version 4, recording and replay (protocol/Recording.h). `views` counts the
+// recorded views: the view when recording began and each change of it after.
+// `reason`: why a recording stopped ("stopped", "limit", "view": the view it
+// recorded went away) or a replay ended ("end", "stopped", "view": the client
+// took the view back, opened a series or changed its session).
+struct RecordingStarted {
+    std::string recording;
+    bool operator==(const RecordingStarted&) const = default;
+};
+struct RecordingStopped {
+    std::string recording;
+    int views = 0;
+    std::int64_t durationMs = 0;
+    std::string reason;
+    bool operator==(const RecordingStopped&) const = default;
+};
+struct RecordingSummary {
+    std::string id;
+    std::string series; // the series as the server lists it (never a de-identified copy's)
+    std::int64_t durationMs = 0;
+    int views = 0;
+    std::int64_t created = 0; // ms since 1970-01-01 UTC
+    bool operator==(const RecordingSummary&) const = default;
+};
+struct RecordingList {
+    std::vector<RecordingSummary> recordings; // newest first
+    bool operator==(const RecordingList&) const = default;
+};
+// A replay shows recorded view `view` (0..views-1) in the frame numbered `seq`.
+struct ReplayProgress {
+    std::string recording;
+    int view = 0;
+    int views = 0;
+    std::uint64_t seq = 0;
+    bool operator==(const ReplayProgress&) const = default;
+};
+// `camera`: the view's camera when the replay ended (the camera message's
+// keys), so that a client that keeps its own camera goes on from there.
+struct ReplayEnded {
+    std::string recording;
+    std::string reason;
+    CameraUpdate camera;
+    bool operator==(const ReplayEnded&) const = default;
+};
 
 using ServerMessage =
     std::variant<Hello, SeriesListReply, Opened, ErrorReply, SessionCreated, SessionState,
                  SessionLeft, InviteCreated, InviteRevoked, PointerShown, MarkShown, MarksCleared,
-                 FreeLookStarted, FreeLookEnded, FreeLookState>;
+                 FreeLookStarted, FreeLookEnded, FreeLookState, RecordingStarted, RecordingStopped,
+                 RecordingList, ReplayProgress, ReplayEnded>;
 
 // The hello of a connection that speaks `version`: from version 4 with the MPR window presets.
 Hello helloFor(int version, std::string backend);

@@ -3,7 +3,9 @@
 #include <QLoggingCategory>
 #include <QWebSocketHandshakeOptions>
 
+#include "server/RecordingReplay.h"
 #include "server/RenderServer.h"
+#include "server/SessionRecorder.h"
 #include "server/TeachingSession.h"
 #include "server/ViewStream.h"
 
@@ -54,6 +56,7 @@ ClientConnection::ClientConnection(quint64 id, QWebSocket* socket, RenderServer&
     connect(socket, &QWebSocket::disconnected, this, [this] {
         qCInfo(lcClient) << "client" << id_ << "disconnected";
         closing_ = true;
+        viewChanging();
         leaveSession();
         emit closed(id_);
     });
@@ -98,7 +101,10 @@ void ClientConnection::start() {
     }
 }
 
-ClientConnection::~ClientConnection() = default;
+ClientConnection::~ClientConnection() {
+    closing_ = true;         // nothing more is sent
+    stopRecording("closed"); // the server stops: what was recorded is kept
+}
 
 void ClientConnection::sendJson(const std::string& json) {
     if (socket_ && !closing_) {
@@ -222,7 +228,10 @@ void ClientConnection::handle(const ClientMessage& message) {
         } else {
             view.slices().apply(*slices);
         }
+    } else if (isRecordingControl(message)) {
+        handleRecording(message);
     } else if (!isViewMessage(message)) {
+        viewChanging(); // session-create, -join, -leave, -handover
         handleSession(message);
     } else if (ViewStream* controlled = controlledView(message); !controlled) {
         sendError("not-presenter", "this client does not hold control of the session", false);
@@ -236,10 +245,14 @@ void ClientConnection::handle(const ClientMessage& message) {
             sendError("rate-limited", "too many camera updates; this one was dropped", false);
             return;
         }
+        stopReplay("view"); // the presenter takes the view back
         if (const auto error = view.apply(message)) {
             sendError("bad-request", *error, false);
-        } else if (session_ && !follower) {
-            session_->freeLook().follow(message);
+        } else {
+            if (session_ && !follower) {
+                session_->freeLook().follow(message);
+            }
+            recordAccepted(message);
         }
     }
 }
@@ -266,6 +279,7 @@ void ClientConnection::handleOpen(const OpenRequest& open) {
         return;
     }
     qCInfo(lcClient) << "client" << id_ << "opened a series";
+    viewChanging();
     if (session_) {
         session_->share(std::move(series)); // every member gets `opened` when it is ready
     } else {

@@ -14,13 +14,16 @@
 
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <string>
 
 #include "protocol/ProtocolMessages.h"
 
 namespace lucent::remote {
 
+class RecordingReplay;
 class RenderServer;
+class SessionRecorder;
 class TeachingSession;
 class ViewStream;
 
@@ -92,6 +95,17 @@ private:
     void handleFreeLook(const ClientMessage& message);
     ViewStream* controlledView(const ClientMessage& viewMessage);
     std::string linkOrigin() const;
+    // Recording and replay (ClientRecordings.cpp): record, recording-list,
+    // replay, replay-step, replay-stop; what this client's view accepted, kept
+    // by its recording; both end when the view changes hands or series.
+    void handleRecording(const ClientMessage& message);
+    void startRecording();
+    void startReplay(const ReplayRequest& request);
+    void beginReplay(const ReplayRequest& request, Recording recording);
+    void recordAccepted(const ClientMessage& message);
+    void stopRecording(const std::string& reason);
+    void stopReplay(const std::string& reason);
+    void viewChanging();
     void closeNormally(const QString& reason);
     // pointer, mark and marks-clear (ClientMarks.cpp); false for other messages.
     bool handleMark(const ClientMessage& message);
@@ -110,9 +124,11 @@ private:
     std::uint64_t invite_ = 0;
     bool closing_ = false;
 
-    ViewStream* ownView_;                     // child: the view when in no session
-    QPointer<TeachingSession> session_;       // when in one
-    std::map<int, QByteArray> pendingFrames_; // by channel
+    ViewStream* ownView_;                       // child: the view when in no session
+    QPointer<TeachingSession> session_;         // when in one
+    std::map<int, QByteArray> pendingFrames_;   // by channel
+    std::unique_ptr<SessionRecorder> recorder_; // while this client records
+    std::unique_ptr<RecordingReplay> replay_;   // while it replays
 
     double cameraTokens_ = kCameraBurst;
     QElapsedTimer cameraClock_;

@@ -38,10 +38,12 @@ bool ClientConnection::handleMark(const ClientMessage& message) {
     } else if (mark) {
         if (const auto refused = marks.place(*mark, *this)) {
             sendError(refused->first, refused->second, false);
+            return true;
         }
     } else {
         marks.clear(true);
     }
+    recordAccepted(message); // a recording keeps the pointer and the marks with their times
     return true;
 }
 

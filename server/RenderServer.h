@@ -82,6 +82,8 @@ public:
     InviteBook& invites() { return invites_; }
     bool servesTls() const { return options_.tls.has_value(); }
     int keepaliveSeconds() const { return options_.keepaliveSeconds; }
+    // The store (recordings, de-identified copies); empty when the server has none.
+    const std::filesystem::path& storeDir() const { return options_.storeDir; }
     const SeriesList& series() const { return series_; }
     std::shared_ptr<const SeriesEntry> findSeries(const std::string& uid) const;
     int maxFreeLook() const { return options_.maxFreeLook; }

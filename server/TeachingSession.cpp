@@ -128,6 +128,7 @@ bool TeachingSession::handover(quint64 to) {
 void TeachingSession::share(std::shared_ptr<const SeriesEntry> original) {
     const std::uint64_t ticket = ++shareCount_;
     freeLook_->endAll("series", true);
+    original_ = original;
     openedMessage_.clear();
     view_->reset(*original);
     server_.deidentifiedCopy(

@@ -56,6 +56,8 @@ public:
     // The presenter opens a series of the server: the members see its
     // de-identified copy once it is ready.
     void share(std::shared_ptr<const SeriesEntry> original);
+    // The series last shared, as the server lists it (what a recording names).
+    const std::shared_ptr<const SeriesEntry>& original() const { return original_; }
 
     // {"type":"session-state",...} to every member (each told its own role).
     void broadcastState();
@@ -71,6 +73,7 @@ private:
     ViewStream* view_;                          // child
     QList<QPointer<ClientConnection>> members_; // in the order they joined
     QPointer<ClientConnection> presenter_;
+    std::shared_ptr<const SeriesEntry> original_;
     std::string openedMessage_;    // what a member who joins later is sent
     std::uint64_t shareCount_ = 0; // a later share() supersedes a pending one
     std::unique_ptr<FreeLookViews> freeLook_;

@@ -1,14 +1,18 @@
 // lucent-cli movie PATH -o OUT.(mp4|webm|gif) [--turntable DEG | --cine-axis i|j|k]
-// [--frames N] [--fps N] [--window C,W|NAME] [render options]: a turntable of the
-// volume rendering or a cine through the slices, encoded with FFmpeg (core/movie).
+// [--frames N] [--fps N] [--window C,W|NAME] [render options], or --replay RECORDING
+// [--replay-pace original|step]: a turntable of the volume rendering, a cine through
+// the slices or a recorded teaching session, encoded with FFmpeg (core/movie).
 #include <QCommandLineParser>
 #include <QTextStream>
 
 #include <cmath>
 #include <memory>
+#include <optional>
+#include <stdexcept>
 
 #include "CliCommand.h"
 #include "RenderFlags.h"
+#include "ReplayFrames.h"
 #include "TerminalProgress.h"
 #include "core/io/Catalog.h"
 #include "core/movie/MovieFrames.h"
@@ -30,7 +34,46 @@ struct MovieRequest {
     int frames = 0; // 0: the default of the kind
     MovieSettings settings;
     RendererKind backend = RendererKind::Cpu;
+    std::optional<remote::Recording> replay;
+    remote::ReplayPace pace = remote::ReplayPace::Original;
 };
+
+// --replay: the recording's pace and its checks; the view comes from the recording.
+void replayRequest(const QCommandLineParser& p, MovieRequest& r) {
+    if (!p.isSet("replay")) {
+        if (p.isSet("replay-pace")) {
+            throw UsageError("--replay-pace is for --replay");
+        }
+        return;
+    }
+    for (const char* other :
+         {"turntable", "cine-axis", "frames", "preset", "tf", "window", "series"}) {
+        if (p.isSet(other)) {
+            throw UsageError(std::string("--") + other +
+                             " is not for --replay: the recording holds the series and its views");
+        }
+    }
+    const QString pace = p.value("replay-pace");
+    if (pace != "original" && pace != "step") {
+        throw UsageError("--replay-pace must be original or step, not '" + pace.toStdString() +
+                         "'");
+    }
+    r.pace = pace == "step" ? remote::ReplayPace::Step : remote::ReplayPace::Original;
+}
+
+// The recording's series in PATH: the id it was recorded under, or a clear refusal.
+Volume loadRecordedSeries(const QString& path, const QString& recordingFile,
+                          const remote::Recording& recording, const LoadControl& control) {
+    const Catalog catalog = scanPath(path.toStdString(), control);
+    for (const SeriesEntry& entry : catalog.series) {
+        if (entry.id == recording.header.series) {
+            return loadSeries(entry, control);
+        }
+    }
+    throw std::runtime_error(recordingFile.toStdString() + " records series " +
+                             recording.header.series + ", which " + path.toStdString() +
+                             " does not hold");
+}
 
 MovieRequest requestOf(const QCommandLineParser& p) {
     MovieRequest r;
@@ -52,6 +95,7 @@ MovieRequest requestOf(const QCommandLineParser& p) {
     } else if (p.isSet("window")) {
         throw UsageError("--window is for cines (--cine-axis)");
     }
+    replayRequest(p, r);
     r.degrees = numberFlag(p, "turntable", 360.0);
     if (!std::isfinite(r.degrees)) {
         throw UsageError("--turntable must be a number of degrees");
@@ -138,6 +182,14 @@ int runMovie(const QStringList& args) {
          "cpu"},
         {"preset", "Transfer function preset (default ct-bone, ct-mip or mr-default).", "NAME"},
         {"tf", "Transfer function JSON file.", "FILE.json"},
+        {"replay",
+         "A recorded teaching session (lucent-server's DIR/recordings/ID.jsonl) of the series in "
+         "PATH: its views, rendered here (size: the recording's unless --size).",
+         "RECORDING"},
+        {"replay-pace",
+         "original: frame k shows the view current k/fps seconds into the recording (the "
+         "default); step: one frame per recorded view.",
+         "PACE", "original"},
     });
     addRenderFlags(parser);
     parser.addHelpOption();
@@ -163,13 +215,29 @@ int runMovie(const QStringList& args) {
         err << "lucent-cli movie: " << e.what() << "\n";
         return kUsage;
     }
+    if (parser.isSet("replay")) {
+        try {
+            request.replay = remote::readRecording(parser.value("replay").toStdString());
+        } catch (const remote::RecordingError& e) {
+            err << "lucent-cli movie: " << e.what() << "\n";
+            return kBadInput;
+        }
+        if (!parser.isSet("size")) {
+            request.settings.width = request.replay->header.width;
+            request.settings.height = request.replay->header.height;
+        }
+    }
 
     const TerminalProgress progress;
     try {
         // Opened first: an output that cannot be written fails before loading and rendering.
         MovieWriter writer(output, request.settings);
-        const Volume volume = loadPath(parser.positionalArguments()[0].toStdString(),
-                                       parser.value("series").toStdString(), progress.control());
+        const QString path = parser.positionalArguments()[0];
+        const Volume volume =
+            request.replay ? loadRecordedSeries(path, parser.value("replay"), *request.replay,
+                                                progress.control())
+                           : loadPath(path.toStdString(), parser.value("series").toStdString(),
+                                      progress.control());
         progress.finish();
         std::unique_ptr<RenderDevice> device;
         std::unique_ptr<Renderer> renderer;
@@ -179,8 +247,6 @@ int runMovie(const QStringList& args) {
                                                   windowOf(parser, volume), request.settings.width,
                                                   request.settings.height);
         } else {
-            RenderDescription start = describeFromFlags(parser, volume);
-            start.validate();
             device = RenderDevice::open(request.backend);
             RenderDevice::Opened opened = device->openRenderer(volume);
             for (const std::string& reason : {device->fallbackReason(), opened.fallbackReason}) {
@@ -190,9 +256,18 @@ int runMovie(const QStringList& args) {
                 }
             }
             renderer = std::move(opened.renderer);
-            frames = std::make_unique<TurntableFrames>(
-                *renderer, start, request.degrees,
-                request.frames > 0 ? request.frames : kDefaultTurntableFrames);
+            if (request.replay) {
+                frames =
+                    std::make_unique<ReplayFrames>(*renderer, volume, std::move(*request.replay),
+                                                   request.pace, request.settings.framesPerSecond,
+                                                   request.settings.width, request.settings.height);
+            } else {
+                RenderDescription start = describeFromFlags(parser, volume);
+                start.validate();
+                frames = std::make_unique<TurntableFrames>(
+                    *renderer, start, request.degrees,
+                    request.frames > 0 ? request.frames : kDefaultTurntableFrames);
+            }
         }
         writeMovie(*frames, writer, [&](int done, int total) {
             if (progress.control().onProgress) {

@@ -241,6 +241,29 @@ def protocol_seeds(out):
         + '"{"\n"}"\n"["\n"]"\n":"\n","\n"true"\n"false"\n"null"\n"1e308"\n"-0"\n')
 
 
+def recording_seeds(out):
+    # A recording as lucent-server writes it (protocol/Recording.h): header, start, messages.
+    def line(obj):
+        return json.dumps(obj, separators=(",", ":"), sort_keys=True) + "\n"
+    header = {"lucent_recording": 1, "series": "1.2.826.0.1.3680043.9.7433.3.1", "width": 64,
+              "height": 48, "created": 1790000000000, "duration_ms": 900, "views": 4}
+    start = [{"type": "size", "width": 64, "height": 48}, {"type": "tf", "preset": "ct-bone"},
+             {"type": "mode", "mode": "dvr"}, {"type": "clip"},
+             {"type": "camera", "azimuth": 0.0, "elevation": 0.0, "zoom": 1.0},
+             {"type": "sampling", "step": 0.5, "interp": "linear"}]
+    messages = [(100, {"type": "interaction", "state": "start"}),
+                (120, {"type": "camera", "azimuth": 30.0}),
+                (300, {"type": "interaction", "state": "end"}),
+                (500, {"type": "tf", "preset": "ct-soft-tissue"}),
+                (900, {"type": "mode", "mode": "iso", "iso": 300.0})]
+    text = line(header) + "".join(line({"start": m}) for m in start)
+    text += "".join(line({"at_ms": t, "message": m}) for t, m in messages)
+    (out / "session.jsonl").write_text(text)
+    header["views"] = 1
+    header["duration_ms"] = 0
+    (out / "start_only.jsonl").write_text(line(header) + "".join(line({"start": m}) for m in start))
+
+
 def http_seeds(out):
     heads = {
         "get_root.http": "GET / HTTP/1.1\r\nHost: localhost:8080\r\nAccept: text/html\r\n\r\n",
@@ -352,7 +375,7 @@ def inv3_seed(out):
 def main():
     makers = {"dicom": dicom_seeds, "protocol": protocol_seeds, "http_head": http_seeds,
               "upload_parts": upload_seeds, "metaimage": metaimage_seeds, "nifti": nifti_seeds,
-              "inv3": inv3_seed}
+              "inv3": inv3_seed, "recording": recording_seeds}
     # make_seeds.py [--out DIR] [NAME ...]: the DICOM seeds are not committed (the
     # repository holds no DICOM files); fuzz.sh and the regression tests make them.
     args = sys.argv[1:]

@@ -102,11 +102,21 @@
     requestAnimationFrame(() => canvasView.resize());
   }
 
+  // After a replay the view goes on from the recording's last camera, at this page's size.
+  const recordings = window.createLucentRecordings({ send, onReplayEnded: (message) => {
+    const c = message.camera || {};
+    Object.assign(view, { azimuth: c.azimuth ?? view.azimuth, elevation: c.elevation ?? view.elevation,
+                          zoom: c.zoom ?? view.zoom, panRight: c.pan_right ?? view.panRight,
+                          panUp: c.pan_up ?? view.panUp });
+    sentSize = "";
+    sendSize();
+  } });
   // Read by tests and handy in the console: counters and the view, never the token.
   window.lucent = { stats: canvasView.stats, view, session: () => session, slices: sliceViews,
                     setLayout, freeLook: () => freeLook.active(),
                     protocolVersion: () => protocolVersion, invited: () => invite !== "",
-                    shownInvite: () => shownInvite, marks: () => marks.drawn() };
+                    shownInvite: () => shownInvite, marks: () => marks.drawn(),
+                    recordings: () => recordings.state() };
 
   // https://host:port/#invite=CODE: the code rides in the fragment, which no
   // request and no Referer carries; it is taken out of the address bar at once
@@ -189,6 +199,8 @@
     ui.layout.disabled = protocolVersion < 4 || !opened;
     ui.windowPreset.disabled = protocolVersion < 4 || !controlling();
     sliceViews.setEnabled(protocolVersion >= 4 && controlling());
+    recordings.update({ present: controlling() && protocolVersion >= 4,
+                        list: authenticated && !invite && protocolVersion >= 4 });
   }
 
   // --- connection -----------------------------------------------------------
@@ -239,6 +251,7 @@
     if (session && session.role === "presenter") {
       session = null; // the server hands the session on; we come back on our own view
     }
+    recordings.reset(); // the server stored what was recorded; a replay ended with the socket
     updateControls();
     if (stopReconnecting) {
       return;
@@ -270,6 +283,9 @@
           break;
         }
         send({ type: "list" });
+        if (protocolVersion >= 4) {
+          recordings.list();
+        }
         if (session) { // a follower comes back to its session
           joinSession(session.id);
         }
@@ -298,7 +314,7 @@
         onError(message);
         break;
       default:
-        if (!freeLook.onMessage(message)) {
+        if (!freeLook.onMessage(message) && !recordings.onMessage(message)) {
           onSessionMessage(message);
         }
     }
@@ -365,8 +381,8 @@
     view.series = message.series;
     view.radius = message.radius_mm || 0;
     setStatus("showing a " + message.dims.join("x") + " volume", "good");
-    if (!controlling()) { // a follower sees what the presenter chose
-      ui.preset.value = message.preset;
+    if (!controlling() || recordings.replaying()) { // a follower sees what the presenter chose,
+      ui.preset.value = message.preset;             // a replay what the recording holds
       return;
     }
     sendSize();
@@ -409,7 +425,7 @@
   function sendSize() {
     const { width, height } = canvasView.size();
     const size = width + "x" + height;
-    if (!steering() || size === sentSize) {
+    if (!steering() || recordings.replaying() || size === sentSize) {
       return;
     }
     sentSize = size;

@@ -403,6 +403,13 @@ private slots:
             FreeLook{false},
             FreeLookRecall{},
             SlicesRequest{}, // version 4; test_slice_messages has the rest
+            RecordRequest{true},
+            RecordRequest{false},
+            RecordingListRequest{},
+            ReplayRequest{"k3mx9q2rbt7vwz4n", ReplayPace::Step},
+            ReplayRequest{"k3mx9q2rbt7vwz4n", ReplayPace::Original},
+            ReplayStep{},
+            ReplayStop{},
         };
         std::set<std::size_t> kinds;
         for (const ClientMessage& m : all) {
@@ -450,6 +457,14 @@ private slots:
             FreeLookStarted{42, 30.5, -12.0, 1.5, 400.0, -3.25, 7.0},
             FreeLookEnded{"recalled"},
             FreeLookState{3, 16},
+            RecordingStarted{"k3mx9q2rbt7vwz4n"},
+            RecordingStopped{"k3mx9q2rbt7vwz4n", 6, 12345, "stopped"},
+            RecordingList{{{"k3mx9q2rbt7vwz4n", "1.3.12", 12345, 6, 1790000000123}}},
+            RecordingList{},
+            ReplayProgress{"k3mx9q2rbt7vwz4n", 2, 6, 17},
+            ReplayEnded{"k3mx9q2rbt7vwz4n", "end", {}},
+            ReplayEnded{"k3mx9q2rbt7vwz4n", "stopped",
+                        CameraUpdate{optionUpdate(kWireCamera, unusualDescription())}},
         };
         std::set<std::size_t> kinds;
         for (const ServerMessage& m : all) {
