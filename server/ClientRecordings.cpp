@@ -203,6 +203,9 @@ void ClientConnection::beginReplay(const ReplayRequest& request, Recording recor
         }
         if (isViewMessage(m)) {
             (void)view->apply(m); // a recording's messages were checked when it was read
+            if (session_ && &session_->view() == view.data()) {
+                session_->freeLook().follow(m); // followers looking on their own follow it too
+            }
         } else if (const auto* pointer = std::get_if<PointerUpdate>(&m)) {
             view->marks().point(*pointer);
         } else if (const auto* mark = std::get_if<MarkPlace>(&m)) {
