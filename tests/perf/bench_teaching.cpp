@@ -233,5 +233,13 @@ private slots:
     }
 };
 
-QTEST_GUILESS_MAIN(BenchTeaching)
+int main(int argc, char** argv) {
+    // The lecture runs 10 minutes; QtTest stops a test function after 5 unless told.
+    if (qEnvironmentVariableIsEmpty("QTEST_FUNCTION_TIMEOUT")) {
+        qputenv("QTEST_FUNCTION_TIMEOUT", "1800000");
+    }
+    QCoreApplication app(argc, argv);
+    BenchTeaching bench;
+    return QTest::qExec(&bench, argc, argv);
+}
 #include "bench_teaching.moc"
