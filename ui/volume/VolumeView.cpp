@@ -436,7 +436,9 @@ void VolumeView::paintFrame(QPainter& painter) {
         if (clipHandlesShown_ && volume_) {
             paintClipBox(painter);
         }
-        if (orientationMarkerShown_) {
+        // Not over a followed session's frames: the view's camera is not theirs.
+        if (orientationMarkerShown_ &&
+            (!followsSession() || remote_->followState() == FollowState::LookingAround)) {
             paintOrientationMarker(painter);
         }
         if (surfaceDisplay_ && local_->surfaceShown() && backend_ == Backend::Gpu) {
