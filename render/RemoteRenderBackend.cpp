@@ -116,6 +116,8 @@ void RemoteRenderBackend::closeConnection() {
 
 void RemoteRenderBackend::disconnectFromServer() {
     closeConnection();
+    follow_.reset();
+    setFollowState(FollowState::NotFollowing);
     if (status_ != BackendStatus::Failed) {
         setStatus(BackendStatus::Disconnected, tr("not connected"));
     }
@@ -123,6 +125,7 @@ void RemoteRenderBackend::disconnectFromServer() {
 
 void RemoteRenderBackend::fail(const QString& message) {
     closeConnection();
+    setFollowState(FollowState::NotFollowing);
     setStatus(BackendStatus::Failed, message);
 }
 
@@ -159,6 +162,12 @@ void RemoteRenderBackend::open() {
     for (int v = offeredVersion_; v >= remote::kOldestProtocolVersion; --v) {
         versions << text(remote::subprotocolName(v));
     }
+    if (follow_) {
+        setFollowState(FollowState::Joining);
+        if (follow_->byInvite()) { // authenticates by itself: hello comes without auth
+            versions << "lucent.invite." + follow_->invite;
+        }
+    }
     QWebSocketHandshakeOptions options;
     options.setSubprotocols(versions);
     s->open(QNetworkRequest(settings_.url), options);
@@ -167,7 +176,9 @@ void RemoteRenderBackend::open() {
 void RemoteRenderBackend::onConnected() {
     handshakeTimer_.stop();
     phase_ = Phase::Authenticating;
-    send(remote::writeClientMessage(remote::AuthRequest{settings_.token.toStdString(), {}}));
+    if (!follow_ || !follow_->byInvite()) {
+        send(remote::writeClientMessage(remote::AuthRequest{settings_.token.toStdString(), {}}));
+    }
 }
 
 void RemoteRenderBackend::onLost(const QString& why) {
@@ -181,6 +192,8 @@ void RemoteRenderBackend::onLost(const QString& why) {
     setSessionId({}); // the server ended it with this connection
     marks_.clear();   // and its marks
     socket_.reset();
+    const bool again = retrying_ && (refusal_.isEmpty() || retryAfterRefusal_);
+    setFollowState(follow_ && again ? FollowState::Joining : FollowState::NotFollowing);
     if (!refusal_.isEmpty() && !retryAfterRefusal_) {
         setStatus(BackendStatus::Failed, refusal_);
         return;
@@ -227,6 +240,8 @@ void RemoteRenderBackend::onText(const QString& message) {
     }
     if (const auto* error = std::get_if<remote::ErrorReply>(&m)) {
         onServerError(text(error->code), text(error->message), error->fatal);
+    } else if (follow_ && onFollowMessage(m)) {
+        // hello, opened, the session's end, free look: a follower's own way
     } else if (const auto* hello = std::get_if<remote::Hello>(&m);
                hello && phase_ == Phase::Authenticating) {
         serverBackend_ = text(hello->backend);
@@ -266,9 +281,14 @@ void RemoteRenderBackend::onServerError(const QString& code, const QString& mess
     if (fatal) {
         // The server closes the connection after this; onLost reports it.
         retryAfterRefusal_ = !hopeless(code);
-        refusal_ = code == "auth-failed"
+        refusal_ = code == "auth-failed" && follow_ && follow_->byInvite()
+                       ? tr("%1 refused the invite (%2: %3)").arg(where(), code, message)
+                   : code == "auth-failed"
                        ? tr("%1 refused the token (%2: %3)").arg(where(), code, message)
                        : tr("%1 refused (%2: %3)").arg(where(), code, message);
+        return;
+    }
+    if (follow_ && onFollowError(code, message)) {
         return;
     }
     if (isInviteRefusal(code, message)) {
@@ -334,7 +354,8 @@ void RemoteRenderBackend::chooseSeries() {
 void RemoteRenderBackend::setVolume(std::shared_ptr<const Volume> volume) {
     volume_ = std::move(volume);
     wanted_.reset();
-    if (phase_ == Phase::Open || phase_ == Phase::Opening || phase_ == Phase::Listing) {
+    if (!follow_ &&
+        (phase_ == Phase::Open || phase_ == Phase::Opening || phase_ == Phase::Listing)) {
         // Open the new volume's series (or the one the settings name) again.
         phase_ = Phase::Listing;
         cameraTimer_.stop();
@@ -348,11 +369,18 @@ void RemoteRenderBackend::request(const RenderDescription& still, const FrameOpt
 }
 
 void RemoteRenderBackend::sync() {
-    if (phase_ != Phase::Open || !wanted_ || cameraTimer_.isActive()) {
+    if (phase_ != Phase::Open || !wanted_ || cameraTimer_.isActive() ||
+        (follow_ && followState_ != FollowState::LookingAround)) {
         return;
     }
     const RenderDescription& d = wanted_->still;
     std::vector<remote::ClientMessage> messages = remote::viewMessages(d);
+    if (follow_) { // in free look the session's transfer function, mode and clip box stay
+        std::erase_if(messages, [](const remote::ClientMessage& m) {
+            return !std::holds_alternative<remote::CameraUpdate>(m) &&
+                   !std::holds_alternative<remote::SizeUpdate>(m);
+        });
+    }
     for (remote::ClientMessage& m : messages) {
         auto* camera = std::get_if<remote::CameraUpdate>(&m);
         // A version 1 server before camera distance and pan refuses those keys:
@@ -441,8 +469,11 @@ void RemoteRenderBackend::onBinary(const QByteArray& message) {
     try {
         const auto frame = remote::parseFrameMessage(
             std::string_view(message.constData(), std::size_t(message.size())));
-        if (phase_ != Phase::Open || firstViewSeq_ == 0 || frame.header.seq < firstViewSeq_ ||
-            frame.header.slice) {
+        // A follower shows every frame of the session; its own view's (free look) from
+        // free-look-started on.
+        const bool ownView = !follow_ || followState_ == FollowState::LookingAround;
+        if (phase_ != Phase::Open || frame.header.slice ||
+            (ownView && (firstViewSeq_ == 0 || frame.header.seq < firstViewSeq_))) {
             return; // the server's defaults, a series no longer wanted, or an MPR slice (v4)
         }
         QImage decoded;
@@ -457,8 +488,8 @@ void RemoteRenderBackend::onBinary(const QByteArray& message) {
         out.interactive = frame.header.quality == remote::Quality::Interactive;
         // Not the view the user wants while a paced camera waits for its timer
         // or a refused change has not been replaced.
-        out.current =
-            frame.header.seq == seqSent_ && !cameraTimer_.isActive() && refused_.isEmpty();
+        out.current = !ownView || (frame.header.seq == seqSent_ && !cameraTimer_.isActive() &&
+                                   refused_.isEmpty());
         out.renderMs = frame.header.renderMs;
         out.jpegQuality = frame.header.format == "jpeg" ? frame.header.jpegQuality : 0;
         out.scale = frame.header.scale;

@@ -14,6 +14,7 @@
 #include "protocol/ServerMessages.h"
 #include "render/RemoteServerSettings.h"
 #include "render/RenderBackend.h"
+#include "render/SessionFollow.h"
 #include "render/TeachingMarks.h"
 
 class QWebSocket;
@@ -26,6 +27,14 @@ struct OfferedSeries {
     QString description;
     QString modality;
     glm::ivec3 dims{0};
+};
+
+// Where a follower of a teaching session is (RemoteRenderBackend::followSession).
+enum class FollowState {
+    NotFollowing,
+    Joining,       // connecting, authenticating, waiting for the session's series
+    Following,     // the session's frames: the presenter's view
+    LookingAround, // free look: its own view of the session's series
 };
 
 // A lucent-server client (docs/protocol.md, version 2, and version 1 servers)
@@ -112,6 +121,19 @@ public:
     // back to the session's view (freeLookChanged says how many look).
     void recallFreeLook();
 
+    // Following (RemoteRenderFollow.cpp): joins a running session (by invite or
+    // by token and session id) and shows its frames, its pointer and marks.
+    // Nothing of the view goes to the server, except while looking around (free
+    // look, version 4): then the camera and size of request() do, and the
+    // frames are this client's own. connectTo() or disconnectFromServer() stop
+    // following. Bad settings, a refused invite and the session's end: status
+    // Failed, saying why.
+    void followSession(const SessionFollow& follow);
+    const std::optional<SessionFollow>& followed() const { return follow_; }
+    FollowState followState() const { return followState_; }
+    void lookAround();
+    void backToTeacher();
+
 signals:
     void marksChanged();
     void sessionChanged(const QString& id);
@@ -121,6 +143,9 @@ signals:
     void inviteRefused(const QString& why);
     // How many followers of the session look on their own, of at most `limit`.
     void freeLookChanged(int looking, int limit);
+    void followStateChanged(lucent::FollowState state);
+    // Free look began from the session's camera (a view adopts it, then turns).
+    void lookAroundStarted(const lucent::Camera& camera);
 
 private:
     enum class Phase { Idle, Connecting, Authenticating, Listing, Opening, Open };
@@ -140,6 +165,12 @@ private:
     // A refusal of invite-create or invite-revoke (reported by inviteRefused).
     bool isInviteRefusal(const QString& code, const QString& message) const;
     void setSessionId(const QString& id);
+    // hello, opened, session-left, free-look-started and -ended of a follower;
+    // false for other messages.
+    bool onFollowMessage(const remote::ServerMessage& message);
+    // A refusal of free-look or session-join (reported by frameFailed or fail).
+    bool onFollowError(const QString& code, const QString& message);
+    void setFollowState(FollowState state);
     void chooseSeries();
     void sync();
     void send(const std::string& json);
@@ -176,6 +207,9 @@ private:
     bool wasOpen_ = false; // this connection got as far as an open series
     int serverVersion_ = 0;
     int offeredVersion_; // set in the constructor
+
+    std::optional<SessionFollow> follow_;
+    FollowState followState_ = FollowState::NotFollowing;
 
     TeachingMarks marks_;
     std::shared_ptr<const Volume> volume_;

@@ -11,6 +11,11 @@ void RemoteRenderBackend::setPresenting(bool presenting) {
     if (presenting == presenting_) {
         return;
     }
+    if (presenting && follow_) { // the session followed is someone else's
+        emit inviteRefused(
+            tr("this view follows a session on %1; it cannot present one").arg(where()));
+        return;
+    }
     presenting_ = presenting;
     if (socket_ || reconnectTimer_.isActive()) {
         // A session starts on a new connection; leaving one ends it (this is its

@@ -11,6 +11,7 @@
 #include <QVBoxLayout>
 
 #include "ui/theme/Theme.h"
+#include "ui/volume/FollowSessionDialog.h"
 #include "ui/volume/InviteDialog.h"
 #include "ui/volume/VolumeView.h"
 
@@ -130,6 +131,16 @@ void addRenderBackendMenu(QMenu* menu, VolumeView* view) {
     QObject::connect(invite, &QAction::triggered, view, [view] {
         auto* dialog = new InviteDialog(view->remoteBackend(), view->window());
         dialog->setAttribute(Qt::WA_DeleteOnClose); // modeless: the view stays in reach
+        dialog->show();
+    });
+    // Teaching, the other side: the view follows a session someone else presents.
+    QAction* followAction = menu->addAction(QObject::tr("&Follow a Session..."));
+    followAction->setObjectName(QStringLiteral("followSession"));
+    QObject::connect(followAction, &QAction::triggered, view, [view] {
+        auto* dialog = new FollowSessionDialog(view->remoteBackend(), view->window());
+        dialog->setAttribute(Qt::WA_DeleteOnClose); // modeless: the view stays in reach
+        QObject::connect(dialog, &FollowSessionDialog::followRequested, view,
+                         &VolumeView::followSession);
         dialog->show();
     });
 }

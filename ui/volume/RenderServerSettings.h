@@ -51,7 +51,7 @@ private:
 // Adds "Render 3D on" to menu: "This Computer" and "Server..." (the dialog, then
 // the switch; the settings are kept in the application's QSettings). The checked
 // item follows the view. Then "Invite Students..." (InviteDialog), while the view
-// renders on a server.
+// renders on a server, and "Follow a Session..." (FollowSessionDialog).
 void addRenderBackendMenu(QMenu* menu, VolumeView* view);
 
 } // namespace lucent

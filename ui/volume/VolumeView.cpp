@@ -104,6 +104,7 @@ VolumeView::VolumeView(QWidget* parent, Backend preferred)
             updateNotice();
         }
     });
+    connectFollowing();
     if (preferred == Backend::Gpu) {
         glFailure_ = glUnavailableReason();
     } else {
@@ -169,7 +170,8 @@ void VolumeView::renderOnServer(const RemoteServerSettings& settings) {
     if (backend_ != Backend::Remote) {
         useSurface(Backend::Remote);
     }
-    if (settings != remote_->settings() || remote_->status() == BackendStatus::Failed ||
+    if (settings != remote_->settings() || remote_->followed() ||
+        remote_->status() == BackendStatus::Failed ||
         remote_->status() == BackendStatus::Disconnected) {
         remote_->connectTo(settings);
     }
@@ -317,7 +319,7 @@ void VolumeView::requestRender() {
     if (!surface_) {
         return;
     }
-    if (!volume_ || volume_->empty()) {
+    if ((!volume_ || volume_->empty()) && !followsSession()) {
         updateSurface();
         return;
     }
@@ -416,11 +418,12 @@ void VolumeView::onFrameFailed(const QString& reason) {
 void VolumeView::paintFrame(QPainter& painter) {
     const QRectF area(QPointF(0, 0), QSizeF(painter.device()->width(), painter.device()->height()));
     // A frame drawn in place is under the painter already: only the overlays go over it.
-    const bool inPlace = frameInPlace_ && volume_ && !volume_->empty();
+    const bool hasVolume = (volume_ && !volume_->empty()) || followsSession();
+    const bool inPlace = frameInPlace_ && hasVolume;
     if (!inPlace) {
         painter.fillRect(area, Qt::black);
     }
-    if (!volume_ || volume_->empty()) {
+    if (!hasVolume) {
         painter.setPen(Qt::gray);
         painter.drawText(area, Qt::AlignCenter, tr("No volume"));
     } else if (inPlace || !lastFrame_.pixels.empty()) {
@@ -430,10 +433,12 @@ void VolumeView::paintFrame(QPainter& painter) {
             painter.setRenderHint(QPainter::SmoothPixmapTransform, false);
             painter.drawImage(area, image);
         }
-        if (clipHandlesShown_) {
+        if (clipHandlesShown_ && volume_) {
             paintClipBox(painter);
         }
-        if (orientationMarkerShown_) {
+        // Not over a followed session's frames: the view's camera is not theirs.
+        if (orientationMarkerShown_ &&
+            (!followsSession() || remote_->followState() == FollowState::LookingAround)) {
             paintOrientationMarker(painter);
         }
         if (surfaceDisplay_ && local_->surfaceShown() && backend_ == Backend::Gpu) {
@@ -493,6 +498,7 @@ void VolumeView::mousePressEvent(QMouseEvent* event) {
         return;
     }
     dragButton_ = b;
+    lookAroundOnDrag();
     dragStart_ = event->position();
     dragCamera_ = camera_;
     dragClip_ = clip_;

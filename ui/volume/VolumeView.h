@@ -90,6 +90,12 @@ public:
     void renderOnServer(const RemoteServerSettings& settings);
     // Back to this computer: the GPU, or the CPU where OpenGL cannot be had.
     void renderLocally();
+    // Follows a teaching session on a server (VolumeViewFollow.cpp): its frames,
+    // pointer and marks, no volume needed here. A drag looks around (free look,
+    // from the session's camera); remoteBackend().backToTeacher() ends it.
+    // renderLocally() or renderOnServer() stop following.
+    void followSession(const SessionFollow& follow);
+    bool followsSession() const;
     LocalRenderBackend& localBackend() { return *local_; }
     RemoteRenderBackend& remoteBackend() { return *remote_; }
 
@@ -155,6 +161,9 @@ protected:
 
 private:
     void useSurface(Backend backend);
+    void connectFollowing(); // from the constructor
+    // A drag while following a session: looks around first.
+    void lookAroundOnDrag();
     RenderBackend& activeBackend();
     void onFrame(const BackendFrame& frame);
     void onFrameFailed(const QString& reason);
