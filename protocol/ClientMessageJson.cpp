@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "protocol/JsonFields.h"
 #include "protocol/MarkMessageJson.h"
 #include "protocol/RecordingMessageJson_p.h"
 #include "protocol/SliceMessageJson_p.h"
@@ -15,24 +16,6 @@ namespace lucent::remote {
 namespace {
 
 using Json = nlohmann::json;
-
-// Every key of `object` must be one of `known` ("type" always is).
-void checkKeys(const Json& object, const std::string& type, std::set<std::string> known) {
-    known.insert("type");
-    for (const auto& [key, value] : object.items()) {
-        if (!known.count(key)) {
-            throwBadRequest(type + ": unknown field '" + key + "'");
-        }
-    }
-}
-
-std::string requiredString(const Json& object, const char* key, const std::string& type) {
-    const auto it = object.find(key);
-    if (it == object.end() || !it->is_string() || it->get<std::string>().empty()) {
-        throwBadRequest(type + ": '" + key + "' must be a non-empty string");
-    }
-    return it->get<std::string>();
-}
 
 // --- camera, mode, sampling: the options table ----------------------------------
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <set>
 
+#include "protocol/JsonFields.h"
 #include "protocol/JsonIntegers.h"
 #include "protocol/ProtocolError.h"
 
@@ -10,14 +11,6 @@ namespace lucent::remote {
 namespace {
 
 using Json = nlohmann::json;
-
-void checkKeys(const Json& m, const std::string& type, const std::set<std::string>& known) {
-    for (const auto& [key, value] : m.items()) {
-        if (key != "type" && !known.count(key)) {
-            throwBadRequest(type + ": unknown field '" + key + "'");
-        }
-    }
-}
 
 bool isFraction(const Json& v) {
     return v.is_number() && std::isfinite(v.get<double>()) && v.get<double>() >= 0.0 &&

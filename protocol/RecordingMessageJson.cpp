@@ -2,28 +2,13 @@
 
 #include <set>
 
+#include "protocol/JsonFields.h"
 #include "protocol/ProtocolError.h"
 
 namespace lucent::remote {
 namespace {
 
 using Json = nlohmann::json;
-
-void checkKeys(const Json& m, const std::string& type, const std::set<std::string>& known) {
-    for (const auto& [key, value] : m.items()) {
-        if (key != "type" && !known.count(key)) {
-            throwBadRequest(type + ": unknown field '" + key + "'");
-        }
-    }
-}
-
-std::string requiredString(const Json& m, const char* key, const std::string& type) {
-    const auto it = m.find(key);
-    if (it == m.end() || !it->is_string() || it->get<std::string>().empty()) {
-        throwBadRequest(type + ": '" + key + "' must be a non-empty string");
-    }
-    return it->get<std::string>();
-}
 
 RecordRequest parseRecord(const Json& m) {
     checkKeys(m, "record", {"state"});
