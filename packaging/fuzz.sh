@@ -13,7 +13,8 @@
 #
 # Seeds: fuzz/corpus/<name>/ (committed, small and synthetic; the DICOM ones are made
 # by fuzz/seeds/make_seeds.py into build-fuzz/fuzz-seeds/dicom), plus at run time
-# the real DICOM of ../shared/data and the presets of resources/presets; what
+# the real DICOM of ../shared/data, the quirks corpus made from it
+# (tests/core/dicom/quirks/make_quirks.py) and the presets of resources/presets; what
 # the fuzzer finds goes to build-fuzz/fuzz-corpus/<name>/ and is reused next
 # time. A crashing input is saved under build-fuzz/fuzz-artifacts/<name>/, the
 # whole output under build-fuzz/fuzz-logs/<name>.log. Exits 1 when any harness
@@ -82,9 +83,14 @@ if [ "$report_only" -eq 0 ]; then
   run_one() {
     local name="$1" corpus="$build/fuzz-corpus/${1#fuzz_}" artifacts="$build/fuzz-artifacts/$1/"
     local log="$build/fuzz-logs/$1.log" seeds="$root/fuzz/corpus/${1#fuzz_}"
+    local quirks=""
     if [ "$name" = fuzz_dicom ]; then # DICOM seeds are made, never committed
       python3 "$root/fuzz/seeds/make_seeds.py" --out "$build/fuzz-seeds" dicom
       seeds="$build/fuzz-seeds/dicom"
+      if [ -d "$shared" ]; then # the quirks corpus of test_dicom_quirks, made from shared data
+        quirks="$build/fuzz-seeds/quirks"
+        python3 "$root/tests/core/dicom/quirks/make_quirks.py" "$quirks" "$shared"
+      fi
     fi
     mkdir -p "$corpus" "$artifacts" "$(dirname "$log")"
     rm -f "$log.status"
@@ -98,6 +104,7 @@ if [ "$report_only" -eq 0 ]; then
     local extra
     extra="$(extra_seeds "$name")"
     [ -n "$extra" ] && dirs+=("$extra")
+    [ -n "$quirks" ] && dirs+=("$quirks")
     local start end status=0
     start=$(date +%s)
     ASAN_OPTIONS="detect_leaks=$leaks:allocator_may_return_null=0:malloc_context_size=10" \

@@ -145,6 +145,21 @@ std::string applyGeometry(ImageRecord& r, const std::optional<std::vector<double
     return {};
 }
 
+// Projection radiographs (and some converted images) carry only the spacing at
+// the detector, ImagerPixelSpacing (0018,1164): used, as other viewers do, with
+// a warning, since at the patient it is smaller by the geometric magnification.
+void useImagerPixelSpacing(const gdcm::DataSet& ds, ImageRecord& r) {
+    const auto imager = tagDoubles(ds, 0x0018, 0x1164);
+    if (!imager || imager->size() < 2 || !allFinite(*imager, 2) || (*imager)[0] <= 0.0 ||
+        (*imager)[1] <= 0.0) {
+        return;
+    }
+    r.hasPixelSpacing = true;
+    r.pixelSpacing = {(*imager)[1], (*imager)[0]};
+    r.warnings.push_back("no PixelSpacing (0028,0030): ImagerPixelSpacing (0018,1164) used, the "
+                         "spacing at the detector (not corrected for magnification)");
+}
+
 FileScan skip(std::string reason) {
     return FileScan{{}, std::move(reason)};
 }
@@ -188,7 +203,9 @@ FileScan scanDicomFile(const std::string& file) {
         quietGdcm();
         gdcm::Reader reader;
         reader.SetFileName(file.c_str());
-        if (!reader.ReadUpToTag(kPixelData, {kPixelData})) {
+        // GDCM finds a data set's encoding against its meta header only in a whole read.
+        if (!(structure.metaSyntaxWrong ? reader.Read()
+                                        : reader.ReadUpToTag(kPixelData, {kPixelData}))) {
             return skip("not a DICOM file (or its header is unreadable)");
         }
         const gdcm::File& gfile = reader.GetFile();
@@ -206,6 +223,7 @@ FileScan scanDicomFile(const std::string& file) {
 
         ImageRecord base;
         base.file = file;
+        base.warnings = structure.warnings;
         readCommon(ds, base);
         if (base.sopClassUid == "1.2.840.10008.5.1.4.1.1.66.4") {
             return skip("DICOM Segmentation object: not an image series");
@@ -322,6 +340,9 @@ FileScan scanDicomFile(const std::string& file) {
         const std::string unusable =
             applyGeometry(base, tagDoubles(ds, 0x0020, 0x0032), tagDoubles(ds, 0x0020, 0x0037),
                           tagDoubles(ds, 0x0028, 0x0030));
+        if (!base.hasPixelSpacing) {
+            useImagerPixelSpacing(ds, base);
+        }
         if (!unusable.empty()) {
             return skip(unusable);
         }

@@ -16,6 +16,8 @@ namespace lucent {
 namespace {
 
 constexpr std::uint32_t kUndefined = 0xffffffffu;
+const std::string kImplicitLittle = "1.2.840.10008.1.2";
+const std::string kExplicitLittle = "1.2.840.10008.1.2.1";
 constexpr int kMaxDepth = 32;
 // A deflated data set is inflated (in memory) to be walked, up to this size.
 constexpr std::size_t kMaxInflatedBytes = std::size_t(1) << 30;
@@ -56,6 +58,21 @@ private:
     std::size_t size_ = 0;
     bool opened_ = false;
 };
+
+constexpr std::string_view kLongVrs[] = {"OB", "OD", "OF", "OL", "OV", "OW", "SQ",
+                                         "SV", "UC", "UN", "UR", "UT", "UV"};
+// The rest of PS3.5's VRs. Libraries disagree on the length field of any other
+// (GDCM and DCMTK read 4 bytes, allocating what they say).
+constexpr std::string_view kShortVrs[] = {"AE", "AS", "AT", "CS", "DA", "DS", "DT",
+                                          "FD", "FL", "IS", "LO", "LT", "PN", "SH",
+                                          "SL", "SS", "ST", "TM", "UI", "UL", "US"};
+
+bool longVr(std::string_view vr) {
+    return std::find(std::begin(kLongVrs), std::end(kLongVrs), vr) != std::end(kLongVrs);
+}
+bool shortVr(std::string_view vr) {
+    return std::find(std::begin(kShortVrs), std::end(kShortVrs), vr) != std::end(kShortVrs);
+}
 
 struct Walker {
     const unsigned char* d;
@@ -103,21 +120,8 @@ struct Walker {
             h.sequence = h.length == kUndefined;
         } else {
             const std::string_view vr(reinterpret_cast<const char*>(d + at + 4), 2);
-            static constexpr std::string_view longVrs[] = {"OB", "OD", "OF", "OL", "OV", "OW", "SQ",
-                                                           "SV", "UC", "UN", "UR", "UT", "UV"};
-            // The rest of PS3.5's VRs. Libraries disagree on the length field of
-            // any other (GDCM and DCMTK read 4 bytes, allocating what they say).
-            static constexpr std::string_view shortVrs[] = {
-                "AE", "AS", "AT", "CS", "DA", "DS", "DT", "FD", "FL", "IS", "LO",
-                "LT", "PN", "SH", "SL", "SS", "ST", "TM", "UI", "UL", "US"};
-            bool isLong = false;
-            bool known = false;
-            for (std::string_view v : longVrs) {
-                isLong = isLong || v == vr;
-            }
-            for (std::string_view v : shortVrs) {
-                known = known || v == vr;
-            }
+            const bool isLong = longVr(vr);
+            const bool known = isLong || shortVr(vr);
             if (!isLong && !known) {
                 bigEndian = saveBig;
                 std::string shown;
@@ -203,6 +207,9 @@ struct Walker {
             return fail(at, "sequences nested too deeply");
         }
         while (at < end) {
+            if (depth == 0 && zeroTag(at, end)) {
+                return trailingPadding(at, end);
+            }
             Header h{};
             if (!header(at, h)) {
                 return false;
@@ -258,7 +265,19 @@ struct Walker {
                 continue;
             }
             if (h.sequence) {
-                if (!items(at, h.length, end, depth, false)) {
+                // A sequence written as UN of undefined length (a private one, by a
+                // converter that did not know it) holds implicit VR little endian
+                // items (CP-246).
+                const bool saveExplicit = explicitVr;
+                const bool saveBig = bigEndian;
+                if (h.vr == "UN" && h.length == kUndefined) {
+                    explicitVr = false;
+                    bigEndian = false;
+                }
+                const bool walked = items(at, h.length, end, depth, false);
+                explicitVr = saveExplicit;
+                bigEndian = saveBig;
+                if (!walked) {
                     return false;
                 }
                 continue;
@@ -273,6 +292,30 @@ struct Walker {
     }
 
     std::string what(std::size_t end) const { return end == size ? "the file" : "its item"; }
+
+    // Where the next top-level element would start, its tag is zero (or the file
+    // ends in fewer than 4 zero bytes): no data set has group 0000.
+    bool zeroTag(std::size_t at, std::size_t end) const {
+        const std::size_t n = std::min<std::size_t>(4, end - at);
+        return std::all_of(d + at, d + at + n, [](unsigned char c) { return c == 0; });
+    }
+
+    // Zero bytes after the last element (CD/DVD media, some archives pad files
+    // so) end the data set, as DCMTK and GDCM read it; anything else after them
+    // is no DICOM.
+    bool trailingPadding(std::size_t at, std::size_t end) {
+        const unsigned char* nonZero =
+            std::find_if(d + at, d + end, [](unsigned char c) { return c != 0; });
+        if (nonZero != d + end) {
+            return fail(static_cast<std::size_t>(nonZero - d),
+                        "data after " + std::to_string(nonZero - (d + at)) +
+                            " zero bytes that follow the last element of the data set");
+        }
+        out.warnings.push_back(std::to_string(end - at) +
+                               " zero bytes after the last element of the data set (from byte " +
+                               std::to_string(at) + ") ignored as padding");
+        return true;
+    }
 
     static std::string hex(std::uint16_t v) {
         char buf[8];
@@ -322,6 +365,86 @@ bool inflateDataSet(const unsigned char* d, std::size_t size, std::vector<unsign
     return true;
 }
 
+// True when the element at `at` carries a VR of PS3.5 after its tag: explicit VR.
+bool looksExplicit(const unsigned char* d, std::size_t at) {
+    const std::string_view vr(reinterpret_cast<const char*>(d + at + 4), 2);
+    return longVr(vr) || shortVr(vr);
+}
+
+// File meta information: group 0002 after the preamble, always explicit little
+// endian. Its group length (0002,0000) may be wrong or absent: DCMTK and GDCM
+// read the group to its last element, and so does this.
+bool readFileMeta(Walker& w, std::size_t& at) {
+    DicomStructure& out = w.out;
+    const std::size_t size = w.size;
+    std::uint64_t metaEnd = 0; // from (0002,0000) when present
+    while (at < size && (at + 8 > size || w.u16(at) == 0x0002)) {
+        Walker::Header h{};
+        if (!w.header(at, h, true) || h.length == kUndefined || h.length > size - h.valueAt) {
+            out.problem = "truncated file meta information at byte " + std::to_string(at);
+            return false;
+        }
+        if (h.vr == "SQ") { // GDCM asserts on a sequence here
+            out.problem = "file meta information element (0002," + Walker::hex(h.element) +
+                          ") is a sequence, at byte " + std::to_string(at);
+            return false;
+        }
+        if (h.element == 0x0000 && h.length == 4) {
+            metaEnd = h.valueAt + 4 + std::uint64_t(w.u32(h.valueAt));
+        }
+        if (h.element == 0x0010) {
+            std::string uid(reinterpret_cast<const char*>(w.d + h.valueAt), h.length);
+            while (!uid.empty() && (uid.back() == '\0' || uid.back() == ' ')) {
+                uid.pop_back();
+            }
+            out.transferSyntax = uid;
+        }
+        at = h.valueAt + h.length;
+    }
+    if (metaEnd != 0 && metaEnd != at) {
+        out.warnings.push_back("file meta information group length (0002,0000) says the group "
+                               "ends at byte " +
+                               std::to_string(metaEnd) + "; its last element ends at byte " +
+                               std::to_string(at) + " (read to its last element)");
+    }
+    if (at >= size) {
+        out.problem = "no data set after the file meta information";
+        return false;
+    }
+    if (out.transferSyntax.empty()) {
+        out.problem = "file meta information without a transfer syntax";
+        return false;
+    }
+    return true;
+}
+
+// A data set in implicit VR under a meta header that says Explicit VR Little
+// Endian is read as implicit, as GDCM and pydicom do (DCMTK with
+// --read-xfer-detect). The other way round GDCM cannot read, so it is refused.
+bool checkDataSetEncoding(Walker& w, std::size_t at) {
+    DicomStructure& out = w.out;
+    if (at + 8 > w.size) {
+        return true; // the walk reports the truncation
+    }
+    const bool explicitVr = looksExplicit(w.d, at);
+    const std::string element = "(" + Walker::hex(w.u16(at)) + "," + Walker::hex(w.u16(at + 2)) +
+                                ") at byte " + std::to_string(at);
+    if (out.transferSyntax == kExplicitLittle && !explicitVr) {
+        out.transferSyntax = kImplicitLittle;
+        out.metaSyntaxWrong = true;
+        out.warnings.push_back("the file meta information says Explicit VR Little Endian, but the "
+                               "data set is in implicit VR (element " +
+                               element + "): read as Implicit VR Little Endian");
+    } else if (out.transferSyntax == kImplicitLittle && explicitVr) {
+        out.problem = "the file meta information says Implicit VR Little Endian, but the data set "
+                      "is in explicit VR (element " +
+                      element + " has the VR '" +
+                      std::string(reinterpret_cast<const char*>(w.d + at + 4), 2) + "')";
+        return false;
+    }
+    return true;
+}
+
 } // namespace
 
 DicomStructure checkDicomStructure(const std::string& file) {
@@ -340,43 +463,8 @@ DicomStructure checkDicomStructure(const std::string& file) {
     Walker w{d, size, true, false, out};
     std::size_t at = 0;
     if (size >= 132 && std::memcmp(d + 128, "DICM", 4) == 0) {
-        // File meta information: group 0002, always explicit little endian.
         at = 132;
-        std::uint64_t metaEnd = 0; // from (0002,0000) when present
-        while (at < size && (at + 8 > size || w.u16(at) == 0x0002)) {
-            Walker::Header h{};
-            if (!w.header(at, h, true) || h.length == kUndefined || h.length > size - h.valueAt) {
-                out.problem = "truncated file meta information at byte " + std::to_string(at);
-                return out;
-            }
-            if (h.vr == "SQ") { // GDCM asserts on a sequence here
-                out.problem = "file meta information element (0002," + Walker::hex(h.element) +
-                              ") is a sequence, at byte " + std::to_string(at);
-                return out;
-            }
-            if (h.element == 0x0000 && h.length == 4) {
-                metaEnd = h.valueAt + 4 + std::uint64_t(w.u32(h.valueAt));
-            }
-            if (h.element == 0x0010) {
-                std::string uid(reinterpret_cast<const char*>(d + h.valueAt), h.length);
-                while (!uid.empty() && (uid.back() == '\0' || uid.back() == ' ')) {
-                    uid.pop_back();
-                }
-                out.transferSyntax = uid;
-            }
-            at = h.valueAt + h.length;
-        }
-        if (metaEnd != 0 && metaEnd != at) {
-            out.problem = metaEnd > size ? "truncated file meta information"
-                                         : "file meta information group length does not match";
-            return out;
-        }
-        if (at >= size) {
-            out.problem = "no data set after the file meta information";
-            return out;
-        }
-        if (out.transferSyntax.empty()) {
-            out.problem = "file meta information without a transfer syntax";
+        if (!readFileMeta(w, at) || !checkDataSetEncoding(w, at)) {
             return out;
         }
     } else {
@@ -385,8 +473,8 @@ DicomStructure checkDicomStructure(const std::string& file) {
             out.problem = "not a DICOM file";
             return out;
         }
-        w.explicitVr = d[4] >= 'A' && d[4] <= 'Z' && d[5] >= 'A' && d[5] <= 'Z';
-        out.transferSyntax = w.explicitVr ? "1.2.840.10008.1.2.1" : "1.2.840.10008.1.2";
+        w.explicitVr = looksExplicit(d, 0);
+        out.transferSyntax = w.explicitVr ? kExplicitLittle : kImplicitLittle;
     }
     const std::string& ts = out.transferSyntax;
     if (ts == "1.2.840.10008.1.2.1.99") {
@@ -409,10 +497,13 @@ DicomStructure checkDicomStructure(const std::string& file) {
             out.problem = "deflated data set: Pixel Data (7FE0,0010) runs past its end";
             return out;
         }
+        for (const std::string& warning : inner.warnings) {
+            out.warnings.push_back("deflated data set: " + warning);
+        }
         out.ok = true;
         return out;
     }
-    w.explicitVr = ts != "1.2.840.10008.1.2";
+    w.explicitVr = ts != kImplicitLittle;
     w.bigEndian = ts == "1.2.840.10008.1.2.2";
     if (!w.elements(at, size, 0, false)) {
         return out;

@@ -6,17 +6,23 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace lucent {
 
 struct DicomStructure {
-    bool ok = false;     // the element stream is sound up to Pixel Data
-    std::string problem; // why not, in words (with the byte offset)
-    std::string transferSyntax;
+    bool ok = false;              // the element stream is sound up to Pixel Data
+    std::string problem;          // why not, in words (with the byte offset)
+    std::string transferSyntax;   // the data set's: the meta header's unless the data set differs
+    bool metaSyntaxWrong = false; // the meta header names another transfer syntax
     bool hasPixelData = false;
     bool encapsulated = false;     // compressed fragments
     std::uint64_t pixelOffset = 0; // first byte of the Pixel Data value
     std::uint64_t pixelLength = 0; // its length (defined lengths only)
+    // What was untidy but read as DCMTK or GDCM read it: zero padding after the
+    // data set, a wrong meta group length, a data set in implicit VR under a meta
+    // header that says explicit. In words, with the byte offset or count.
+    std::vector<std::string> warnings;
 };
 
 DicomStructure checkDicomStructure(const std::string& file);

@@ -32,6 +32,10 @@ struct ImageRecord : SeriesInfo {
     double slope = 1.0;
     double intercept = 0.0;
 
+    // What was untidy in the file but read (padding, a wrong group length, an
+    // unexpected encoding, a fallback for a missing element), in words.
+    std::vector<std::string> warnings;
+
     int samplesPerPixel = 1;
     PixelLayout pixels;
     std::uint64_t pixelOffset = 0; // see SliceRef::pixelOffset

@@ -65,6 +65,36 @@ VoxelType chooseVoxelType(const std::vector<const ImageRecord*>& images) {
     return VoxelType::Float32;
 }
 
+// The files' own warnings (ImageRecord::warnings), each text once with the file
+// it came from, or the first of the files and their count; at most a few texts.
+void appendFileWarnings(const Group& group, std::vector<std::string>& warnings) {
+    constexpr std::size_t kMaxTexts = 4;
+    std::vector<std::pair<std::string, std::vector<const std::string*>>> byText;
+    for (const ImageRecord* r : group.images) {
+        for (const std::string& w : r->warnings) {
+            auto it = std::find_if(byText.begin(), byText.end(),
+                                   [&w](const auto& entry) { return entry.first == w; });
+            if (it == byText.end()) {
+                byText.push_back({w, {}});
+                it = byText.end() - 1;
+            }
+            if (it->second.empty() || *it->second.back() != r->file) {
+                it->second.push_back(&r->file);
+            }
+        }
+    }
+    for (std::size_t i = 0; i < byText.size() && i < kMaxTexts; ++i) {
+        const auto& [text, files] = byText[i];
+        warnings.push_back(files.size() == 1 ? *files.front() + ": " + text
+                                             : text + " (" + std::to_string(files.size()) +
+                                                   " files, first: " + *files.front() + ")");
+    }
+    if (byText.size() > kMaxTexts) {
+        warnings.push_back("and " + std::to_string(byText.size() - kMaxTexts) +
+                           " more warnings about single files");
+    }
+}
+
 SeriesEntry makeEntry(const Group& group, SeriesKind kind, std::vector<SkippedFile>& skipped) {
     const ImageRecord& f = group.first();
     SeriesEntry e;
@@ -80,6 +110,8 @@ SeriesEntry makeEntry(const Group& group, SeriesKind kind, std::vector<SkippedFi
         e.warnings.push_back("no ImagePositionPatient/ImageOrientationPatient: the image grid "
                              "is shown without patient geometry");
     }
+
+    appendFileWarnings(group, e.warnings);
 
     StackInput in;
     in.rowDir = f.rowDir;

@@ -202,6 +202,9 @@ def dicom_seeds(out):
         "rtdose_short_offsets.dcm": rt_dose(),
         "dicomdir.dcm": dicomdir(),
         "ct_rle.dcm": rle_ct(),
+        # zero padding after the data set (CD/DVD media): read, with a warning
+        "ct_trailing_zeros.dcm": ct() + bytes(200),
+        "ct_implicit_trailing_zeros.dcm": ct(IMPLICIT_LE) + bytes(13),
     }
     for name, data in seeds.items():
         (out / name).write_bytes(data)

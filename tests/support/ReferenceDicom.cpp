@@ -6,12 +6,24 @@
 #include <dcmtk/config/osconfig.h>
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcfilefo.h>
+#include <dcmtk/dcmdata/dcobject.h>
+#include <dcmtk/oflog/oflog.h>
 
 namespace lucent::test {
 
-ReferenceImage readReferenceImage(const std::string& file) {
+ReferenceImage readReferenceImage(const std::string& file, bool detectEncoding) {
+    // DCMTK's warnings on untidy files (the quirks corpus) are no test output.
+    static const bool quiet = [] {
+        OFLog::configure(OFLogger::ERROR_LOG_LEVEL);
+        return true;
+    }();
+    (void)quiet;
     DcmFileFormat ff;
-    if (ff.loadFile(file.c_str()).bad()) {
+    const OFBool detecting = dcmAutoDetectDatasetXfer.get();
+    dcmAutoDetectDatasetXfer.set(detectEncoding);
+    const bool read = ff.loadFile(file.c_str()).good();
+    dcmAutoDetectDatasetXfer.set(detecting);
+    if (!read) {
         throw std::runtime_error("DCMTK cannot read " + file);
     }
     DcmDataset& d = *ff.getDataset();
@@ -27,8 +39,10 @@ ReferenceImage readReferenceImage(const std::string& file) {
     }
     r.rowDir = {v[0], v[1], v[2]};
     r.colDir = {v[3], v[4], v[5]};
-    d.findAndGetFloat64(DCM_PixelSpacing, v[0], 0);
-    d.findAndGetFloat64(DCM_PixelSpacing, v[1], 1);
+    const DcmTagKey spacing =
+        d.tagExists(DCM_PixelSpacing) ? DCM_PixelSpacing : DCM_ImagerPixelSpacing;
+    d.findAndGetFloat64(spacing, v[0], 0);
+    d.findAndGetFloat64(spacing, v[1], 1);
     r.spacing = {v[1], v[0]};
     Uint16 rows = 0, cols = 0, stored = 16, repr = 0;
     d.findAndGetUint16(DCM_Rows, rows);
@@ -38,8 +52,13 @@ ReferenceImage readReferenceImage(const std::string& file) {
     r.rows = rows;
     r.columns = cols;
     Float64 slope = 1.0, intercept = 0.0;
-    d.findAndGetFloat64(DCM_RescaleSlope, slope);
-    d.findAndGetFloat64(DCM_RescaleIntercept, intercept);
+    // DCMTK sets the value to 0 when the element is missing (an MR has no rescale).
+    if (d.findAndGetFloat64(DCM_RescaleSlope, slope).bad()) {
+        slope = 1.0;
+    }
+    if (d.findAndGetFloat64(DCM_RescaleIntercept, intercept).bad()) {
+        intercept = 0.0;
+    }
     const Uint16* px = nullptr;
     if (d.findAndGetUint16Array(DCM_PixelData, px).bad() || px == nullptr) {
         throw std::runtime_error("DCMTK finds no 16-bit pixel data in " + file);

@@ -24,6 +24,9 @@ struct ReferenceImage {
     bool sample(const glm::dvec3& lps, double& value, double& distanceFromPlane) const;
 };
 
-ReferenceImage readReferenceImage(const std::string& file);
+// detectEncoding: the data set's encoding is found from its bytes, as dcmdump's
+// --read-xfer-detect (-td) does, not taken from the file meta information.
+// Without PixelSpacing the spacing is ImagerPixelSpacing's, if present.
+ReferenceImage readReferenceImage(const std::string& file, bool detectEncoding = false);
 
 } // namespace lucent::test
