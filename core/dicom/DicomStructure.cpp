@@ -207,8 +207,9 @@ struct Walker {
             return fail(at, "sequences nested too deeply");
         }
         while (at < end) {
-            if (depth == 0 && zeroTag(at, end)) {
-                return trailingPadding(at, end);
+            if (depth == 0 && zeroHeader(at, end)) {
+                // Padding after the data set, or no DICOM after it.
+                return onlyZerosFrom(at, end) || dataAfterZeros(at, end);
             }
             Header h{};
             if (!header(at, h)) {
@@ -293,28 +294,33 @@ struct Walker {
 
     std::string what(std::size_t end) const { return end == size ? "the file" : "its item"; }
 
-    // Where the next top-level element would start, its tag is zero (or the file
-    // ends in fewer than 4 zero bytes): no data set has group 0000.
-    bool zeroTag(std::size_t at, std::size_t end) const {
-        const std::size_t n = std::min<std::size_t>(4, end - at);
+    // Where the next top-level element would start, its header is all zeros (or
+    // the file ends in fewer than 8 zero bytes): no data set has such an element.
+    // DCMTK rewrites zero padding as (0000,0000) UL of length 4, an element.
+    bool zeroHeader(std::size_t at, std::size_t end) const {
+        const std::size_t n = std::min<std::size_t>(8, end - at);
         return std::all_of(d + at, d + at + n, [](unsigned char c) { return c == 0; });
     }
 
     // Zero bytes after the last element (CD/DVD media, some archives pad files
-    // so) end the data set, as DCMTK and GDCM read it; anything else after them
-    // is no DICOM.
-    bool trailingPadding(std::size_t at, std::size_t end) {
-        const unsigned char* nonZero =
-            std::find_if(d + at, d + end, [](unsigned char c) { return c != 0; });
-        if (nonZero != d + end) {
-            return fail(static_cast<std::size_t>(nonZero - d),
-                        "data after " + std::to_string(nonZero - (d + at)) +
-                            " zero bytes that follow the last element of the data set");
+    // so) end the data set, as DCMTK and GDCM read it, with a warning.
+    bool onlyZerosFrom(std::size_t at, std::size_t end) {
+        if (std::any_of(d + at, d + end, [](unsigned char c) { return c != 0; })) {
+            return false;
         }
         out.warnings.push_back(std::to_string(end - at) +
                                " zero bytes after the last element of the data set (from byte " +
                                std::to_string(at) + ") ignored as padding");
         return true;
+    }
+
+    // Zeros that are no element, then other bytes: no DICOM after the data set.
+    bool dataAfterZeros(std::size_t at, std::size_t end) {
+        const unsigned char* nonZero =
+            std::find_if(d + at, d + end, [](unsigned char c) { return c != 0; });
+        return fail(static_cast<std::size_t>(nonZero - d),
+                    "data after " + std::to_string(nonZero - (d + at)) +
+                        " zero bytes that follow the last element of the data set");
     }
 
     static std::string hex(std::uint16_t v) {

@@ -133,6 +133,9 @@ def cases(data, out):
 
     f = case("trailing-zeros", mr, "2.5 MB of zero bytes after the last element (CD/DVD media)")
     f.write_bytes(mr.read_bytes() + bytes(2_500_000))
+    run("dcmconv", str(f), str(case(
+        "trailing-zeros-rewritten", mr,
+        "the padded file rewritten by dcmconv: (0000,0000) UL 0 first in the data set")))
     f = case("trailing-zeros-implicit", ge, "64 KiB of zero bytes after Pixel Data, implicit VR")
     f.write_bytes(ge.read_bytes() + bytes(65536))
     f = case("trailing-zeros-odd-count", mr, "3 zero bytes after the last element",
