@@ -31,6 +31,7 @@
   const kCameraIntervalMs = 33; // at most ~30 camera updates a second (the server allows 60)
   const kBackoffFirstMs = 500;
   const kBackoffMaxMs = 15000;
+  const kByInvite = "by invite"; // `joining` of a join link's page: the server joins it
 
   // What the user asked for; restored after a reconnect.
   const view = { series: null, azimuth: 0, elevation: 0, zoom: 1, panRight: 0, panUp: 0,
@@ -45,7 +46,9 @@
   let opened = false;
   let restoring = false;        // the next `opened` reopens the view the user had
   let session = null;           // {id, role: "presenter" | "follower"} while in a session
-  let joining = null;           // the session id asked for, until the server answers
+  // The session id asked for (or kByInvite), until session-state says the role: the
+  // server sends `opened`, the last frame and the marks before it, to a follower.
+  let joining = null;
   let reconnectTimer = 0;
   let backoffMs = kBackoffFirstMs;
   let stopReconnecting = false;
@@ -130,8 +133,10 @@
     return match[1];
   }
 
+  // Never while joining: a page that joins a session follows it until told otherwise.
   function controlling() {
-    return authenticated && opened && (!session || session.role === "presenter");
+    return authenticated && opened && joining === null &&
+           (!session || session.role === "presenter");
   }
 
   // The camera and size this page sends: its own view, the session's as its
@@ -247,6 +252,7 @@
     freeLook.setRole(null);
     authenticated = false;
     opened = false;
+    joining = null; // a follower's hello asks again
     sentSize = "";
     if (session && session.role === "presenter") {
       session = null; // the server hands the session on; we come back on our own view
@@ -279,7 +285,8 @@
         backoffMs = kBackoffFirstMs;
         setStatus("connected (" + message.backend + ")", "good");
         if (invite) {
-          setStatus("joining the session ...", "good"); // the invite joins it by itself
+          joining = kByInvite; // the invite joins its session by itself
+          setStatus("joining the session ...", "good");
           break;
         }
         send({ type: "list" });
