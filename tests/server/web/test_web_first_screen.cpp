@@ -2,9 +2,10 @@
 // lucent-server (real CT): a presenter (a C++ client) opens the series, places
 // marks and the pointer and makes an invite; a student opens the join link at
 // phone size (then rotated) and at desktop size, another joins by token and
-// session id. Each page shows no error, the server logs no error for any of
-// them, the page sends nothing a follower may not send, and the marks and the
-// pointer placed before the join are drawn with the first frame. Skips when
+// session id, and comes back after its connection drops. Each page shows no
+// error, the server logs no error for any of them, the page sends nothing a
+// follower may not send, and the marks and the pointer placed before the join
+// are drawn with the first frame. Skips when
 // chromium, chromedriver or the real data are missing.
 #include <QFileInfo>
 #include <QJsonArray>
@@ -48,12 +49,13 @@ bool showsNoError(WebDriver& driver) {
         .toBool();
 }
 
-// From now on the page records the type of every message it sends.
+// From now on the page records the type of every message it sends, and the socket.
 bool recordSentMessages(WebDriver& driver) {
     return driver
         .execute("window.sentByPage = [];"
                  "const send = WebSocket.prototype.send;"
                  "WebSocket.prototype.send = function (data) {"
+                 "  window.pageSocket = this;"
                  "  window.sentByPage.push(typeof data === 'string' ? JSON.parse(data).type"
                  "                                                  : 'binary');"
                  "  return send.call(this, data);"
@@ -239,6 +241,24 @@ private slots:
         QTest::qWait(1000);
         QVERIFY2(showsNoError(byToken), qPrintable(statusOf(byToken)));
         QCOMPARE(sentMessages(byToken), QStringList{"session-join"});
+        QVERIFY2(errorsLogged(server).isEmpty(), qPrintable(errorsLogged(server).join('\n')));
+
+        // Its connection drops: it comes back to the session and asks for nothing else.
+        const int drawn = byToken.execute("return window.lucent.stats.framesDrawn;").toInt();
+        QVERIFY(byToken.execute("window.sentByPage = []; window.pageSocket.close(); return true;")
+                    .toBool());
+        QVERIFY2(byToken.waitUntil(QString("const s = window.lucent.session();"
+                                           "return window.sentByPage.includes('session-join') &&"
+                                           " s !== null && s.role === 'follower' &&"
+                                           " window.lucent.stats.framesDrawn > %1;")
+                                       .arg(drawn),
+                                   30000),
+                 qPrintable(statusOf(byToken)));
+        wrong = marksDrawnNow(byToken, 2);
+        QVERIFY2(wrong.isEmpty(), qPrintable(wrong));
+        QTest::qWait(1000);
+        QVERIFY2(showsNoError(byToken), qPrintable(statusOf(byToken)));
+        QCOMPARE(sentMessages(byToken), (QStringList{"list", "recording-list", "session-join"}));
         QVERIFY2(errorsLogged(server).isEmpty(), qPrintable(errorsLogged(server).join('\n')));
         for (WebDriver* driver : {&phone, &desk, &byToken}) {
             const QString console = driver->consoleLog();
