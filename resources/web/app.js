@@ -1,8 +1,9 @@
 // Lucent browser client: protocol version 4 (docs/protocol.md; it sends no
 // sampling message, and invites need version 3) over a WebSocket to the server
-// that served this page: authentication by token or by a join link's invite,
-// series, view changes, teaching sessions and their invites, reconnect with
-// backoff. The canvas lives in view.js. Plain JavaScript, no build step.
+// that served this page: the wiring. Here: authentication by token or by a join
+// link's invite, series, view changes and who controls the view. The connection
+// and its reconnect live in connection.js, teaching sessions and their invites in
+// sessions.js, the canvas in view.js. Plain JavaScript, no build step.
 "use strict";
 
 (() => {
@@ -11,49 +12,43 @@
     status: $("status"), login: $("login"), token: $("token"), seriesList: $("series-list"),
     open: $("open"), preset: $("preset"), mode: $("mode"), iso: $("iso"),
     resetView: $("reset-view"), panel: $("panel"), togglePanel: $("toggle-panel"),
-    sessionId: $("session-id"), joinSession: $("join-session"),
-    startSession: $("start-session"), leaveSession: $("leave-session"),
-    sessionInfo: $("session-info"), createInvite: $("create-invite"),
-    inviteBox: $("invite-box"), inviteLink: $("invite-link"), copyInvite: $("copy-invite"),
-    inviteQr: $("invite-qr"), inviteExpiry: $("invite-expiry"),
-    revokeInvite: $("revoke-invite"),
     viewport: $("viewport"), layout: $("layout"), windowPreset: $("window-preset"),
   };
 
-  // The protocol versions this page speaks, newest first, offered in the
-  // handshake: the server selects the first it speaks and says it in hello.
-  const kSubprotocols = ["lucent.v4", "lucent.v3", "lucent.v2", "lucent.v1"];
-  const kTokenSubprotocolPrefix = "lucent.token.";
-  const kInviteSubprotocolPrefix = "lucent.invite.";
-  const kQrQuietZone = 4; // light modules around a QR code
-  // Characters a WebSocket subprotocol may hold (RFC 6455, an HTTP token).
-  const kSubprotocolChars = /^[!#$%&'*+\-.^_`|~0-9A-Za-z]+$/;
   const kCameraIntervalMs = 33; // at most ~30 camera updates a second (the server allows 60)
-  const kBackoffFirstMs = 500;
-  const kBackoffMaxMs = 15000;
 
   // What the user asked for; restored after a reconnect.
   const view = { series: null, azimuth: 0, elevation: 0, zoom: 1, panRight: 0, panUp: 0,
                  radius: 0, preset: null, mode: "dvr",
                  iso: 300 };
-  let token = "";
   // A join link's invite: this page then only follows that session.
   const invite = takeInviteFromAddress();
-  let shownInvite = null;       // the presenter's last invite-created
-  let socket = null;
   let authenticated = false;
   let opened = false;
   let restoring = false;        // the next `opened` reopens the view the user had
-  let session = null;           // {id, role: "presenter" | "follower"} while in a session
-  let joining = null;           // the session id asked for, until the server answers
-  let reconnectTimer = 0;
-  let backoffMs = kBackoffFirstMs;
-  let stopReconnecting = false;
   let cameraDirty = false;
   let cameraTimer = 0;
   let lastCameraSent = 0;
   let sentSize = "";
   let protocolVersion = 0;      // the connection's, from hello
+
+  const connection = window.createLucentConnection(invite, {
+    setStatus, onConnecting, onText, onBinary, onClosed,
+  });
+  const send = connection.send;
+  // Joining, presenting and following a session, and the presenter's invites (sessions.js).
+  const sessions = window.createLucentSessions(invite, {
+    send, setStatus, updateControls,
+    onJoining: () => {
+      opened = false;
+    },
+    onRole: (role) => freeLook.setRole(protocolVersion >= 4 ? role : null),
+    onLeft: () => {
+      freeLook.setRole(null);
+      opened = false;
+    },
+    stopReconnecting: () => connection.stopReconnecting(),
+  });
 
   let gesture = false;           // a drag or wheel is under way on the canvas
   const canvasView = window.createLucentView($("view"), {
@@ -112,10 +107,10 @@
     sendSize();
   } });
   // Read by tests and handy in the console: counters and the view, never the token.
-  window.lucent = { stats: canvasView.stats, view, session: () => session, slices: sliceViews,
-                    setLayout, freeLook: () => freeLook.active(),
+  window.lucent = { stats: canvasView.stats, view, session: sessions.session,
+                    slices: sliceViews, setLayout, freeLook: () => freeLook.active(),
                     protocolVersion: () => protocolVersion, invited: () => invite !== "",
-                    shownInvite: () => shownInvite, marks: () => marks.drawn(),
+                    shownInvite: sessions.shownInvite, marks: () => marks.drawn(),
                     recordings: () => recordings.state() };
 
   // https://host:port/#invite=CODE: the code rides in the fragment, which no
@@ -130,8 +125,11 @@
     return match[1];
   }
 
+  // Never while joining: a page that joins a session follows it until told otherwise.
   function controlling() {
-    return authenticated && opened && (!session || session.role === "presenter");
+    const session = sessions.session();
+    return authenticated && opened && !sessions.joining() &&
+           (!session || session.role === "presenter");
   }
 
   // The camera and size this page sends: its own view, the session's as its
@@ -142,6 +140,7 @@
 
   // A follower of a version 4 server may look around on its own.
   function lookAround() {
+    const session = sessions.session();
     if (authenticated && opened && session && session.role === "follower" &&
         protocolVersion >= 4) {
       freeLook.request();
@@ -172,25 +171,15 @@
     ui.status.className = "status" + (kind ? " " + kind : "");
   }
 
-  function send(message) {
-    if (socket && socket.readyState === WebSocket.OPEN) {
-      socket.send(JSON.stringify(message));
-    }
-  }
-
   function updateControls() {
+    const session = sessions.session();
     const following = session !== null && session.role === "follower";
     ui.seriesList.disabled = !authenticated || following;
     ui.open.disabled = ui.seriesList.disabled || ui.seriesList.selectedIndex < 0;
     for (const control of [ui.preset, ui.mode, ui.iso, ui.resetView]) {
       control.disabled = !controlling();
     }
-    ui.joinSession.disabled = !authenticated || session !== null || joining !== null;
-    ui.startSession.disabled = ui.joinSession.disabled;
-    ui.leaveSession.disabled = !authenticated || session === null;
-    ui.createInvite.disabled = !authenticated || protocolVersion < 3 || session === null ||
-                               session.role !== "presenter";
-    ui.revokeInvite.disabled = ui.createInvite.disabled || shownInvite === null;
+    sessions.updateControls(authenticated, protocolVersion);
     for (const el of document.querySelectorAll(".iso-only")) {
       el.hidden = view.mode !== "iso";
     }
@@ -205,62 +194,26 @@
 
   // --- connection -----------------------------------------------------------
 
-  function connect() {
-    clearTimeout(reconnectTimer);
-    if (socket) {
-      socket.onclose = null;
-      socket.close();
-    }
-    stopReconnecting = false;
+  function onConnecting() {
     authenticated = false;
     opened = false;
-    setStatus("connecting to " + location.host + " ...");
-    const scheme = location.protocol === "https:" ? "wss:" : "ws:";
-    // The token rides in a subprotocol when it can (no extra round trip), else in
-    // the first message; never in the URL. An invite's code always can.
-    const tokenInProtocol = invite !== "" || kSubprotocolChars.test(token);
-    const protocols = [...kSubprotocols];
-    if (invite) {
-      protocols.push(kInviteSubprotocolPrefix + invite);
-    } else if (tokenInProtocol) {
-      protocols.push(kTokenSubprotocolPrefix + token);
-    }
-    socket = new WebSocket(scheme + "//" + location.host + "/", protocols);
-    socket.binaryType = "arraybuffer";
-    socket.onopen = () => {
-      setStatus("authenticating ...");
-      if (!tokenInProtocol) {
-        send({ type: "auth", token });
-      }
-    };
-    socket.onmessage = (event) => {
-      if (typeof event.data === "string") {
-        onText(event.data);
-      } else if (!sliceViews.takeFrame(event.data) && !canvasView.showFrame(event.data)) {
-        setStatus("the server sent a frame that is not readable", "bad");
-      }
-    };
-    socket.onclose = (event) => onClosed(event);
   }
 
-  function onClosed(event) {
+  function onBinary(data) {
+    if (!sliceViews.takeFrame(data) && !canvasView.showFrame(data)) {
+      setStatus("the server sent a frame that is not readable", "bad");
+    }
+  }
+
+  // The connection is gone (connection.js then tries again, or not).
+  function onClosed() {
     freeLook.setRole(null);
     authenticated = false;
     opened = false;
     sentSize = "";
-    if (session && session.role === "presenter") {
-      session = null; // the server hands the session on; we come back on our own view
-    }
+    sessions.disconnected();
     recordings.reset(); // the server stored what was recorded; a replay ended with the socket
     updateControls();
-    if (stopReconnecting) {
-      return;
-    }
-    const why = event.reason ? " (" + event.reason + ")" : "";
-    setStatus("disconnected" + why + "; reconnecting in " + (backoffMs / 1000).toFixed(1) +
-              " s", "bad");
-    reconnectTimer = setTimeout(connect, backoffMs * (0.8 + 0.4 * Math.random()));
-    backoffMs = Math.min(backoffMs * 2, kBackoffMaxMs);
   }
 
   function onText(text) {
@@ -276,23 +229,22 @@
         authenticated = true;
         protocolVersion = message.version;
         showWindowPresets(message.window_presets || []);
-        backoffMs = kBackoffFirstMs;
+        connection.authenticated();
         setStatus("connected (" + message.backend + ")", "good");
         if (invite) {
-          setStatus("joining the session ...", "good"); // the invite joins it by itself
+          sessions.joinByInvite(); // the invite joins its session by itself
+          setStatus("joining the session ...", "good");
           break;
         }
         send({ type: "list" });
         if (protocolVersion >= 4) {
           recordings.list();
         }
-        if (session) { // a follower comes back to its session
-          joinSession(session.id);
-        }
+        sessions.rejoin(); // a follower comes back to its session
         break;
       case "series":
         showSeries(message.series);
-        if (view.series && !session && !opened &&
+        if (view.series && !sessions.session() && !opened &&
             message.series.some((s) => s.uid === view.series)) {
           openSeries(view.series, true); // a reconnect: back to where the user was
         }
@@ -308,14 +260,14 @@
         break;
       case "session-left":
         marks.reset();
-        onSessionMessage(message);
+        sessions.onMessage(message);
         break;
       case "error":
         onError(message);
         break;
       default:
         if (!freeLook.onMessage(message) && !recordings.onMessage(message)) {
-          onSessionMessage(message);
+          sessions.onMessage(message);
         }
     }
     updateControls();
@@ -324,13 +276,9 @@
   function onError(message) {
     setStatus("error: " + message.message + " [" + message.code + "]", "bad");
     freeLook.refused(message);
-    if (joining && (message.code === "not-found" || message.code === "session-full")) {
-      joining = null;
-      session = null;
-      ui.sessionInfo.textContent = "";
-    }
+    sessions.refused(message);
     if (message.fatal && message.code.startsWith("auth")) {
-      stopReconnecting = true; // a new token (or invite) is needed, not another try
+      connection.stopReconnecting(); // a new token (or invite) is needed, not another try
       if (invite) {
         setStatus(message.message + ": ask the presenter for a new link", "bad");
       } else {
@@ -521,120 +469,11 @@
     }
   });
 
-  // --- teaching sessions ----------------------------------------------------
-
-  function joinSession(id) {
-    joining = id;
-    opened = false;
-    send({ type: "session-join", session: id });
-    ui.sessionInfo.textContent = "joining session " + id + " ...";
-  }
-
-  function onSessionMessage(message) {
-    if (message.type === "session-created") {
-      session = { id: message.session, role: "presenter" };
-      ui.sessionId.value = message.session;
-    } else if (message.type === "session-state") {
-      joining = null;
-      session = { id: message.session, role: message.role };
-      freeLook.setRole(protocolVersion >= 4 ? message.role : null);
-      const others = Math.max(0, message.members - 1);
-      ui.sessionInfo.textContent = message.role === "presenter"
-        ? "presenting session " + message.session + " to " + others + " follower(s)"
-        : "following session " + message.session + " (" + message.members + " members)";
-    } else if (message.type === "session-left") {
-      session = null;
-      freeLook.setRole(null);
-      opened = false;
-      showInvite(null);
-      if (invite) {
-        stopReconnecting = true; // the server closes: an invite follows one session only
-        setStatus("the session has ended");
-        return;
-      }
-      ui.sessionInfo.textContent = "left the session; open a series";
-      send({ type: "list" });
-    } else if (message.type === "invite-created") {
-      showInvite(message);
-    } else if (message.type === "invite-revoked") {
-      if (shownInvite && shownInvite.invite === message.invite) {
-        showInvite(null);
-      }
-      setStatus("invite revoked: its link lets no one in, and its followers were dropped");
-    }
-  }
-
-  // --- invites (the presenter's) ---------------------------------------------
-
-  function showInvite(created) {
-    shownInvite = created;
-    ui.inviteBox.hidden = created === null;
-    if (created === null) {
-      ui.inviteLink.value = "";
-      return;
-    }
-    ui.inviteLink.value = created.link;
-    ui.inviteExpiry.textContent = "valid until " + new Date(created.expires * 1000)
-      .toLocaleString() + " or the end of the session";
-    drawQr(ui.inviteQr, created.qr);
-  }
-
-  // The server's module matrix, dark on white, with its quiet zone.
-  function drawQr(canvas, qr) {
-    const modules = qr.size + 2 * kQrQuietZone;
-    const scale = Math.max(2, Math.floor(256 / modules));
-    canvas.width = canvas.height = modules * scale;
-    const g = canvas.getContext("2d");
-    g.fillStyle = "#fff";
-    g.fillRect(0, 0, canvas.width, canvas.height);
-    g.fillStyle = "#000";
-    qr.rows.forEach((row, y) => {
-      for (let x = 0; x < row.length; ++x) {
-        if (row[x] === "1") {
-          g.fillRect((x + kQrQuietZone) * scale, (y + kQrQuietZone) * scale, scale, scale);
-        }
-      }
-    });
-  }
-
-  ui.createInvite.addEventListener("click", () => {
-    // The link starts with what this page was loaded from (the host students reach).
-    send({ type: "invite-create", origin: location.origin });
-  });
-  ui.revokeInvite.addEventListener("click", () => {
-    if (shownInvite) {
-      send({ type: "invite-revoke", invite: shownInvite.invite });
-    }
-  });
-  ui.copyInvite.addEventListener("click", () => {
-    ui.inviteLink.select();
-    const copied = navigator.clipboard ? navigator.clipboard.writeText(ui.inviteLink.value)
-      : Promise.resolve(document.execCommand("copy"));
-    copied.then(() => setStatus("link copied", "good"),
-                () => setStatus("select the link and copy it", "bad"));
-  });
-
-  ui.joinSession.addEventListener("click", () => {
-    const id = ui.sessionId.value.trim();
-    if (!id) {
-      setStatus("enter the session id the presenter gave", "bad");
-      return;
-    }
-    joinSession(id);
-    updateControls();
-  });
-  ui.startSession.addEventListener("click", () => {
-    send({ type: "session-create" });
-  });
-  ui.leaveSession.addEventListener("click", () => send({ type: "session-leave" }));
-
   // --- page -----------------------------------------------------------------
 
   ui.login.addEventListener("submit", (event) => {
     event.preventDefault();
-    token = ui.token.value;
-    backoffMs = kBackoffFirstMs;
-    connect();
+    connection.start(ui.token.value);
   });
   ui.seriesList.addEventListener("change", updateControls);
   ui.seriesList.addEventListener("dblclick", () => ui.open.click());
@@ -646,18 +485,11 @@
   ui.togglePanel.addEventListener("click", () => {
     showPanel(ui.panel.classList.contains("collapsed"));
   });
-  window.addEventListener("online", () => {
-    if (token && !stopReconnecting && (!socket || socket.readyState === WebSocket.CLOSED)) {
-      backoffMs = kBackoffFirstMs;
-      connect();
-    }
-  });
   if (invite) {
     // A student with a join link: only the view, following the presenter.
     document.body.classList.add("invited");
     showPanel(false);
-    backoffMs = kBackoffFirstMs;
-    connect();
+    connection.start("");
   }
   updateControls();
   canvasView.resize();

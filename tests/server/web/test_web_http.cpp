@@ -3,6 +3,7 @@
 // port; plus the request-head parser on its own.
 #include <QNetworkAccessManager>
 #include <QNetworkReply>
+#include <QRegularExpression>
 #include <QTest>
 
 #include "WebServerFixture.h"
@@ -97,7 +98,22 @@ void TestWebHttp::servesTheClientFiles() {
     const HttpAnswer script = fetch(manager, requestFor(server.port(), "/app.js?v=2"));
     QCOMPARE(script.status, 200);
     QCOMPARE(script.contentType, QByteArray("text/javascript; charset=utf-8"));
-    QVERIFY(script.body.contains("WebSocket"));
+    QVERIFY(script.body.contains("createLucentConnection"));
+    // Every script the page names is served (the client's files are embedded one by one).
+    auto scripts = QRegularExpression(R"re(<script src="([a-z]+\.js)">)re")
+                       .globalMatch(QString::fromUtf8(page.body));
+    QStringList served;
+    while (scripts.hasNext()) {
+        const QString name = scripts.next().captured(1);
+        const HttpAnswer file = fetch(manager, requestFor(server.port(), "/" + name));
+        QVERIFY2(file.status == 200 && file.body.contains("\"use strict\";"), qPrintable(name));
+        QCOMPARE(file.contentType, QByteArray("text/javascript; charset=utf-8"));
+        served << name;
+    }
+    QVERIFY2(served.contains("connection.js") && served.contains("sessions.js") &&
+                 served.last() == "app.js",
+             qPrintable(served.join(", ")));
+    QVERIFY(fetch(manager, requestFor(server.port(), "/connection.js")).body.contains("WebSocket"));
     const HttpAnswer style = fetch(manager, requestFor(server.port(), "/style.css"));
     QCOMPARE(style.status, 200);
     QCOMPARE(style.contentType, QByteArray("text/css; charset=utf-8"));
