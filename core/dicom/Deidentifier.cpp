@@ -1,4 +1,5 @@
 #include "core/dicom/Deidentifier.h"
+#include "core/dicom/DataSetStream_p.h"
 
 #include <gdcmAnonymizer.h>
 #include <gdcmDataSetHelper.h>
@@ -223,8 +224,14 @@ void replaceText(gdcm::DataSet& ds, const gdcm::Tag& tag, gdcm::VR vr, std::stri
 } // namespace
 
 void Deidentifier::deidentifyFile(const fs::path& input, const fs::path& output) {
+    const DicomStructure structure = checkDicomStructure(input.string());
+    if (!structure.ok) {
+        throw DeidentifyError("de-identify: " + input.string() + " is not a readable DICOM file (" +
+                              structure.problem + ")");
+    }
+    DataSetStream stream(input.string(), structure);
     gdcm::Reader reader;
-    reader.SetFileName(input.string().c_str());
+    reader.SetStream(stream);
     if (!reader.Read()) {
         throw DeidentifyError("de-identify: " + input.string() + " is not a readable DICOM file");
     }

@@ -1,5 +1,6 @@
 // Header reading for one DICOM file with GDCM: classic single-frame images,
 // legacy multi-frame, and Enhanced CT/MR with per-frame functional groups.
+#include "core/dicom/DataSetStream_p.h"
 #include "core/dicom/DicomStructure.h"
 #include "core/dicom/DicomTags_p.h"
 #include "core/dicom/ImageRecord.h"
@@ -201,8 +202,9 @@ FileScan scanDicomFile(const std::string& file) {
                             : "corrupt DICOM file: " + structure.problem);
         }
         quietGdcm();
+        DataSetStream stream(file, structure);
         gdcm::Reader reader;
-        reader.SetFileName(file.c_str());
+        reader.SetStream(stream);
         // GDCM finds a data set's encoding against its meta header only in a whole read.
         if (!(structure.metaSyntaxWrong ? reader.Read()
                                         : reader.ReadUpToTag(kPixelData, {kPixelData}))) {
@@ -374,12 +376,14 @@ bool isDicomdir(const std::string& file) {
     if (fs::path(file).filename() == "DICOMDIR") {
         return true;
     }
-    if (!checkDicomStructure(file).ok) {
+    const DicomStructure structure = checkDicomStructure(file);
+    if (!structure.ok) {
         return false;
     }
     quietGdcm();
+    DataSetStream stream(file, structure);
     gdcm::Reader reader;
-    reader.SetFileName(file.c_str());
+    reader.SetStream(stream);
     if (!reader.ReadUpToTag(gdcm::Tag(0x0004, 0x1220))) {
         return false;
     }
@@ -389,12 +393,14 @@ bool isDicomdir(const std::string& file) {
 }
 
 std::vector<std::string> dicomdirReferences(const std::string& dicomdir) {
-    if (const DicomStructure st = checkDicomStructure(dicomdir); !st.ok) {
-        throw LoadError(dicomdir + ": not a readable DICOMDIR (" + st.problem + ")");
+    const DicomStructure structure = checkDicomStructure(dicomdir);
+    if (!structure.ok) {
+        throw LoadError(dicomdir + ": not a readable DICOMDIR (" + structure.problem + ")");
     }
     quietGdcm();
+    DataSetStream stream(dicomdir, structure);
     gdcm::Reader reader;
-    reader.SetFileName(dicomdir.c_str());
+    reader.SetStream(stream);
     if (!reader.Read()) {
         throw LoadError(dicomdir + ": not a readable DICOMDIR");
     }

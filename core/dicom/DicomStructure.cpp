@@ -1,4 +1,5 @@
 #include "core/dicom/DicomStructure.h"
+#include "core/dicom/MappedFile_p.h"
 
 #include <algorithm>
 #include <cstring>
@@ -6,11 +7,6 @@
 #include <vector>
 
 #include <zlib.h>
-
-#include <fcntl.h>
-#include <sys/mman.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 namespace lucent {
 namespace {
@@ -21,43 +17,6 @@ const std::string kExplicitLittle = "1.2.840.10008.1.2.1";
 constexpr int kMaxDepth = 32;
 // A deflated data set is inflated (in memory) to be walked, up to this size.
 constexpr std::size_t kMaxInflatedBytes = std::size_t(1) << 30;
-
-// A read-only view of a whole file, unmapped on destruction.
-class MappedFile {
-public:
-    explicit MappedFile(const std::string& path) {
-        const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-        if (fd < 0) {
-            return;
-        }
-        struct stat st {};
-        if (::fstat(fd, &st) == 0 && st.st_size > 0) {
-            void* p = ::mmap(nullptr, static_cast<std::size_t>(st.st_size), PROT_READ, MAP_PRIVATE,
-                             fd, 0);
-            if (p != MAP_FAILED) {
-                data_ = static_cast<const unsigned char*>(p);
-                size_ = static_cast<std::size_t>(st.st_size);
-            }
-        }
-        opened_ = true;
-        ::close(fd);
-    }
-    ~MappedFile() {
-        if (data_ != nullptr) {
-            ::munmap(const_cast<unsigned char*>(data_), size_);
-        }
-    }
-    MappedFile(const MappedFile&) = delete;
-    MappedFile& operator=(const MappedFile&) = delete;
-    bool opened() const { return opened_; }
-    const unsigned char* data() const { return data_; }
-    std::size_t size() const { return size_; }
-
-private:
-    const unsigned char* data_ = nullptr;
-    std::size_t size_ = 0;
-    bool opened_ = false;
-};
 
 constexpr std::string_view kLongVrs[] = {"OB", "OD", "OF", "OL", "OV", "OW", "SQ",
                                          "SV", "UC", "UN", "UR", "UT", "UV"};
@@ -80,6 +39,7 @@ struct Walker {
     bool explicitVr = true;
     bool bigEndian = false;
     DicomStructure& out;
+    bool paddingAllowed = true; // not inside a deflated data set, which GDCM inflates whole
 
     std::uint16_t u16(std::size_t at) const {
         return bigEndian ? std::uint16_t(d[at] << 8 | d[at + 1])
@@ -305,9 +265,11 @@ struct Walker {
     // Zero bytes after the last element (CD/DVD media, some archives pad files
     // so) end the data set, as DCMTK and GDCM read it, with a warning.
     bool onlyZerosFrom(std::size_t at, std::size_t end) {
-        if (std::any_of(d + at, d + end, [](unsigned char c) { return c != 0; })) {
+        if (!paddingAllowed ||
+            std::any_of(d + at, d + end, [](unsigned char c) { return c != 0; })) {
             return false;
         }
+        out.dataSetEnd = at;
         out.warnings.push_back(std::to_string(end - at) +
                                " zero bytes after the last element of the data set (from byte " +
                                std::to_string(at) + ") ignored as padding");
@@ -318,6 +280,10 @@ struct Walker {
     bool dataAfterZeros(std::size_t at, std::size_t end) {
         const unsigned char* nonZero =
             std::find_if(d + at, d + end, [](unsigned char c) { return c != 0; });
+        if (nonZero == d + end) { // padding where it cannot be (paddingAllowed)
+            return fail(at, std::to_string(end - at) +
+                                " zero bytes after the last element, inside the deflated data");
+        }
         return fail(static_cast<std::size_t>(nonZero - d),
                     "data after " + std::to_string(nonZero - (d + at)) +
                         " zero bytes that follow the last element of the data set");
@@ -466,6 +432,7 @@ DicomStructure checkDicomStructure(const std::string& file) {
         out.problem = "empty file";
         return out;
     }
+    out.dataSetEnd = size;
     Walker w{d, size, true, false, out};
     std::size_t at = 0;
     if (size >= 132 && std::memcmp(d + 128, "DICM", 4) == 0) {
@@ -492,7 +459,7 @@ DicomStructure checkDicomStructure(const std::string& file) {
             return out;
         }
         DicomStructure inner;
-        Walker iw{inflated.data(), inflated.size(), true, false, inner};
+        Walker iw{inflated.data(), inflated.size(), true, false, inner, false};
         std::size_t innerAt = 0;
         if (!iw.elements(innerAt, inflated.size(), 0, false)) {
             out.problem = "deflated data set: " + inner.problem;

@@ -19,6 +19,8 @@ struct DicomStructure {
     bool encapsulated = false;     // compressed fragments
     std::uint64_t pixelOffset = 0; // first byte of the Pixel Data value
     std::uint64_t pixelLength = 0; // its length (defined lengths only)
+    std::uint64_t dataSetEnd =
+        0; // the file's size, or where zero padding after the data set starts
     // What was untidy but read as DCMTK or GDCM read it: zero padding after the
     // data set, a wrong meta group length, a data set in implicit VR under a meta
     // header that says explicit. In words, with the byte offset or count.

@@ -1,6 +1,7 @@
 // GDCM's codecs on frames whose layout the scan has validated: everything but
 // JPEG-LS (JpegLsDecoder.cpp). Lucent runs them only inside lucent-frame-decoder
 // (DecoderProcess.cpp).
+#include "core/dicom/DataSetStream_p.h"
 #include "core/dicom/FrameDecoder.h"
 
 #include <algorithm>
@@ -203,8 +204,13 @@ gdcm::Image imageToDecode(const std::string& file, const gdcm::File& parsed,
 
 DecodedFrames decodeFramesWithGdcm(const std::string& file, const PixelLayout& expected,
                                    int frames) {
+    const DicomStructure structure = checkDicomStructure(file);
+    if (!structure.ok) {
+        throw LoadError(file + ": corrupt DICOM file: " + structure.problem);
+    }
+    DataSetStream stream(file, structure);
     gdcm::Reader reader;
-    reader.SetFileName(file.c_str());
+    reader.SetStream(stream);
     if (!reader.Read()) {
         throw LoadError(file +
                         ": GDCM cannot read the image (corrupt file or unsupported encoding)");

@@ -185,6 +185,15 @@ private slots:
                  qPrintable(what));
 #endif
     }
+
+    // The walk takes zero bytes after the last element as padding; GDCM's reader
+    // asserted on 7 of them where no Pixel Data ended its read first. GDCM now
+    // reads the file only up to the padding (DataSetStream).
+    void zeroPaddingNeverReachesGdcm() {
+        const QString reason =
+            skipReason(regressionInput("seven-zero-bytes-without-pixel-data.dcm"));
+        QVERIFY2(reason == "no pixel data (7FE0,0010 missing)", qPrintable(reason));
+    }
 };
 
 QTEST_APPLESS_MAIN(TestDicomFuzzRegressions)

@@ -16,6 +16,8 @@ import sys
 PHILIPS = "dcm_qa_ct/Philips_S21570/S2010/I10"  # explicit LE, sequences, private tags
 GE = "dcmqi_ct3slice/01.dcm"  # implicit LE, group lengths, private groups
 MR = "nema_wg04/MR1/MR1_UNC.dcm"  # explicit LE MR
+RLE = "nema_wg04/CT1/CT1_RLE.dcm"  # RLE Lossless, decoded by GDCM in lucent-frame-decoder
+RLE_PIXELS = "nema_wg04/CT1/CT1_UNC.dcm"  # the same pixels, uncompressed
 
 
 def run(*args):
@@ -119,11 +121,14 @@ def private_sequence_as_un(philips, out, dst):
 
 def cases(data, out):
     philips, ge, mr = data / PHILIPS, data / GE, data / MR
+    rle, rle_pixels = data / RLE, data / RLE_PIXELS
     made = []
 
-    def case(name, source, what, divergence=None, dcmdump_options=None):
+    def case(name, source, what, divergence=None, dcmdump_options=None, pixels_of=None):
         entry = {"name": name, "file": f"{name}.dcm", "source": str(source.relative_to(data)),
                  "what": what}
+        if pixels_of:  # compressed: DCMTK's reference pixels are those of this file
+            entry["pixels_of"] = str(pixels_of.relative_to(data))
         if divergence:
             entry["divergence"] = divergence
         if dcmdump_options:
@@ -142,6 +147,13 @@ def cases(data, out):
              "zero bytes after the data set are ignored, any number of them (GDCM reads it too); "
              "dcmdump reads zeros as 8-byte elements (0000,0000) and ends early on the last 3")
     f.write_bytes(mr.read_bytes() + bytes(3))
+    f = case("trailing-zeros-after-rle", rle, "4 KiB of zero bytes after RLE pixel data",
+             pixels_of=rle_pixels)
+    f.write_bytes(rle.read_bytes() + bytes(4096))
+    f = case("trailing-7-zeros-after-rle", rle, "7 zero bytes after RLE pixel data (GDCM's "
+             "full read aborts on these)", "as trailing-zeros-odd-count: dcmdump ends early on "
+             "the last 7 bytes", pixels_of=rle_pixels)
+    f.write_bytes(rle.read_bytes() + bytes(7))
     f = case("trailing-zeros-then-data", mr, "zero bytes, then bytes that are no element")
     f.write_bytes(mr.read_bytes() + bytes(4096) + b"LUCENT")
     f = case("trailing-garbage", mr, "bytes that are no element after the last one")
@@ -227,7 +239,7 @@ def main():
     data = pathlib.Path(sys.argv[2])
     out.mkdir(parents=True, exist_ok=True)
     made = []
-    if all((data / p).is_file() for p in (PHILIPS, GE, MR)):
+    if all((data / p).is_file() for p in (PHILIPS, GE, MR, RLE, RLE_PIXELS)):
         made = cases(data, out)
     (out / "cases.json").write_text(json.dumps(made, indent=1) + "\n")
 

@@ -1,0 +1,37 @@
+#pragma once
+// The bytes of a DICOM file up to the end of its data set, as the std::istream
+// that GDCM reads: zero padding after the data set, which the structural walk
+// accepts as DCMTK does, never reaches GDCM, whose reader aborts on some
+// lengths of it (7 zero bytes after Pixel Data; fuzz_dicom). Private to core/dicom.
+
+#include <istream>
+#include <string>
+
+#include "core/dicom/DicomStructure.h"
+#include "core/dicom/MappedFile_p.h"
+
+namespace lucent {
+
+class DataSetStream : public std::istream {
+public:
+    // `structure` is checkDicomStructure(file)'s, which must be ok.
+    DataSetStream(const std::string& file, const DicomStructure& structure);
+    bool opened() const { return file_.data() != nullptr; }
+
+private:
+    // A get area over the mapped bytes, with seeking (GDCM seeks back and forth).
+    class Bytes : public std::streambuf {
+    public:
+        void view(const unsigned char* data, std::size_t size);
+
+    protected:
+        pos_type seekoff(off_type off, std::ios_base::seekdir dir,
+                         std::ios_base::openmode which) override;
+        pos_type seekpos(pos_type pos, std::ios_base::openmode which) override;
+    };
+
+    MappedFile file_;
+    Bytes bytes_;
+};
+
+} // namespace lucent
