@@ -1,4 +1,6 @@
 // The incremental multipart/related parser: the same parts whatever the chunking.
+#include <QDir>
+#include <QFile>
 #include <QTest>
 
 #include <string>
@@ -65,6 +67,39 @@ private slots:
             const auto got = parse("multipart/related; boundary=b1", body, chunk);
             QCOMPARE(got.size(), std::size_t(1));
             QCOMPARE(got[0], QByteArray("part"));
+        }
+    }
+
+    // What fuzz_multipart found (fuzz-regressions/README.md): the same outcome
+    // whole and in chunks of 1 to 16 bytes.
+    void fuzzRegressionsGiveTheSamePartsInAnyChunks() {
+        const QDir dir(QStringLiteral(LUCENT_SOURCE_DIR "/tests/core/pacs/fuzz-regressions"));
+        const QStringList inputs = dir.entryList({"*.txt"}, QDir::Files);
+        QVERIFY(!inputs.isEmpty());
+        for (const QString& name : inputs) {
+            QFile file(dir.filePath(name));
+            QVERIFY(file.open(QIODevice::ReadOnly));
+            const QByteArray input = file.readAll();
+            const qsizetype lineEnd = input.indexOf('\n');
+            QVERIFY(lineEnd >= 0 && lineEnd + 1 < input.size());
+            const QByteArray type = input.left(lineEnd);
+            const QByteArray body = input.mid(lineEnd + 2); // after the chunking seed
+            const auto outcome = [&](qsizetype chunk) -> QString {
+                try {
+                    QStringList parts;
+                    for (const QByteArray& p : parse(type, body, chunk)) {
+                        parts << QString::fromLatin1(p.toHex());
+                    }
+                    return parts.join(',');
+                } catch (const std::exception& e) {
+                    return QStringLiteral("error: ") + e.what();
+                }
+            };
+            const QString whole = outcome(body.size() + 1);
+            for (qsizetype chunk = 1; chunk <= 16; ++chunk) {
+                QVERIFY2(outcome(chunk) == whole,
+                         qPrintable(name + " in chunks of " + QString::number(chunk)));
+            }
         }
     }
 
