@@ -52,8 +52,8 @@ if [ "$report_only" -eq 0 ] && [ "$seconds" -eq 0 ] && [ "$runs" -lt 0 ]; then
   usage
 fi
 
-all=(fuzz_dicom fuzz_protocol fuzz_http_head fuzz_upload_parts fuzz_tf_json fuzz_metaimage
-     fuzz_nifti fuzz_inv3 fuzz_recording)
+all=(fuzz_dicom fuzz_protocol fuzz_http_head fuzz_upload_parts fuzz_multipart fuzz_tf_json
+     fuzz_metaimage fuzz_nifti fuzz_inv3 fuzz_plist fuzz_recording)
 [ ${#names[@]} -eq 0 ] && names=("${all[@]}")
 
 # Per harness: largest input (bytes), committed seeds, dictionary, extra seeds.
@@ -61,8 +61,9 @@ max_len() {
   case "$1" in
     fuzz_dicom) echo 16384 ;;          # real headers (most); their pixels are cut
     fuzz_upload_parts) echo 16384 ;;
+    fuzz_multipart) echo 16384 ;;      # a few parts, chunked many ways
     fuzz_http_head) echo 17000 ;;      # the front door's head limit is 16 KiB
-    fuzz_metaimage|fuzz_nifti|fuzz_inv3|fuzz_recording) echo 8192 ;;
+    fuzz_metaimage|fuzz_nifti|fuzz_inv3|fuzz_plist|fuzz_recording) echo 8192 ;;
     *) echo 4096 ;;
   esac
 }

@@ -10,8 +10,8 @@ packages=(
   qt6-base-dev libqt6opengl6-dev libgl-dev libqt6sql6-sqlite
   libgdcm-dev libgdcm-tools libdcmtk-dev dcmtk libglm-dev libegl-dev libepoxy-dev
   zlib1g-dev nlohmann-json3-dev libpng-dev
-  # .inv3 projects (tar.gz) read through libarchive
-  libarchive-dev
+  # .inv3 projects: the tar.gz read through libarchive, main.plist through libplist
+  libarchive-dev libplist-dev
   # export: ZIP archives of DICOM files
   libzip-dev
   # the render server: WebSockets; JPEG frames through Qt's jpeg plugin (libjpeg-turbo)

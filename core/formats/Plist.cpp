@@ -1,208 +1,130 @@
 #include "core/formats/Plist.h"
 
-#include <algorithm>
-#include <cctype>
+#include <charconv>
+#include <cstdint>
 #include <cstdlib>
+#include <limits>
+#include <memory>
 #include <stdexcept>
+
+#include <plist/plist.h>
 
 namespace lucent::formats {
 
 namespace {
 
-class Parser {
-public:
-    explicit Parser(std::string_view xml) : s_(xml) {}
+struct PlistFree {
+    void operator()(void* node) const { plist_free(static_cast<plist_t>(node)); }
+};
+using PlistPtr = std::unique_ptr<void, PlistFree>;
 
-    PlistValue document() {
-        skipMisc();
-        if (peekTag() == "?xml") {
-            skipPast("?>");
-            skipMisc();
-        }
-        if (s_.substr(pos_).starts_with("<!DOCTYPE")) {
-            skipPast(">");
-            skipMisc();
-        }
-        const auto [name, selfClosing] = openTag();
-        if (name != "plist" || selfClosing) {
-            fail("expected <plist>");
-        }
-        PlistValue root = value(0);
-        closeTag("plist");
-        skipMisc();
-        if (pos_ != s_.size()) {
-            fail("unexpected content after </plist>");
-        }
-        return root;
-    }
+// Memory libplist hands over (dict keys, iterators).
+struct CFree {
+    void operator()(void* p) const { std::free(p); }
+};
 
-private:
-    [[noreturn]] void fail(const std::string& what) const {
-        const auto line = 1 + std::count(s_.begin(), s_.begin() + static_cast<long>(pos_), '\n');
-        throw std::runtime_error("plist line " + std::to_string(line) + ": " + what);
-    }
+[[noreturn]] void fail(const std::string& what) {
+    throw std::runtime_error(what);
+}
 
-    void skipSpace() {
-        while (pos_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[pos_]))) {
-            ++pos_;
-        }
-    }
-    void skipPast(std::string_view end) {
-        const std::size_t at = s_.find(end, pos_);
-        if (at == std::string_view::npos) {
-            fail("unterminated markup (missing '" + std::string(end) + "')");
-        }
-        pos_ = at + end.size();
-    }
-    void skipMisc() { // whitespace and comments
-        for (;;) {
-            skipSpace();
-            if (!s_.substr(pos_).starts_with("<!--")) {
-                return;
-            }
-            skipPast("-->");
-        }
-    }
-    std::string_view peekTag() const {
-        if (pos_ >= s_.size() || s_[pos_] != '<') {
-            return {};
-        }
-        std::size_t end = pos_ + 1;
-        while (end < s_.size() && !std::isspace(static_cast<unsigned char>(s_[end])) &&
-               s_[end] != '>' && s_[end] != '/') {
-            ++end;
-        }
-        return s_.substr(pos_ + 1, end - pos_ - 1);
-    }
-    // Reads <name attr...> or <name/>; returns the name and whether it closed itself.
-    std::pair<std::string, bool> openTag() {
-        skipMisc();
-        const std::string_view name = peekTag();
-        if (name.empty() || name.front() == '/') {
-            fail("expected an element");
-        }
-        const std::size_t close = s_.find('>', pos_);
-        if (close == std::string_view::npos) {
-            fail("unterminated tag <" + std::string(name) + ">");
-        }
-        const bool selfClosing = s_[close - 1] == '/';
-        pos_ = close + 1;
-        return {std::string(name), selfClosing};
-    }
-    void closeTag(std::string_view name) {
-        skipMisc();
-        const std::string expected = "</" + std::string(name) + ">";
-        if (!s_.substr(pos_).starts_with(expected)) {
-            fail("expected " + expected);
-        }
-        pos_ += expected.size();
-    }
-    // Character data up to the next '<', with entities decoded.
-    std::string textUntilTag() {
-        const std::size_t end = s_.find('<', pos_);
-        if (end == std::string_view::npos) {
-            fail("unterminated text");
-        }
-        std::string out;
-        for (std::size_t i = pos_; i < end; ++i) {
-            if (s_[i] != '&') {
-                out += s_[i];
-                continue;
-            }
-            const std::size_t semi = s_.find(';', i);
-            if (semi == std::string_view::npos || semi > end) {
-                pos_ = i;
-                fail("bad entity");
-            }
-            const std::string_view e = s_.substr(i + 1, semi - i - 1);
-            if (e == "lt") {
-                out += '<';
-            } else if (e == "gt") {
-                out += '>';
-            } else if (e == "amp") {
-                out += '&';
-            } else if (e == "quot") {
-                out += '"';
-            } else if (e == "apos") {
-                out += '\'';
-            } else if (e.starts_with('#')) {
-                const bool hex = e.size() > 1 && (e[1] == 'x' || e[1] == 'X');
-                const std::string digits(e.substr(hex ? 2 : 1));
-                const unsigned long c = std::strtoul(digits.c_str(), nullptr, hex ? 16 : 10);
-                out += c < 0x80 ? static_cast<char>(c) : '?'; // non-ASCII: not needed here
-            } else {
-                pos_ = i;
-                fail("unknown entity &" + std::string(e) + ";");
-            }
-            i = semi;
-        }
-        pos_ = end;
-        return out;
-    }
+std::string realText(double v) {
+    char buffer[64];
+    const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, v);
+    return ec == std::errc() ? std::string(buffer, end) : std::string("nan");
+}
 
-    PlistValue value(int depth) {
-        if (depth > 64) {
-            fail("nesting too deep");
-        }
-        const auto [name, selfClosing] = openTag();
-        PlistValue v;
-        using K = PlistValue::Kind;
-        if (name == "dict" || name == "array") {
-            v.kind = name == "dict" ? K::Dict : K::Array;
-            if (selfClosing) {
-                return v;
-            }
-            for (;;) {
-                skipMisc();
-                if (s_.substr(pos_).starts_with("</")) {
-                    break;
-                }
-                if (v.kind == K::Dict) {
-                    const auto [keyTag, keyEmpty] = openTag();
-                    if (keyTag != "key") {
-                        fail("expected <key> in <dict>, found <" + keyTag + ">");
-                    }
-                    v.keys.push_back(keyEmpty ? std::string() : textUntilTag());
-                    if (!keyEmpty) {
-                        closeTag("key");
-                    }
-                }
-                v.items.push_back(value(depth + 1));
-            }
-            closeTag(name);
+PlistValue convert(plist_t node, int depth);
+
+PlistValue array(plist_t node, int depth) {
+    PlistValue v;
+    v.kind = PlistValue::Kind::Array;
+    const std::uint32_t n = plist_array_get_size(node);
+    v.items.reserve(n);
+    for (std::uint32_t i = 0; i < n; ++i) {
+        v.items.push_back(convert(plist_array_get_item(node, i), depth + 1));
+    }
+    return v;
+}
+
+PlistValue dict(plist_t node, int depth) {
+    PlistValue v;
+    v.kind = PlistValue::Kind::Dict;
+    plist_dict_iter raw = nullptr;
+    plist_dict_new_iter(node, &raw);
+    const std::unique_ptr<void, CFree> iter(raw);
+    for (;;) {
+        char* rawKey = nullptr;
+        plist_t item = nullptr;
+        plist_dict_next_item(node, raw, &rawKey, &item);
+        const std::unique_ptr<char, CFree> key(rawKey);
+        if (!item) {
             return v;
         }
-        if (name == "true" || name == "false") {
-            if (!selfClosing) {
-                closeTag(name);
-            }
-            v.kind = K::Bool;
-            v.text = name;
-            return v;
-        }
-        if (name == "string") {
-            v.kind = K::String;
-        } else if (name == "integer") {
-            v.kind = K::Integer;
-        } else if (name == "real") {
-            v.kind = K::Real;
-        } else if (name == "date") {
-            v.kind = K::Date;
-        } else if (name == "data") {
-            v.kind = K::Data;
-        } else {
-            fail("unknown element <" + name + ">");
-        }
-        if (!selfClosing) {
-            v.text = textUntilTag();
-            closeTag(name);
-        }
+        v.keys.emplace_back(key ? key.get() : "");
+        v.items.push_back(convert(item, depth + 1));
+    }
+}
+
+PlistValue convert(plist_t node, int depth) {
+    if (depth > maxPlistDepth) {
+        fail("nesting deeper than " + std::to_string(maxPlistDepth) + " levels");
+    }
+    using K = PlistValue::Kind;
+    PlistValue v;
+    switch (plist_get_node_type(node)) {
+    case PLIST_DICT:
+        return dict(node, depth);
+    case PLIST_ARRAY:
+        return array(node, depth);
+    case PLIST_STRING: {
+        std::uint64_t length = 0;
+        const char* text = plist_get_string_ptr(node, &length);
+        v.kind = K::String;
+        v.text = text ? std::string(text, static_cast<std::size_t>(length)) : std::string();
         return v;
     }
-
-    std::string_view s_;
-    std::size_t pos_ = 0;
-};
+    case PLIST_UINT: { // libplist 2.2 keeps a negative integer as its two's complement
+        std::uint64_t bits = 0;
+        plist_get_uint_val(node, &bits);
+        v.kind = K::Integer;
+        v.text = bits > std::uint64_t{std::numeric_limits<std::int64_t>::max()}
+                     ? std::to_string(static_cast<std::int64_t>(bits))
+                     : std::to_string(bits);
+        return v;
+    }
+    case PLIST_REAL: {
+        double value = 0.0;
+        plist_get_real_val(node, &value);
+        v.kind = K::Real;
+        v.text = realText(value);
+        return v;
+    }
+    case PLIST_BOOLEAN: {
+        std::uint8_t value = 0;
+        plist_get_bool_val(node, &value);
+        v.kind = K::Bool;
+        v.text = value ? "true" : "false";
+        return v;
+    }
+    case PLIST_DATE: {
+        std::int32_t seconds = 0;
+        std::int32_t micro = 0;
+        plist_get_date_val(node, &seconds, &micro);
+        v.kind = K::Date;
+        v.text = realText(seconds + micro * 1e-6);
+        return v;
+    }
+    case PLIST_DATA: {
+        std::uint64_t length = 0;
+        const char* bytes = plist_get_data_ptr(node, &length);
+        v.kind = K::Data;
+        v.text = bytes ? std::string(bytes, static_cast<std::size_t>(length)) : std::string();
+        return v;
+    }
+    default:
+        fail("an element that is not a plist value (uid or key)");
+    }
+}
 
 } // namespace
 
@@ -219,7 +141,22 @@ const PlistValue* PlistValue::find(std::string_view key) const {
 }
 
 PlistValue parsePlist(std::string_view xml) {
-    return Parser(xml).document();
+    if (xml.size() > std::numeric_limits<std::uint32_t>::max()) {
+        fail("too large (" + std::to_string(xml.size()) + " bytes)");
+    }
+    if (plist_is_binary(xml.data(), static_cast<std::uint32_t>(xml.size()))) {
+        fail("a binary plist, not an XML one");
+    }
+    // libplist reads up to the given length; the copy also ends in a NUL.
+    const std::string text(xml);
+    plist_t raw = nullptr;
+    plist_from_xml(text.c_str(), static_cast<std::uint32_t>(text.size()), &raw);
+    const PlistPtr root(raw);
+    if (!root) {
+        fail("not a well-formed XML property list (an unknown element, a tag left open, "
+             "bad nesting or no <plist> value)");
+    }
+    return convert(root.get(), 0);
 }
 
 } // namespace lucent::formats

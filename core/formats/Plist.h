@@ -1,7 +1,7 @@
 #pragma once
 
-// Internal to core/formats: a small, strict reader of XML property lists
-// (Apple's plist 1.0), enough for InVesalius project files.
+// Internal to core/formats: XML property lists (Apple's plist 1.0), enough for
+// InVesalius project files. libplist parses; this turns its nodes into values.
 
 #include <string>
 #include <string_view>
@@ -12,7 +12,9 @@ namespace lucent::formats {
 struct PlistValue {
     enum class Kind { String, Integer, Real, Bool, Date, Data, Array, Dict };
     Kind kind = Kind::String;
-    std::string text; // string, date or data text; the literal of integer, real and bool
+    // A string's text; the decimal literal of an integer or real; "true" or
+    // "false"; a date's seconds since 2001-01-01 UTC; the decoded bytes of data.
+    std::string text;
     std::vector<PlistValue> items; // array elements, or dict values
     std::vector<std::string> keys; // dict keys, parallel to items
 
@@ -21,8 +23,11 @@ struct PlistValue {
     bool isNumber() const { return kind == Kind::Integer || kind == Kind::Real; }
 };
 
-// Parses a whole plist document. Throws std::runtime_error saying what is wrong
-// and at which line.
+// Nesting deeper than this is refused.
+inline constexpr int maxPlistDepth = 64;
+
+// Parses a whole XML plist document. Throws std::runtime_error saying what is
+// wrong (not well-formed, nesting too deep, a binary plist, ...).
 PlistValue parsePlist(std::string_view xml);
 
 } // namespace lucent::formats

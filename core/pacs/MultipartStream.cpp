@@ -20,10 +20,17 @@ MultipartStream::MultipartStream(const QByteArray& contentType, std::string wher
     if (boundary.startsWith('"') && boundary.size() >= 2) {
         boundary = boundary.mid(1, boundary.size() - 2);
     }
+    if (boundary.isEmpty()) { // RFC 2046: 1 to 70 characters
+        throw PacsError(where_ + ": the answer's multipart boundary is empty (" +
+                        contentType.toStdString() + ")");
+    }
     delimiter_ = "\r\n--" + boundary;
 }
 
 void MultipartStream::feed(const char* data, qsizetype size) {
+    if (state_ == State::Done) {
+        return; // the epilogue
+    }
     buffer_.append(data, size);
     while (state_ != State::Done && step()) {
     }
@@ -35,12 +42,16 @@ bool MultipartStream::step() {
     const qsizetype available = buffer_.size() - pos_;
     switch (state_) {
     case State::Preamble: {
-        // The first delimiter may open the body, without the CRLF before it.
+        // The first delimiter may open the body, without the CRLF before it: only
+        // at the body's very start (pos_ moves on once that is decided).
         const QByteArrayView first = QByteArrayView(delimiter_).sliced(2);
-        if (available >= first.size() && QByteArrayView(buffer_).sliced(pos_).startsWith(first)) {
-            pos_ += first.size();
-            state_ = State::Delimiter;
-            return true;
+        if (!openingChecked_ && available >= first.size()) {
+            openingChecked_ = true;
+            if (QByteArrayView(buffer_).sliced(pos_).startsWith(first)) {
+                pos_ += first.size();
+                state_ = State::Delimiter;
+                return true;
+            }
         }
         const qsizetype at = buffer_.indexOf(delimiter_, pos_);
         if (at < 0) {
@@ -60,7 +71,7 @@ bool MultipartStream::step() {
             pos_ = buffer_.size();
             return false;
         }
-        const qsizetype eol = buffer_.indexOf("\r\n", pos_);
+        const qsizetype eol = headEnd("\r\n", "delimiter line");
         if (eol < 0) {
             return false;
         }
@@ -72,7 +83,7 @@ bool MultipartStream::step() {
         qsizetype bodyStart = -1;
         if (available >= 2 && buffer_[pos_] == '\r' && buffer_[pos_ + 1] == '\n') {
             bodyStart = pos_ + 2; // a part without headers
-        } else if (const qsizetype end = buffer_.indexOf("\r\n\r\n", pos_); end >= 0) {
+        } else if (const qsizetype end = headEnd("\r\n\r\n", "headers"); end >= 0) {
             bodyStart = end + 4;
         }
         if (bodyStart < 0) {
@@ -107,6 +118,19 @@ bool MultipartStream::step() {
         return false;
     }
     return false;
+}
+
+qsizetype MultipartStream::headEnd(const char* terminator, const char* what) const {
+    const QByteArrayView t(terminator);
+    const qsizetype at = buffer_.indexOf(t, pos_);
+    if (at >= 0 && at - pos_ <= maxHeaderBytes) {
+        return at;
+    }
+    if (buffer_.size() - pos_ >= maxHeaderBytes + t.size()) {
+        throw PacsError(where_ + ": the " + what + " of part " + std::to_string(parts_ + 1) +
+                        " run past " + std::to_string(maxHeaderBytes / 1024) + " KiB");
+    }
+    return -1;
 }
 
 void MultipartStream::finish() const {

@@ -7,6 +7,7 @@ DICOM variants are made from the synthetic image with DCMTK's and GDCM's command
 line tools (packaging/install-deps.sh installs them). Deterministic: rerunning it
 rewrites the same bytes. Real data (../shared/data) is never copied here;
 packaging/fuzz.sh adds it as extra seeds at run time."""
+import gzip
 import io
 import json
 import pathlib
@@ -297,6 +298,23 @@ def upload_seeds(out):
         (out / name).write_bytes(data)
 
 
+def multipart_seeds(out):
+    """WADO-RS answers for fuzz_multipart: Content-Type line, one byte seeding the chunking, body."""
+    part = b"DICM" + bytes(range(16)) + b"\r\n--not-the-boundary\r\n"
+    two = (b"preamble\r\n--b1\r\nContent-Type: application/dicom\r\n\r\n" + part
+           + b"\r\n--b1\r\nContent-Type: application/dicom\r\nContent-Length: 24\r\n\r\n" + part
+           + b"\r\n--b1--\r\nepilogue")
+    seeds = {
+        "two_parts.txt": b'multipart/related; type="application/dicom"; boundary=b1\n\x07' + two,
+        "quoted_no_headers.txt": (b'Multipart/Related; boundary="a b"; type=application/dicom\n\x2a'
+                                  b"--a b\r\n\r\n" + part + b"\r\n--a b  \r\n\r\nx\r\n--a b--"),
+        "cut_short.txt": b"multipart/related; boundary=b1\n\x01--b1\r\n\r\nhalf a part\r\n--b",
+        "empty_part.txt": b"multipart/related; boundary=xyz\n\xff--xyz\r\n\r\n\r\n--xyz--\r\n",
+    }
+    for name, data in seeds.items():
+        (out / name).write_bytes(data)
+
+
 def metaimage_seeds(out):
     voxels = struct.pack("<8h", *range(-4, 4))
     base = ("ObjectType = Image\nNDims = 3\nDimSize = 2 2 2\nElementSpacing = 0.5 0.5 1\n"
@@ -340,8 +358,7 @@ def nifti_seeds(out):
     (out / "uint16_big_endian.nii").write_bytes(bytes(big) + struct.pack(">8H", *range(8)))
 
 
-def inv3_seed(out):
-    plist = """<?xml version="1.0" encoding="UTF-8"?>
+INV3_PLIST = """<?xml version="1.0" encoding="UTF-8"?>
 <!DOCTYPE plist PUBLIC "-//Apple//DTD PLIST 1.0//EN" "http://www.apple.com/DTDs/PropertyList-1.0.dtd">
 <plist version="1.0">
 <dict>
@@ -363,6 +380,32 @@ def inv3_seed(out):
 </dict>
 </plist>
 """
+
+
+def plist_seeds(out):
+    """main.plist files for fuzz_plist: the project's, and one with every value type."""
+    (out / "main.plist").write_bytes(INV3_PLIST.encode())
+    every = """<?xml version="1.0" encoding="UTF-8"?>
+<plist version="1.0">
+<dict>
+\t<key>string</key><string>a &amp; b &lt;c&gt; &#x41;&#66;</string>
+\t<key>integer</key><integer>-42</integer>
+\t<key>real</key><real>-1.5e3</real>
+\t<key>true</key><true/>
+\t<key>false</key><false/>
+\t<key>date</key><date>2012-09-14T15:12:08Z</date>
+\t<key>data</key><data>aGVsbG8gd29ybGQ=</data>
+\t<key>empty</key><dict/>
+\t<key>nested</key><array><array><dict><key>k</key><string/></dict></array></array>
+\t<!-- a comment -->
+</dict>
+</plist>
+"""
+    (out / "every_type.plist").write_bytes(every.encode())
+
+
+def inv3_seed(out):
+    plist = INV3_PLIST
     members = {"seed/main.plist": plist.encode(), "seed/matrix.dat": struct.pack("<8h", *range(8))}
     buffer = io.BytesIO()
     with tarfile.open(fileobj=buffer, mode="w", format=tarfile.USTAR_FORMAT) as tar:
@@ -371,14 +414,17 @@ def inv3_seed(out):
             info.size, info.mtime, info.mode = len(data), 0, 0o644
             info.uname = info.gname = ""
             tar.addfile(info, io.BytesIO(data))
-    # Plain tar: the fuzzer mutates what the reader sees (zlib reads it as it is).
+    # Plain tar: the fuzzer mutates what the reader sees (libarchive reads it as it is);
+    # gzipped (mtime 0: the same bytes every time) for libarchive's gzip filter.
     (out / "project.tar.inv3").write_bytes(buffer.getvalue())
+    (out / "project.tar.gz.inv3").write_bytes(gzip.compress(buffer.getvalue(), mtime=0))
 
 
 def main():
     makers = {"dicom": dicom_seeds, "protocol": protocol_seeds, "http_head": http_seeds,
               "upload_parts": upload_seeds, "metaimage": metaimage_seeds, "nifti": nifti_seeds,
-              "inv3": inv3_seed, "recording": recording_seeds}
+              "inv3": inv3_seed, "recording": recording_seeds, "multipart": multipart_seeds,
+              "plist": plist_seeds}
     # make_seeds.py [--out DIR] [NAME ...]: the DICOM seeds are not committed (the
     # repository holds no DICOM files); fuzz.sh and the regression tests make them.
     args = sys.argv[1:]

@@ -90,19 +90,31 @@ struct NiftiHeader {
     }
 };
 
-// A .tar.gz with ustar headers, as Python's tarfile writes them.
-inline void writeTarGz(const std::filesystem::path& path,
-                       const std::vector<std::pair<std::string, std::string>>& entries) {
+// One member of a tar archive: type '0' a file, '5' a directory, '2' a symlink
+// (data: its target), 'L' a GNU long name for the next member, 'x' a pax header.
+struct TarMember {
+    std::string name;
+    std::string data;
+    char type = '0';
+};
+
+// The bytes of a tar with ustar headers, as Python's tarfile writes them.
+inline std::string tarBytes(const std::vector<TarMember>& members) {
     std::string tar;
-    for (const auto& [name, data] : entries) {
+    for (const auto& [name, data, type] : members) {
+        const bool link = type == '2';
+        const std::size_t size = link ? 0 : data.size();
         std::array<char, 512> h{};
         std::memcpy(h.data(), name.data(), std::min<std::size_t>(name.size(), 99));
-        std::snprintf(h.data() + 100, 8, "%07o", 0644);
+        std::snprintf(h.data() + 100, 8, "%07o", type == '5' ? 0755 : 0644);
         std::snprintf(h.data() + 108, 8, "%07o", 0);
         std::snprintf(h.data() + 116, 8, "%07o", 0);
-        std::snprintf(h.data() + 124, 12, "%011lo", static_cast<unsigned long>(data.size()));
+        std::snprintf(h.data() + 124, 12, "%011lo", static_cast<unsigned long>(size));
         std::snprintf(h.data() + 136, 12, "%011o", 0);
-        h[156] = '0';
+        h[156] = type;
+        if (link) {
+            std::memcpy(h.data() + 157, data.data(), std::min<std::size_t>(data.size(), 99));
+        }
         std::memcpy(h.data() + 257, "ustar", 6);
         std::memcpy(h.data() + 263, "00", 2);
         std::memset(h.data() + 148, ' ', 8);
@@ -112,11 +124,28 @@ inline void writeTarGz(const std::filesystem::path& path,
         }
         std::snprintf(h.data() + 148, 8, "%06o", sum);
         tar.append(h.data(), h.size());
-        tar += data;
-        tar.append((512 - data.size() % 512) % 512, '\0');
+        if (!link) {
+            tar += data;
+            tar.append((512 - data.size() % 512) % 512, '\0');
+        }
     }
     tar.append(1024, '\0');
+    return tar;
+}
+
+inline void writeTarMembers(const std::filesystem::path& path,
+                            const std::vector<TarMember>& members) {
+    const std::string tar = tarBytes(members);
     writeGz(path, tar.data(), tar.size());
+}
+
+inline void writeTarGz(const std::filesystem::path& path,
+                       const std::vector<std::pair<std::string, std::string>>& entries) {
+    std::vector<TarMember> members;
+    for (const auto& [name, data] : entries) {
+        members.push_back({name, data, '0'});
+    }
+    writeTarMembers(path, members);
 }
 
 inline std::filesystem::path dirOf(const QTemporaryDir& dir) {
