@@ -343,6 +343,27 @@ bool looksExplicit(const unsigned char* d, std::size_t at) {
     return longVr(vr) || shortVr(vr);
 }
 
+// A meta group length (0002,0000) past the group's last element: GDCM reads
+// everything up to it as meta elements, and asserts on a sequence, an undefined
+// length or bytes that are no explicit VR element there (fuzz_dicom). What lies
+// there must read as the meta group's elements do.
+bool metaOvershootReadable(Walker& w, std::size_t at, std::uint64_t metaEnd) {
+    for (std::size_t p = at; p < metaEnd;) {
+        Walker::Header h{};
+        if (p + 8 > w.size || !w.header(p, h, true) || h.vr == "SQ" || h.length == kUndefined ||
+            h.length > w.size - h.valueAt) {
+            w.out.problem = "file meta information group length (0002,0000) says the group ends "
+                            "at byte " +
+                            std::to_string(metaEnd) + ", past its last element at byte " +
+                            std::to_string(at) + ", over bytes that are no meta element (at byte " +
+                            std::to_string(p) + ")";
+            return false;
+        }
+        p = h.valueAt + h.length;
+    }
+    return true;
+}
+
 // File meta information: group 0002 after the preamble, always explicit little
 // endian. Its group length (0002,0000) may be wrong or absent: DCMTK and GDCM
 // read the group to its last element, and so does this.
@@ -373,14 +394,18 @@ bool readFileMeta(Walker& w, std::size_t& at) {
         }
         at = h.valueAt + h.length;
     }
+    if (metaEnd > at && !metaOvershootReadable(w, at, metaEnd)) {
+        return false;
+    }
     if (metaEnd != 0 && metaEnd != at) {
         out.warnings.push_back("file meta information group length (0002,0000) says the group "
                                "ends at byte " +
                                std::to_string(metaEnd) + "; its last element ends at byte " +
                                std::to_string(at) + " (read to its last element)");
     }
-    if (at >= size) {
-        out.problem = "no data set after the file meta information";
+    if (std::all_of(w.d + at, w.d + size, [](unsigned char c) { return c == 0; })) {
+        out.problem = "no data set after the file meta information (" + std::to_string(size - at) +
+                      " zero bytes from byte " + std::to_string(at) + ")";
         return false;
     }
     if (out.transferSyntax.empty()) {
@@ -397,6 +422,9 @@ bool checkDataSetEncoding(Walker& w, std::size_t at) {
     DicomStructure& out = w.out;
     if (at + 8 > w.size) {
         return true; // the walk reports the truncation
+    }
+    if (std::all_of(w.d + at, w.d + at + 8, [](unsigned char c) { return c == 0; })) {
+        return true; // no element: the walk reports it
     }
     const bool explicitVr = looksExplicit(w.d, at);
     const std::string element = "(" + Walker::hex(w.u16(at)) + "," + Walker::hex(w.u16(at + 2)) +

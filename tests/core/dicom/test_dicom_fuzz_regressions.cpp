@@ -194,6 +194,16 @@ private slots:
             skipReason(regressionInput("seven-zero-bytes-without-pixel-data.dcm"));
         QVERIFY2(reason == "no pixel data (7FE0,0010 missing)", qPrintable(reason));
     }
+
+    // A meta group length past the group's last element, over zero bytes: GDCM
+    // read them as meta elements and asserted. Refused by the walk.
+    void metaGroupLengthOverBytesThatAreNoElementIsRefused() {
+        REQUIRE_DATA("dcm_qa_ct/Philips_S21570/S1000/I10");
+        const QString reason = skipReason(regressionInput("meta-group-length-past-zeros.dcm"));
+        QVERIFY2(reason.contains("file meta information group length (0002,0000) says the group "
+                                 "ends at byte 350, past its last element at byte 314"),
+                 qPrintable(reason));
+    }
 };
 
 QTEST_APPLESS_MAIN(TestDicomFuzzRegressions)
