@@ -1,6 +1,8 @@
 #include "core/dicom/DataSetStream_p.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 
 namespace lucent {
 
@@ -32,11 +34,36 @@ DataSetStream::Bytes::pos_type DataSetStream::Bytes::seekpos(pos_type pos,
     return seekoff(off_type(pos), std::ios_base::beg, which);
 }
 
+std::vector<unsigned char> DataSetStream::withImplicitMeta(const unsigned char* data,
+                                                           std::size_t end,
+                                                           const DicomStructure& structure) {
+    static constexpr unsigned char kImplicit[] = "1.2.840.10008.1.2"; // 17 + its NUL pad
+    const std::size_t at = structure.metaSyntaxAt;
+    const std::size_t oldLength = data[at + 6] | data[at + 7] << 8;
+    std::vector<unsigned char> out(data, data + at + 6);
+    out.push_back(sizeof kImplicit);
+    out.push_back(0);
+    out.insert(out.end(), kImplicit, kImplicit + sizeof kImplicit);
+    out.insert(out.end(), data + at + 8 + oldLength, data + end);
+    if (const std::size_t g = structure.metaGroupLengthAt; g != 0) {
+        std::uint32_t length = 0;
+        std::memcpy(&length, out.data() + g, 4); // little endian, as x86 and the meta
+        length = length - static_cast<std::uint32_t>(oldLength) + sizeof kImplicit;
+        std::memcpy(out.data() + g, &length, 4);
+    }
+    return out;
+}
+
 DataSetStream::DataSetStream(const std::string& file, const DicomStructure& structure)
     : std::istream(nullptr), file_(file) {
     const std::size_t end =
         std::min<std::size_t>(file_.size(), static_cast<std::size_t>(structure.dataSetEnd));
-    bytes_.view(file_.data(), file_.data() != nullptr ? end : 0);
+    if (file_.data() != nullptr && structure.metaSyntaxWrong) {
+        patched_ = withImplicitMeta(file_.data(), end, structure);
+        bytes_.view(patched_.data(), patched_.size());
+    } else {
+        bytes_.view(file_.data(), file_.data() != nullptr ? end : 0);
+    }
     rdbuf(&bytes_);
     if (file_.data() == nullptr) {
         setstate(std::ios_base::failbit);

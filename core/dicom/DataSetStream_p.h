@@ -2,10 +2,14 @@
 // The bytes of a DICOM file up to the end of its data set, as the std::istream
 // that GDCM reads: zero padding after the data set, which the structural walk
 // accepts as DCMTK does, never reaches GDCM, whose reader aborts on some
-// lengths of it (7 zero bytes after Pixel Data; fuzz_dicom). Private to core/dicom.
+// lengths of it (7 zero bytes after Pixel Data; fuzz_dicom). A data set in
+// implicit VR under a meta header that says explicit gets a meta header that
+// says implicit: GDCM's own guess over such files allocated gigabytes
+// (fuzz_dicom). Private to core/dicom.
 
 #include <istream>
 #include <string>
+#include <vector>
 
 #include "core/dicom/DicomStructure.h"
 #include "core/dicom/MappedFile_p.h"
@@ -17,6 +21,12 @@ public:
     // `structure` is checkDicomStructure(file)'s, which must be ok.
     DataSetStream(const std::string& file, const DicomStructure& structure);
     bool opened() const { return file_.data() != nullptr; }
+
+    // The bytes of a file whose meta header names Explicit VR Little Endian over
+    // an implicit VR data set, with (0002,0010) naming Implicit VR Little Endian
+    // and (0002,0000) counting the shorter value.
+    static std::vector<unsigned char> withImplicitMeta(const unsigned char* data, std::size_t end,
+                                                       const DicomStructure& structure);
 
 private:
     // A get area over the mapped bytes, with seeking (GDCM seeks back and forth).
@@ -31,6 +41,7 @@ private:
     };
 
     MappedFile file_;
+    std::vector<unsigned char> patched_; // the bytes with the meta header corrected
     Bytes bytes_;
 };
 

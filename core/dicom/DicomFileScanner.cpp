@@ -205,9 +205,7 @@ FileScan scanDicomFile(const std::string& file) {
         DataSetStream stream(file, structure);
         gdcm::Reader reader;
         reader.SetStream(stream);
-        // GDCM finds a data set's encoding against its meta header only in a whole read.
-        if (!(structure.metaSyntaxWrong ? reader.Read()
-                                        : reader.ReadUpToTag(kPixelData, {kPixelData}))) {
+        if (!reader.ReadUpToTag(kPixelData, {kPixelData})) {
             return skip("not a DICOM file (or its header is unreadable)");
         }
         const gdcm::File& gfile = reader.GetFile();

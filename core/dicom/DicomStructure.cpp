@@ -227,17 +227,12 @@ struct Walker {
             }
             if (h.sequence) {
                 // A sequence written as UN of undefined length (a private one, by a
-                // converter that did not know it) holds implicit VR little endian
-                // items (CP-246).
+                // converter that did not know it) holds implicit VR items (CP-246).
+                // GDCM reads them in the file's byte order, so the walk does too.
                 const bool saveExplicit = explicitVr;
-                const bool saveBig = bigEndian;
-                if (h.vr == "UN" && h.length == kUndefined) {
-                    explicitVr = false;
-                    bigEndian = false;
-                }
+                explicitVr = explicitVr && !(h.vr == "UN" && h.length == kUndefined);
                 const bool walked = items(at, h.length, end, depth, false);
                 explicitVr = saveExplicit;
-                bigEndian = saveBig;
                 if (!walked) {
                     return false;
                 }
@@ -384,8 +379,10 @@ bool readFileMeta(Walker& w, std::size_t& at) {
         }
         if (h.element == 0x0000 && h.length == 4) {
             metaEnd = h.valueAt + 4 + std::uint64_t(w.u32(h.valueAt));
+            out.metaGroupLengthAt = h.valueAt;
         }
         if (h.element == 0x0010) {
+            out.metaSyntaxAt = at;
             std::string uid(reinterpret_cast<const char*>(w.d + h.valueAt), h.length);
             while (!uid.empty() && (uid.back() == '\0' || uid.back() == ' ')) {
                 uid.pop_back();
@@ -397,15 +394,20 @@ bool readFileMeta(Walker& w, std::size_t& at) {
     if (metaEnd > at && !metaOvershootReadable(w, at, metaEnd)) {
         return false;
     }
+    out.metaGroupLengthPast = metaEnd > at;
     if (metaEnd != 0 && metaEnd != at) {
         out.warnings.push_back("file meta information group length (0002,0000) says the group "
                                "ends at byte " +
                                std::to_string(metaEnd) + "; its last element ends at byte " +
                                std::to_string(at) + " (read to its last element)");
     }
+    if (at >= size) {
+        out.problem = "no data set after the file meta information";
+        return false;
+    }
     if (std::all_of(w.d + at, w.d + size, [](unsigned char c) { return c == 0; })) {
-        out.problem = "no data set after the file meta information (" + std::to_string(size - at) +
-                      " zero bytes from byte " + std::to_string(at) + ")";
+        out.problem = "no data set after the file meta information, only " +
+                      std::to_string(size - at) + " zero bytes from byte " + std::to_string(at);
         return false;
     }
     if (out.transferSyntax.empty()) {
@@ -435,7 +437,16 @@ bool checkDataSetEncoding(Walker& w, std::size_t at) {
         out.warnings.push_back("the file meta information says Explicit VR Little Endian, but the "
                                "data set is in implicit VR (element " +
                                element + "): read as Implicit VR Little Endian");
-    } else if (out.transferSyntax == kImplicitLittle && explicitVr) {
+    }
+    if (out.metaGroupLengthPast && (out.transferSyntax != kExplicitLittle || !explicitVr)) {
+        // GDCM's data set would start where the group length says, in bytes that
+        // were walked in another encoding.
+        out.problem = "file meta information group length (0002,0000) runs into a data set "
+                      "that is not in Explicit VR Little Endian (element " +
+                      element + ")";
+        return false;
+    }
+    if (out.transferSyntax == kImplicitLittle && explicitVr) {
         out.problem = "the file meta information says Implicit VR Little Endian, but the data set "
                       "is in explicit VR (element " +
                       element + " has the VR '" +

@@ -6,6 +6,7 @@
 #include <limits>
 #include <map>
 #include <mutex>
+#include <set>
 
 #include "core/dicom/ImageRecord.h"
 #include "core/dicom/ProgressReporter.h"
@@ -65,33 +66,45 @@ VoxelType chooseVoxelType(const std::vector<const ImageRecord*>& images) {
     return VoxelType::Float32;
 }
 
-// The files' own warnings (ImageRecord::warnings), each text once with the file
-// it came from, or the first of the files and their count; at most a few texts.
-void appendFileWarnings(const Group& group, std::vector<std::string>& warnings) {
-    constexpr std::size_t kMaxTexts = 4;
-    std::vector<std::pair<std::string, std::vector<const std::string*>>> byText;
-    for (const ImageRecord* r : group.images) {
-        for (const std::string& w : r->warnings) {
-            auto it = std::find_if(byText.begin(), byText.end(),
-                                   [&w](const auto& entry) { return entry.first == w; });
-            if (it == byText.end()) {
-                byText.push_back({w, {}});
-                it = byText.end() - 1;
-            }
-            if (it->second.empty() || *it->second.back() != r->file) {
-                it->second.push_back(&r->file);
-            }
+// A warning's kind: its text with every number (a byte count, an offset) as '#'.
+std::string warningKind(const std::string& text) {
+    std::string kind;
+    for (const char c : text) {
+        const bool digit = c >= '0' && c <= '9';
+        if (!digit) {
+            kind += c;
+        } else if (kind.empty() || kind.back() != '#') {
+            kind += '#';
         }
     }
-    for (std::size_t i = 0; i < byText.size() && i < kMaxTexts; ++i) {
-        const auto& [text, files] = byText[i];
-        warnings.push_back(files.size() == 1 ? *files.front() + ": " + text
-                                             : text + " (" + std::to_string(files.size()) +
-                                                   " files, first: " + *files.front() + ")");
+    return kind;
+}
+
+// The files' own warnings (ImageRecord::warnings), once per kind: the first
+// file's text with that file, and how many files have one of the kind.
+void appendFileWarnings(const Group& group, std::vector<std::string>& warnings) {
+    struct Kind {
+        std::string key, firstText, firstFile;
+        std::set<std::string> files;
+    };
+    std::vector<Kind> kinds;
+    for (const ImageRecord* r : group.images) {
+        for (const std::string& w : r->warnings) {
+            const std::string key = warningKind(w);
+            auto it = std::find_if(kinds.begin(), kinds.end(),
+                                   [&key](const Kind& k) { return k.key == key; });
+            if (it == kinds.end()) {
+                kinds.push_back({key, w, r->file, {}});
+                it = kinds.end() - 1;
+            }
+            it->files.insert(r->file);
+        }
     }
-    if (byText.size() > kMaxTexts) {
-        warnings.push_back("and " + std::to_string(byText.size() - kMaxTexts) +
-                           " more warnings about single files");
+    for (const Kind& k : kinds) {
+        warnings.push_back(k.files.size() == 1
+                               ? k.firstFile + ": " + k.firstText
+                               : k.firstText + " (and in " + std::to_string(k.files.size() - 1) +
+                                     " more files; first: " + k.firstFile + ")");
     }
 }
 

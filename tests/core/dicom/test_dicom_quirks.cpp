@@ -196,6 +196,16 @@ private slots:
         QVERIFY(std::memcmp(withPadding.bytes().data(), original.bytes().data(),
                             original.byteCount()) == 0);
 
+        // Padding in every file, of other lengths: one warning of its kind.
+        for (const char* name : {"01.dcm", "02.dcm", "03.dcm"}) {
+            copyFile(source / name, padded / name, 4096 * (name[1] - '0'));
+        }
+        const std::vector<std::string> grouped = scanPath(padded).series.front().warnings;
+        QCOMPARE(grouped.size(), std::size_t(1));
+        QVERIFY2(grouped.front().find("zero bytes after the last element") != std::string::npos &&
+                     grouped.front().find("(and in 2 more files; first: ") != std::string::npos,
+                 grouped.front().c_str());
+
         copyFile(source / "02.dcm", padded / "02.dcm", 4096, "LUCENT");
         const Catalog refused = scanPath(padded);
         QCOMPARE(refused.series.front().slices.size(), std::size_t(2));
