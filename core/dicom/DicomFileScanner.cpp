@@ -191,6 +191,106 @@ const char* supportedSyntaxName(const std::string& uid) {
     return nullptr;
 }
 
+// Why an object holds no image to load (a segmentation, no Rows/Columns, no
+// Pixel Data), else "".
+std::string notAnImage(const gdcm::DataSet& ds, const ImageRecord& base,
+                       const DicomStructure& structure) {
+    if (base.sopClassUid == "1.2.840.10008.5.1.4.1.1.66.4") {
+        return "DICOM Segmentation object: not an image series";
+    }
+    if (!ds.FindDataElement(gdcm::Tag(0x0028, 0x0010)) ||
+        !ds.FindDataElement(gdcm::Tag(0x0028, 0x0011))) {
+        return "no image (Rows/Columns missing): " + (base.modality.empty()
+                                                          ? std::string("non-image object")
+                                                          : base.modality + " object");
+    }
+    if (!structure.hasPixelData && structure.transferSyntax != kDeflated) {
+        return "no pixel data (7FE0,0010 missing)";
+    }
+    return {};
+}
+
+// The bits of the pixels, checked; why they cannot be read, else "".
+std::string readPixelLayout(const gdcm::DataSet& ds, const std::string& syntax, PixelLayout& px) {
+    px.bitsAllocated = tagUShort(ds, 0x0028, 0x0100).value_or(16);
+    px.bitsStored = tagUShort(ds, 0x0028, 0x0101).value_or(px.bitsAllocated);
+    px.highBit = tagUShort(ds, 0x0028, 0x0102).value_or(px.bitsStored - 1);
+    px.isSigned = tagUShort(ds, 0x0028, 0x0103).value_or(0) == 1;
+    px.transferSyntax = syntax;
+    if (px.bitsAllocated != 8 && px.bitsAllocated != 16 && px.bitsAllocated != 32) {
+        return "unsupported BitsAllocated " + std::to_string(px.bitsAllocated);
+    }
+    if (px.bitsStored < 1 || px.bitsStored > px.bitsAllocated || px.highBit < px.bitsStored - 1 ||
+        px.highBit >= px.bitsAllocated) {
+        return "inconsistent BitsStored " + std::to_string(px.bitsStored) + " / HighBit " +
+               std::to_string(px.highBit) + " for BitsAllocated " +
+               std::to_string(px.bitsAllocated);
+    }
+    return {};
+}
+
+// Uncompressed pixel data: whole in the file, and where little endian frames
+// start (`offset`, read straight from the file; 0 when GDCM decodes them).
+std::string nativePixels(const DicomStructure& structure, std::uint64_t fileSize,
+                         std::uint64_t expected, std::uint64_t& offset) {
+    if (!structure.hasPixelData || structure.encapsulated) {
+        return {};
+    }
+    const std::uint64_t inFile = fileSize - structure.pixelOffset;
+    if (structure.pixelLength > inFile) {
+        // GDCM would allocate the declared length before finding out.
+        return "truncated pixel data: Pixel Data (7FE0,0010) declares " +
+               std::to_string(structure.pixelLength) + " bytes, the file ends " +
+               std::to_string(inFile) + " bytes after its start";
+    }
+    const std::uint64_t available = std::min<std::uint64_t>(structure.pixelLength, inFile);
+    if (available < expected) {
+        return "truncated pixel data: expected " + std::to_string(expected) + " bytes, found " +
+               std::to_string(available);
+    }
+    if (structure.transferSyntax == kExplicitLE || structure.transferSyntax == kImplicitLE) {
+        offset = structure.pixelOffset;
+    }
+    return {};
+}
+
+// One record a frame of an Enhanced CT/MR, from its per-frame and shared groups.
+FileScan enhancedFrames(const ImageRecord& base, const gdcm::SequenceOfItems& perFrame,
+                        const SequenceItem& shared, int frames, std::uint64_t offset,
+                        std::uint64_t frameBytes) {
+    FileScan out;
+    for (int f = 0; f < frames; ++f) {
+        ImageRecord r = base;
+        r.enhanced = true;
+        r.frame = f;
+        const FrameGroups g{&perFrame.GetItem(f + 1).GetNestedDataSet(), shared.dataSet};
+        const std::string unusable =
+            applyGeometry(r, frameValues(g, 0x0020, 0x9113, 0x0020, 0x0032),
+                          frameValues(g, 0x0020, 0x9116, 0x0020, 0x0037),
+                          frameValues(g, 0x0028, 0x9110, 0x0028, 0x0030));
+        if (!unusable.empty()) {
+            return skip("frame " + std::to_string(f + 1) + ": " + unusable);
+        }
+        if (auto t = frameValues(g, 0x0028, 0x9110, 0x0018, 0x0050)) {
+            r.sliceThickness = (*t)[0];
+        }
+        if (auto s = frameValues(g, 0x0028, 0x9145, 0x0028, 0x1053)) {
+            r.slope = (*s)[0];
+        }
+        if (auto i = frameValues(g, 0x0028, 0x9145, 0x0028, 0x1052)) {
+            r.intercept = (*i)[0];
+        }
+        const std::string ft = frameType(g);
+        if (!ft.empty()) {
+            r.imageType = ft;
+            r.localizer = hasWord(ft, "LOCALIZER");
+        }
+        r.pixelOffset = offset == 0 ? 0 : offset + frameBytes * f;
+        out.images.push_back(std::move(r));
+    }
+    return out;
+}
+
 } // namespace
 
 FileScan scanDicomFile(const std::string& file) {
@@ -225,17 +325,8 @@ FileScan scanDicomFile(const std::string& file) {
         base.file = file;
         base.warnings = structure.warnings;
         readCommon(ds, base);
-        if (base.sopClassUid == "1.2.840.10008.5.1.4.1.1.66.4") {
-            return skip("DICOM Segmentation object: not an image series");
-        }
-        if (!ds.FindDataElement(gdcm::Tag(0x0028, 0x0010)) ||
-            !ds.FindDataElement(gdcm::Tag(0x0028, 0x0011))) {
-            return skip("no image (Rows/Columns missing): " + (base.modality.empty()
-                                                                   ? std::string("non-image object")
-                                                                   : base.modality + " object"));
-        }
-        if (!structure.hasPixelData && syntax != kDeflated) {
-            return skip("no pixel data (7FE0,0010 missing)");
+        if (const std::string why = notAnImage(ds, base, structure); !why.empty()) {
+            return skip(why);
         }
 
         const int rows = tagUShort(ds, 0x0028, 0x0010).value_or(0);
@@ -252,19 +343,8 @@ FileScan scanDicomFile(const std::string& file) {
         PixelLayout& px = base.pixels;
         px.rows = rows;
         px.columns = cols;
-        px.bitsAllocated = tagUShort(ds, 0x0028, 0x0100).value_or(16);
-        px.bitsStored = tagUShort(ds, 0x0028, 0x0101).value_or(px.bitsAllocated);
-        px.highBit = tagUShort(ds, 0x0028, 0x0102).value_or(px.bitsStored - 1);
-        px.isSigned = tagUShort(ds, 0x0028, 0x0103).value_or(0) == 1;
-        px.transferSyntax = syntax;
-        if (px.bitsAllocated != 8 && px.bitsAllocated != 16 && px.bitsAllocated != 32) {
-            return skip("unsupported BitsAllocated " + std::to_string(px.bitsAllocated));
-        }
-        if (px.bitsStored < 1 || px.bitsStored > px.bitsAllocated ||
-            px.highBit < px.bitsStored - 1 || px.highBit >= px.bitsAllocated) {
-            return skip("inconsistent BitsStored " + std::to_string(px.bitsStored) + " / HighBit " +
-                        std::to_string(px.highBit) + " for BitsAllocated " +
-                        std::to_string(px.bitsAllocated));
+        if (const std::string wrong = readPixelLayout(ds, syntax, px); !wrong.empty()) {
+            return skip(wrong);
         }
 
         const int frames = std::max(1, tagInt(ds, 0x0028, 0x0008).value_or(1));
@@ -273,24 +353,10 @@ FileScan scanDicomFile(const std::string& file) {
                                          static_cast<std::uint64_t>(px.bitsAllocated / 8);
         const std::uint64_t fileSize = fs::file_size(file);
         std::uint64_t offset = 0;
-        if (structure.hasPixelData && !structure.encapsulated) {
-            const std::uint64_t inFile = fileSize - structure.pixelOffset;
-            if (structure.pixelLength > inFile) {
-                // GDCM would allocate the declared length before finding out.
-                return skip("truncated pixel data: Pixel Data (7FE0,0010) declares " +
-                            std::to_string(structure.pixelLength) + " bytes, the file ends " +
-                            std::to_string(inFile) + " bytes after its start");
-            }
-            const std::uint64_t expected = frameBytes * static_cast<std::uint64_t>(frames);
-            const std::uint64_t available =
-                std::min<std::uint64_t>(structure.pixelLength, fileSize - structure.pixelOffset);
-            if (available < expected) {
-                return skip("truncated pixel data: expected " + std::to_string(expected) +
-                            " bytes, found " + std::to_string(available));
-            }
-            if (syntax == kExplicitLE || syntax == kImplicitLE) {
-                offset = structure.pixelOffset;
-            }
+        if (const std::string wrong =
+                nativePixels(structure, fileSize, frameBytes * std::uint64_t(frames), offset);
+            !wrong.empty()) {
+            return skip(wrong);
         }
 
         base.localizer = hasWord(base.imageType, "LOCALIZER");
@@ -299,44 +365,15 @@ FileScan scanDicomFile(const std::string& file) {
         base.slope = slope ? (*slope)[0] : 1.0;
         base.intercept = intercept ? (*intercept)[0] : 0.0;
 
-        FileScan out;
         const SequenceItem shared = firstItem(ds, 0x5200, 0x9229);
         const gdcm::SmartPointer<gdcm::SequenceOfItems> perFrame =
             ds.FindDataElement(kPerFrameGroups) ? ds.GetDataElement(kPerFrameGroups).GetValueAsSQ()
                                                 : nullptr;
         if (perFrame && perFrame->GetNumberOfItems() >= static_cast<std::size_t>(frames)) {
-            for (int f = 0; f < frames; ++f) {
-                ImageRecord r = base;
-                r.enhanced = true;
-                r.frame = f;
-                const FrameGroups g{&perFrame->GetItem(f + 1).GetNestedDataSet(), shared.dataSet};
-                const std::string unusable =
-                    applyGeometry(r, frameValues(g, 0x0020, 0x9113, 0x0020, 0x0032),
-                                  frameValues(g, 0x0020, 0x9116, 0x0020, 0x0037),
-                                  frameValues(g, 0x0028, 0x9110, 0x0028, 0x0030));
-                if (!unusable.empty()) {
-                    return skip("frame " + std::to_string(f + 1) + ": " + unusable);
-                }
-                if (auto t = frameValues(g, 0x0028, 0x9110, 0x0018, 0x0050)) {
-                    r.sliceThickness = (*t)[0];
-                }
-                if (auto s = frameValues(g, 0x0028, 0x9145, 0x0028, 0x1053)) {
-                    r.slope = (*s)[0];
-                }
-                if (auto i = frameValues(g, 0x0028, 0x9145, 0x0028, 0x1052)) {
-                    r.intercept = (*i)[0];
-                }
-                const std::string ft = frameType(g);
-                if (!ft.empty()) {
-                    r.imageType = ft;
-                    r.localizer = hasWord(ft, "LOCALIZER");
-                }
-                r.pixelOffset = offset == 0 ? 0 : offset + frameBytes * f;
-                out.images.push_back(std::move(r));
-            }
-            return out;
+            return enhancedFrames(base, *perFrame, shared, frames, offset, frameBytes);
         }
 
+        FileScan out;
         const std::string unusable =
             applyGeometry(base, tagDoubles(ds, 0x0020, 0x0032), tagDoubles(ds, 0x0020, 0x0037),
                           tagDoubles(ds, 0x0028, 0x0030));
