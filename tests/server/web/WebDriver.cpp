@@ -1,5 +1,7 @@
 #include "WebDriver.h"
 
+#include <QFileInfo>
+
 #include <QEventLoop>
 #include <QJsonDocument>
 #include <QNetworkReply>
@@ -35,6 +37,14 @@ QString BrowserTools::missing() const {
         return "chromedriver is not installed (Debian package chromium-driver)";
     }
     return {};
+}
+
+QString browserTestMissing(const QString& seriesDir) {
+    const BrowserTools tools = findBrowserTools();
+    if (!tools.missing().isEmpty()) {
+        return tools.missing();
+    }
+    return QFileInfo(seriesDir).isDir() ? QString() : "real data absent: " + seriesDir;
 }
 
 BrowserTools findBrowserTools() {

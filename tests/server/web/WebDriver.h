@@ -20,6 +20,9 @@ struct BrowserTools {
     QString missing() const; // why the web test cannot run, or empty
 };
 BrowserTools findBrowserTools();
+// Why a browser test on the real series in seriesDir cannot run (no Chromium or
+// chromedriver, no data), or empty.
+QString browserTestMissing(const QString& seriesDir);
 
 class WebDriver {
 public:

@@ -143,12 +143,8 @@ class TestWebFirstScreen : public QObject {
     Q_OBJECT
 private slots:
     void init() {
-        const BrowserTools tools = findBrowserTools();
-        if (!tools.missing().isEmpty()) {
-            QSKIP(qPrintable(tools.missing()));
-        }
-        if (!QFileInfo(kSeriesDir).isDir()) {
-            QSKIP(qPrintable("real data absent: " + kSeriesDir));
+        if (const QString missing = browserTestMissing(kSeriesDir); !missing.isEmpty()) {
+            QSKIP(qPrintable(missing));
         }
     }
 
