@@ -171,6 +171,8 @@ private:
     // A refusal of free-look or session-join (reported by frameFailed or fail).
     bool onFollowError(const QString& code, const QString& message);
     void setFollowState(FollowState state);
+    // The view (RemoteRenderView.cpp, with onBinary's frames): the series
+    // chosen and opened, the view messages that changed.
     void chooseSeries();
     void sync();
     void send(const std::string& json);

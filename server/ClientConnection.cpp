@@ -3,6 +3,7 @@
 #include <QLoggingCategory>
 #include <QWebSocketHandshakeOptions>
 
+#include "server/ClientConnection_p.h"
 #include "server/RecordingReplay.h"
 #include "server/RenderServer.h"
 #include "server/SessionRecorder.h"
@@ -10,9 +11,10 @@
 #include "server/ViewStream.h"
 
 namespace lucent::remote {
-namespace {
 
 Q_LOGGING_CATEGORY(lcClient, "lucent.server.client")
+
+namespace {
 
 // The subprotocols the client offered in its handshake.
 QStringList offeredSubprotocols(const QWebSocket& socket) {
@@ -25,10 +27,6 @@ QStringList offeredSubprotocols(const QWebSocket& socket) {
         }
     }
     return offered;
-}
-
-SeriesSummary seriesSummary(const SeriesEntry& s, bool withDescription) {
-    return {s.id, withDescription ? s.description : std::string(), s.modality, s.geometry.dims};
 }
 
 // The version the handshake selected (Qt's server picks one of
@@ -257,117 +255,6 @@ void ClientConnection::handle(const ClientMessage& message) {
     }
 }
 
-void ClientConnection::sendList() {
-    SeriesListReply list;
-    if (session_ && !session_->isPresenter(*this)) {
-        // A follower sees the session's de-identified series only.
-        if (const auto& shared = session_->view().series()) {
-            list.series.push_back(seriesSummary(*shared, false));
-        }
-    } else {
-        for (const auto& s : server_.series()) {
-            list.series.push_back(seriesSummary(*s, true));
-        }
-    }
-    sendJson(writeServerMessage(list));
-}
-
-void ClientConnection::handleOpen(const OpenRequest& open) {
-    auto series = server_.findSeries(open.series);
-    if (!series) {
-        sendError("not-found", "no series with uid '" + open.series.substr(0, 128) + "'", false);
-        return;
-    }
-    qCInfo(lcClient) << "client" << id_ << "opened a series";
-    viewChanging();
-    if (session_) {
-        session_->share(std::move(series)); // every member gets `opened` when it is ready
-    } else {
-        sendJson(ownView_->open(std::move(series)));
-    }
-}
-
-void ClientConnection::handleSession(const ClientMessage& message) {
-    if (std::holds_alternative<SessionCreate>(message)) {
-        if (session_) {
-            sendError("out-of-order", "already in a session", true);
-            return;
-        }
-        TeachingSession* session = server_.createSession(*this);
-        if (!session) {
-            sendError("session-limit", "the server runs as many sessions as it may", false);
-            return;
-        }
-        const auto shared = ownView_->series();
-        ownView_->close();
-        session_ = session;
-        sendJson(writeServerMessage(SessionCreated{session->id().toStdString()}));
-        session->broadcastState();
-        if (shared) {
-            session->share(shared); // the series this client had open, de-identified
-        }
-    } else if (const auto* join = std::get_if<SessionJoin>(&message)) {
-        if (session_) {
-            sendError("out-of-order", "already in a session", true);
-            return;
-        }
-        TeachingSession* session = server_.findSession(QString::fromStdString(join->session));
-        if (!session) {
-            sendError("not-found", "no such session", false);
-            return;
-        }
-        if (session->full()) {
-            sendError("session-full", "the session has no room for another member", false);
-            return;
-        }
-        joinSession(*session);
-    } else if (const auto* handover = std::get_if<SessionHandover>(&message)) {
-        const ClientConnection* to = session_ ? session_->member(handover->to) : nullptr;
-        if (!session_) {
-            sendError("out-of-order", "not in a session", true);
-        } else if (!session_->isPresenter(*this)) {
-            sendError("not-presenter", "this client does not hold control of the session", false);
-        } else if (to && to->invite() != 0) {
-            sendError("forbidden",
-                      "session-handover: member " + std::to_string(handover->to) +
-                          " joined by invite and may only follow",
-                      false);
-        } else if (!session_->handover(handover->to)) {
-            sendError("bad-request", "session-handover: no member " + std::to_string(handover->to),
-                      false);
-        } else {
-            session_->broadcastState();
-        }
-    } else if (std::holds_alternative<SessionLeave>(message)) {
-        if (!session_) {
-            sendError("out-of-order", "not in a session", true);
-            return;
-        }
-        const std::string id = session_->id().toStdString();
-        leaveSession();
-        sendJson(writeServerMessage(SessionLeft{id}));
-        if (invite_ != 0) {
-            closeNormally("left"); // an invite's holder can do nothing else
-        }
-    }
-}
-
-void ClientConnection::joinSession(TeachingSession& session) {
-    ownView_->close();
-    session_ = &session;
-    session.join(*this);
-    session.broadcastState();
-    qCInfo(lcClient) << "client" << id_ << "joined a session" << (invite_ ? "by invite" : "");
-}
-
-void ClientConnection::sessionEnded(const std::string& sessionId) {
-    session_ = nullptr;
-    sendJson(writeServerMessage(SessionLeft{sessionId}));
-    if (invite_ != 0) {
-        closeNormally("session ended");
-    }
-}
-
 void ClientConnection::closeNormally(const QString& reason) {
     if (!socket_ || closing_) {
         return;
@@ -375,19 +262,6 @@ void ClientConnection::closeNormally(const QString& reason) {
     closing_ = true;
     socket_->flush();
     socket_->close(QWebSocketProtocol::CloseCodeNormal, reason);
-}
-
-void ClientConnection::leaveSession() {
-    if (!session_) {
-        return;
-    }
-    TeachingSession* session = session_;
-    session_ = nullptr;
-    if (session->leave(*this)) {
-        server_.endSession(session->id());
-    } else {
-        session->broadcastState();
-    }
 }
 
 bool ClientConnection::takeCameraToken() {

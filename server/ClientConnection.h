@@ -83,6 +83,7 @@ private:
     void onKeepalive();
     void authenticate(const std::string& token);
     void handle(const ClientMessage& message);
+    // Teaching sessions (ClientSessions.cpp): session-create, -join, -handover, -leave.
     void handleSession(const ClientMessage& message);
     void joinSession(TeachingSession& session);
     // Invites (ClientInvites.cpp): auth by invite, invite-create and invite-revoke,
@@ -109,6 +110,7 @@ private:
     void closeNormally(const QString& reason);
     // pointer, mark and marks-clear (ClientMarks.cpp); false for other messages.
     bool handleMark(const ClientMessage& message);
+    // list and open (ClientSeries.cpp).
     void handleOpen(const OpenRequest& open);
     void sendList();
     bool takeCameraToken();

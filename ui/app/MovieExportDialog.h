@@ -2,28 +2,24 @@
 // File > Export movie: a turntable of the 3D view (its camera, transfer
 // function, mode and clip box) or a cine through the slices along i, j or k in
 // the MPR views' window, written as MP4, WebM or GIF (core/movie) on a thread
-// of its own with progress and cancel. A cancelled or failed export leaves no
-// file. Non-modal, like the DICOM export: the reader can go on reading.
-
-#include <QDialog>
+// of its own with progress and cancel (BackgroundExportDialog). A cancelled or
+// failed export leaves no file. Non-modal, like the DICOM export: the reader
+// can go on reading.
 
 #include <memory>
-#include <thread>
 
 #include "core/mpr/PlaneSampler.h"
 #include "core/scene/RenderDescription.h"
+#include "ui/common/BackgroundExportDialog.h"
 
 class QComboBox;
 class QDoubleSpinBox;
-class QLabel;
 class QLineEdit;
-class QProgressBar;
-class QPushButton;
 class QSpinBox;
 
 namespace lucent {
 
-class MovieExportDialog : public QDialog {
+class MovieExportDialog : public BackgroundExportDialog {
     Q_OBJECT
 
 public:
@@ -31,7 +27,6 @@ public:
     // `window`: the MPR views' window, for cines.
     MovieExportDialog(std::shared_ptr<const Volume> volume, const RenderDescription& start,
                       const WindowLevel& window, QWidget* parent = nullptr);
-    ~MovieExportDialog() override; // cancels a running export and waits for it
 
     QComboBox* kind() const { return kind_; } // 0 turntable, 1 cine
     QSpinBox* frames() const { return frames_; }
@@ -41,22 +36,11 @@ public:
     QSpinBox* movieHeight() const { return height_; }
     QSpinBox* framesPerSecond() const { return fps_; }
     QLineEdit* output() const { return output_; }
-    QPushButton* exportButton() const { return export_; }
-    // Cancel while exporting, Close otherwise.
-    QPushButton* closeButton() const { return close_; }
-    QLabel* status() const { return status_; }
-    bool running() const { return running_; }
-
-signals:
-    void progressed(int done, int total);
-    // ok is false after an error or a cancel; message says what was written or why not.
-    void exportFinished(bool ok, const QString& message);
 
 private:
     void browse();
     void kindChanged();
-    void start();
-    void done(bool ok, const QString& message);
+    void start() override;
 
     std::shared_ptr<const Volume> volume_;
     RenderDescription start_;
@@ -69,12 +53,6 @@ private:
     QSpinBox* height_;
     QSpinBox* fps_;
     QLineEdit* output_;
-    QProgressBar* bar_;
-    QLabel* status_;
-    QPushButton* export_;
-    QPushButton* close_;
-    bool running_ = false;
-    std::jthread worker_;
 };
 
 } // namespace lucent
