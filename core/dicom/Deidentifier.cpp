@@ -225,9 +225,10 @@ void replaceText(gdcm::DataSet& ds, const gdcm::Tag& tag, gdcm::VR vr, std::stri
 
 void Deidentifier::deidentifyFile(const fs::path& input, const fs::path& output) {
     const DicomStructure structure = checkDicomStructure(input.string());
-    if (!structure.ok) {
+    const std::string truncated = truncatedPixelData(structure);
+    if (!structure.ok || !truncated.empty()) {
         throw DeidentifyError("de-identify: " + input.string() + " is not a readable DICOM file (" +
-                              structure.problem + ")");
+                              (structure.ok ? truncated : structure.problem) + ")");
     }
     DataSetStream stream(input.string(), structure);
     gdcm::Reader reader;

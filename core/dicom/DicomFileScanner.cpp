@@ -237,11 +237,8 @@ std::string nativePixels(const DicomStructure& structure, std::uint64_t fileSize
         return {};
     }
     const std::uint64_t inFile = fileSize - structure.pixelOffset;
-    if (structure.pixelLength > inFile) {
-        // GDCM would allocate the declared length before finding out.
-        return "truncated pixel data: Pixel Data (7FE0,0010) declares " +
-               std::to_string(structure.pixelLength) + " bytes, the file ends " +
-               std::to_string(inFile) + " bytes after its start";
+    if (std::string truncated = truncatedPixelData(structure); !truncated.empty()) {
+        return truncated;
     }
     const std::uint64_t available = std::min<std::uint64_t>(structure.pixelLength, inFile);
     if (available < expected) {

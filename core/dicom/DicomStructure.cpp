@@ -472,6 +472,7 @@ DicomStructure checkDicomStructure(const std::string& file) {
         return out;
     }
     out.dataSetEnd = size;
+    out.fileSize = size;
     Walker w{d, size, true, false, out};
     std::size_t at = 0;
     if (size >= 132 && std::memcmp(d + 128, "DICM", 4) == 0) {
@@ -522,6 +523,17 @@ DicomStructure checkDicomStructure(const std::string& file) {
     }
     out.ok = true;
     return out;
+}
+
+std::string truncatedPixelData(const DicomStructure& structure) {
+    if (!structure.hasPixelData || structure.encapsulated ||
+        structure.pixelOffset > structure.fileSize ||
+        structure.pixelLength <= structure.fileSize - structure.pixelOffset) {
+        return {};
+    }
+    return "truncated pixel data: Pixel Data (7FE0,0010) declares " +
+           std::to_string(structure.pixelLength) + " bytes, the file ends " +
+           std::to_string(structure.fileSize - structure.pixelOffset) + " bytes after its start";
 }
 
 } // namespace lucent

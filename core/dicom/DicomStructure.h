@@ -22,6 +22,7 @@ struct DicomStructure {
     bool encapsulated = false;     // compressed fragments
     std::uint64_t pixelOffset = 0; // first byte of the Pixel Data value
     std::uint64_t pixelLength = 0; // its length (defined lengths only)
+    std::uint64_t fileSize = 0;
     // The file's size, or where zero padding after the data set starts.
     std::uint64_t dataSetEnd = 0;
     // What was untidy but read as DCMTK or GDCM read it: zero padding after the
@@ -31,5 +32,10 @@ struct DicomStructure {
 };
 
 DicomStructure checkDicomStructure(const std::string& file);
+
+// Why uncompressed Pixel Data runs past the end of the file, else "": the walk
+// lets it through for the scan to say so, but GDCM allocates the declared length
+// before it reads, so no whole read may see such a file.
+std::string truncatedPixelData(const DicomStructure& structure);
 
 } // namespace lucent

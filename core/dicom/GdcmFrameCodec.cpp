@@ -208,6 +208,9 @@ DecodedFrames decodeFramesWithGdcm(const std::string& file, const PixelLayout& e
     if (!structure.ok) {
         throw LoadError(file + ": corrupt DICOM file: " + structure.problem);
     }
+    if (const std::string truncated = truncatedPixelData(structure); !truncated.empty()) {
+        throw LoadError(file + ": " + truncated);
+    }
     DataSetStream stream(file, structure);
     gdcm::Reader reader;
     reader.SetStream(stream);

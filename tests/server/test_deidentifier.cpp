@@ -189,6 +189,36 @@ private slots:
         QVERIFY(!fs::exists(root / "copy"));
     }
 
+    // A real slice cut short inside its Pixel Data, and one padded with 7 zero
+    // bytes: GDCM's whole read would allocate the declared length of the first,
+    // and abort on the padding of the second. Refused, and copied.
+    void truncatedPixelDataIsRefusedAndPaddingIsNot() {
+        const fs::path source = dataPath("dcm_qa_ct/Philips_S21570/S2010");
+        if (!fs::is_directory(source)) {
+            QSKIP("the real DICOM data (../shared/data) is absent");
+        }
+        QTemporaryDir dir;
+        const fs::path root = dir.path().toStdString();
+        const fs::path cut = root / "cut.dcm";
+        fs::copy_file(filesOf(source).front(), cut);
+        fs::permissions(cut, fs::perms::owner_write, fs::perm_options::add);
+        fs::resize_file(cut, fs::file_size(cut) - 1000);
+        try {
+            deidentifySeries({cut}, root / "copy");
+            QFAIL("no error");
+        } catch (const DeidentifyError& e) {
+            QVERIFY2(std::string(e.what()).find("cut.dcm") != std::string::npos &&
+                         std::string(e.what()).find("truncated pixel data") != std::string::npos,
+                     e.what());
+        }
+        const fs::path padded = root / "padded.dcm";
+        fs::copy_file(filesOf(source).front(), padded);
+        fs::permissions(padded, fs::perms::owner_write, fs::perm_options::add);
+        std::ofstream(padded, std::ios::binary | std::ios::app) << std::string(7, '\0');
+        deidentifySeries({padded}, root / "copy");
+        QCOMPARE(scanPath(root / "copy").series.size(), std::size_t(1));
+    }
+
     void uidsMapConsistently() {
         Deidentifier d;
         const std::string a = d.replacementUid("1.2.3.4");
