@@ -201,10 +201,15 @@ struct Walker {
                 return fail(start, "element (" + hex(h.group) + "," + hex(h.element) + ") of VR '" +
                                        std::string(h.vr) + "' has an undefined length");
             }
-            if (pixelData && !h.vr.empty() && h.vr != "OB" && h.vr != "OW" && h.vr != "UN") {
-                // GDCM asserts on Pixel Data of another VR (SQ in big endian).
+            const bool pixelTag = h.group == 0x7fe0 && h.element == 0x0010;
+            if (pixelTag && !h.vr.empty() && h.vr != "OB" && h.vr != "OW" && h.vr != "UN") {
+                // GDCM asserts on Pixel Data of another VR (SQ in big endian; SQ
+                // inside an item, fuzz_dicom), at any depth.
                 return fail(start, "Pixel Data (7FE0,0010) has VR '" + std::string(h.vr) +
                                        "', not OB or OW");
+            }
+            if (pixelTag && depth > 0 && h.length == kUndefined) {
+                return fail(start, "Pixel Data (7FE0,0010) of undefined length inside an item");
             }
             if (pixelData) {
                 out.hasPixelData = true;

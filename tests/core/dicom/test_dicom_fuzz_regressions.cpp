@@ -195,6 +195,16 @@ private slots:
         QVERIFY2(reason == "no pixel data (7FE0,0010 missing)", qPrintable(reason));
     }
 
+    // (7FE0,0010) with VR SQ inside an Enhanced MR's functional group item:
+    // GDCM asserted (`TagField != Tag(0x7fe0,0x0010)`) and aborted the scan.
+    // Found by fuzz_dicom on the code before issue 27 too.
+    void pixelDataOfVrSqInsideAnItemIsRefused() {
+        const QString reason =
+            skipReason(regressionInput("pixel-data-sequence-inside-an-item.dcm"));
+        QVERIFY2(reason.contains("Pixel Data (7FE0,0010) has VR 'SQ', not OB or OW"),
+                 qPrintable(reason));
+    }
+
     // An implicit VR data set under a meta header that says explicit: GDCM's
     // own guess at the encoding read a length of about 4 GB and allocated it.
     // GDCM now reads the file with a meta header that says implicit.
