@@ -34,22 +34,26 @@ DataSetStream::Bytes::pos_type DataSetStream::Bytes::seekpos(pos_type pos,
     return seekoff(off_type(pos), std::ios_base::beg, which);
 }
 
-std::vector<unsigned char> DataSetStream::withImplicitMeta(const unsigned char* data,
-                                                           std::size_t end,
-                                                           const DicomStructure& structure) {
+std::vector<unsigned char> DataSetStream::correctedMeta(const unsigned char* data, std::size_t end,
+                                                        const DicomStructure& structure) {
     static constexpr unsigned char kImplicit[] = "1.2.840.10008.1.2"; // 17 + its NUL pad
-    const std::size_t at = structure.metaSyntaxAt;
-    const std::size_t oldLength = data[at + 6] | data[at + 7] << 8;
-    std::vector<unsigned char> out(data, data + at + 6);
-    out.push_back(sizeof kImplicit);
-    out.push_back(0);
-    out.insert(out.end(), kImplicit, kImplicit + sizeof kImplicit);
-    out.insert(out.end(), data + at + 8 + oldLength, data + end);
+    std::vector<unsigned char> out(data, data + end);
+    std::size_t metaEnd = structure.metaEnd;
+    if (structure.metaSyntaxWrong) {
+        const std::size_t at = structure.metaSyntaxAt;
+        const std::size_t oldLength = data[at + 6] | data[at + 7] << 8;
+        out.erase(out.begin() + static_cast<std::ptrdiff_t>(at + 8),
+                  out.begin() + static_cast<std::ptrdiff_t>(at + 8 + oldLength));
+        out.insert(out.begin() + static_cast<std::ptrdiff_t>(at + 8), kImplicit,
+                   kImplicit + sizeof kImplicit);
+        out[at + 6] = sizeof kImplicit;
+        out[at + 7] = 0;
+        metaEnd = metaEnd - oldLength + sizeof kImplicit;
+    }
     if (const std::size_t g = structure.metaGroupLengthAt; g != 0) {
-        std::uint32_t length = 0;
-        std::memcpy(&length, out.data() + g, 4); // little endian, as x86 and the meta
-        length = length - static_cast<std::uint32_t>(oldLength) + sizeof kImplicit;
-        std::memcpy(out.data() + g, &length, 4);
+        // The group's length as walked: GDCM starts the data set where it says.
+        const auto length = static_cast<std::uint32_t>(metaEnd - (g + 4));
+        std::memcpy(out.data() + g, &length, 4); // little endian, as x86 and the meta
     }
     return out;
 }
@@ -58,8 +62,8 @@ DataSetStream::DataSetStream(const std::string& file, const DicomStructure& stru
     : std::istream(nullptr), file_(file) {
     const std::size_t end =
         std::min<std::size_t>(file_.size(), static_cast<std::size_t>(structure.dataSetEnd));
-    if (file_.data() != nullptr && structure.metaSyntaxWrong) {
-        patched_ = withImplicitMeta(file_.data(), end, structure);
+    if (file_.data() != nullptr && (structure.metaSyntaxWrong || structure.metaGroupLengthWrong)) {
+        patched_ = correctedMeta(file_.data(), end, structure);
         bytes_.view(patched_.data(), patched_.size());
     } else {
         bytes_.view(file_.data(), file_.data() != nullptr ? end : 0);

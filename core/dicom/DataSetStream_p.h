@@ -2,10 +2,10 @@
 // The bytes of a DICOM file up to the end of its data set, as the std::istream
 // that GDCM reads: zero padding after the data set, which the structural walk
 // accepts as DCMTK does, never reaches GDCM, whose reader aborts on some
-// lengths of it (7 zero bytes after Pixel Data; fuzz_dicom). A data set in
-// implicit VR under a meta header that says explicit gets a meta header that
-// says implicit: GDCM's own guess over such files allocated gigabytes
-// (fuzz_dicom). Private to core/dicom.
+// lengths of it (7 zero bytes after Pixel Data; fuzz_dicom). A file whose meta
+// header says another encoding than its data set's, or a wrong group length,
+// gets the meta header the walk read: GDCM's own guesses over such files
+// allocated gigabytes (fuzz_dicom). Private to core/dicom.
 
 #include <istream>
 #include <string>
@@ -22,11 +22,11 @@ public:
     DataSetStream(const std::string& file, const DicomStructure& structure);
     bool opened() const { return file_.data() != nullptr; }
 
-    // The bytes of a file whose meta header names Explicit VR Little Endian over
-    // an implicit VR data set, with (0002,0010) naming Implicit VR Little Endian
-    // and (0002,0000) counting the shorter value.
-    static std::vector<unsigned char> withImplicitMeta(const unsigned char* data, std::size_t end,
-                                                       const DicomStructure& structure);
+    // The bytes of a file with its meta header as the walk read it: (0002,0010)
+    // naming Implicit VR Little Endian where the data set is so under a meta that
+    // says explicit, and (0002,0000) counting the group's elements.
+    static std::vector<unsigned char> correctedMeta(const unsigned char* data, std::size_t end,
+                                                    const DicomStructure& structure);
 
 private:
     // A get area over the mapped bytes, with seeking (GDCM seeks back and forth).

@@ -371,6 +371,7 @@ bool readFileMeta(Walker& w, std::size_t& at) {
     DicomStructure& out = w.out;
     const std::size_t size = w.size;
     std::uint64_t metaEnd = 0; // from (0002,0000) when present
+    int lastElement = -1;
     while (at < size && (at + 8 > size || w.u16(at) == 0x0002)) {
         Walker::Header h{};
         if (!w.header(at, h, true) || h.length == kUndefined || h.length > size - h.valueAt) {
@@ -382,6 +383,12 @@ bool readFileMeta(Walker& w, std::size_t& at) {
                           ") is a sequence, at byte " + std::to_string(at);
             return false;
         }
+        if (h.element <= lastElement) { // GDCM reads another copy than the walk (fuzz_dicom)
+            out.problem = "file meta information element (0002," + Walker::hex(h.element) +
+                          ") repeated or out of order, at byte " + std::to_string(at);
+            return false;
+        }
+        lastElement = h.element;
         if (h.element == 0x0000 && h.length == 4) {
             metaEnd = h.valueAt + 4 + std::uint64_t(w.u32(h.valueAt));
             out.metaGroupLengthAt = h.valueAt;
@@ -400,6 +407,8 @@ bool readFileMeta(Walker& w, std::size_t& at) {
         return false;
     }
     out.metaGroupLengthPast = metaEnd > at;
+    out.metaGroupLengthWrong = metaEnd != 0 && metaEnd != at;
+    out.metaEnd = at;
     if (metaEnd != 0 && metaEnd != at) {
         out.warnings.push_back("file meta information group length (0002,0000) says the group "
                                "ends at byte " +

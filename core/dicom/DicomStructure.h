@@ -18,6 +18,8 @@ struct DicomStructure {
     std::uint64_t metaSyntaxAt = 0; // the (0002,0010) element, where it is
     std::uint64_t metaGroupLengthAt = 0; // the value of (0002,0000), where it is (0: none)
     bool metaGroupLengthPast = false;    // (0002,0000) says the group ends past its last element
+    bool metaGroupLengthWrong = false;   // (0002,0000) says another end than its last element's
+    std::uint64_t metaEnd = 0;           // where the meta group's last element ends
     bool hasPixelData = false;
     bool encapsulated = false;     // compressed fragments
     std::uint64_t pixelOffset = 0; // first byte of the Pixel Data value

@@ -195,6 +195,17 @@ private slots:
         QVERIFY2(reason == "no pixel data (7FE0,0010 missing)", qPrintable(reason));
     }
 
+    // File meta elements repeated after a group length that ends among them:
+    // GDCM read another transfer syntax than the walk, guessed at the encoding
+    // and allocated 2.4 GB. Refused by the walk.
+    void repeatedMetaElementsAreRefused() {
+        REQUIRE_DATA("dcmqi_ct3slice/01.dcm");
+        const QString reason = skipReason(regressionInput("meta-elements-repeated.dcm"));
+        QVERIFY2(reason.contains("file meta information element (0002,0002) repeated or out of "
+                                 "order, at byte 324"),
+                 qPrintable(reason));
+    }
+
     // (7FE0,0010) with VR SQ inside an Enhanced MR's functional group item:
     // GDCM asserted (`TagField != Tag(0x7fe0,0x0010)`) and aborted the scan.
     // Found by fuzz_dicom on the code before issue 27 too.

@@ -177,6 +177,9 @@ def cases(data, out):
     e.add_to_group_length(0x0002, 6)
     e.save(case("meta-group-length-wrong", philips, "(0002,0000) says 6 bytes more than the meta"))
     e = Edit(philips)
+    e.add_to_group_length(0x0002, -6)
+    e.save(case("meta-group-length-short", philips, "(0002,0000) says 6 bytes less than the meta"))
+    e = Edit(philips)
     at = e.find(0x0002, 0x0000, "UL")
     del e.data[at:at + 12]
     e.save(case("meta-group-length-absent", philips, "file meta information without (0002,0000)"))
