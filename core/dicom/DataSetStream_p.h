@@ -20,15 +20,14 @@ class DataSetStream : public std::istream {
 public:
     // `structure` is checkDicomStructure(file)'s, which must be ok.
     DataSetStream(const std::string& file, const DicomStructure& structure);
-    bool opened() const { return file_.data() != nullptr; }
 
+private:
     // The bytes of a file with its meta header as the walk read it: (0002,0010)
     // naming Implicit VR Little Endian where the data set is so under a meta that
     // says explicit, and (0002,0000) counting the group's elements.
     static std::vector<unsigned char> correctedMeta(const unsigned char* data, std::size_t end,
                                                     const DicomStructure& structure);
 
-private:
     // A get area over the mapped bytes, with seeking (GDCM seeks back and forth).
     class Bytes : public std::streambuf {
     public:
