@@ -231,19 +231,17 @@ std::string readPixelLayout(const gdcm::DataSet& ds, const std::string& syntax, 
 
 // Uncompressed pixel data: whole in the file, and where little endian frames
 // start (`offset`, read straight from the file; 0 when GDCM decodes them).
-std::string nativePixels(const DicomStructure& structure, std::uint64_t fileSize,
-                         std::uint64_t expected, std::uint64_t& offset) {
+std::string nativePixels(const DicomStructure& structure, std::uint64_t expected,
+                         std::uint64_t& offset) {
     if (!structure.hasPixelData || structure.encapsulated) {
         return {};
     }
-    const std::uint64_t inFile = fileSize - structure.pixelOffset;
     if (std::string truncated = truncatedPixelData(structure); !truncated.empty()) {
         return truncated;
     }
-    const std::uint64_t available = std::min<std::uint64_t>(structure.pixelLength, inFile);
-    if (available < expected) {
+    if (structure.pixelLength < expected) { // within the file, as checked above
         return "truncated pixel data: expected " + std::to_string(expected) + " bytes, found " +
-               std::to_string(available);
+               std::to_string(structure.pixelLength);
     }
     if (structure.transferSyntax == kExplicitLE || structure.transferSyntax == kImplicitLE) {
         offset = structure.pixelOffset;
@@ -348,10 +346,9 @@ FileScan scanDicomFile(const std::string& file) {
         base.frameCount = frames;
         const std::uint64_t frameBytes = static_cast<std::uint64_t>(rows) * cols *
                                          static_cast<std::uint64_t>(px.bitsAllocated / 8);
-        const std::uint64_t fileSize = fs::file_size(file);
         std::uint64_t offset = 0;
         if (const std::string wrong =
-                nativePixels(structure, fileSize, frameBytes * std::uint64_t(frames), offset);
+                nativePixels(structure, frameBytes * std::uint64_t(frames), offset);
             !wrong.empty()) {
             return skip(wrong);
         }
