@@ -49,6 +49,7 @@ void readCommon(const gdcm::DataSet& ds, ImageRecord& r) {
     r.patientName = tagString(ds, 0x0010, 0x0010);
     r.patientId = tagString(ds, 0x0010, 0x0020);
     r.studyDate = tagString(ds, 0x0008, 0x0020);
+    r.frameOfReferenceUid = tagString(ds, 0x0020, 0x0052);
     r.imageType = tagString(ds, 0x0008, 0x0008);
     r.seriesNumber = tagInt(ds, 0x0020, 0x0011).value_or(0);
     r.instanceNumber = tagInt(ds, 0x0020, 0x0013).value_or(0);

@@ -239,8 +239,13 @@ RetrieveResult wadoRetrieveSeries(const DicomWebService& s, const std::string& s
     const QJsonObject series = found.first().toObject();
     const QueryMatch m = dicomweb::toMatch(series, QueryLevel::Series);
     InstanceRecord facts;
-    facts.series = {seriesUid,     studyUid,    m.modality, m.seriesDescription,
-                    m.patientName, m.patientId, m.studyDate};
+    facts.series.seriesUid = seriesUid;
+    facts.series.studyUid = studyUid;
+    facts.series.modality = m.modality;
+    facts.series.description = m.seriesDescription;
+    facts.series.patientName = m.patientName;
+    facts.series.patientId = m.patientId;
+    facts.series.studyDate = m.studyDate;
     facts.seriesNumber = m.seriesNumber;
     facts.studyDescription = m.studyDescription;
     facts.accessionNumber = m.accessionNumber;

@@ -151,6 +151,8 @@ StudyStore::StudyStore(const fs::path& root) : root_(root) {
     exec(
         "CREATE TABLE IF NOT EXISTS instances (sop_uid TEXT PRIMARY KEY, series_uid TEXT NOT NULL, "
         "path TEXT NOT NULL)");
+    exec("CREATE TABLE IF NOT EXISTS series_offsets (series_a TEXT NOT NULL, series_b TEXT NOT "
+         "NULL, dx REAL, dy REAL, dz REAL, PRIMARY KEY (series_a, series_b))");
     exec("CREATE INDEX IF NOT EXISTS instances_by_series ON instances(series_uid)");
     // Stores from before the patients and studies tables (schema version 0):
     // fill them from the series, once. Opening a current store writes nothing.

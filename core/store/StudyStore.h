@@ -3,10 +3,13 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include <glm/glm.hpp>
 
 #include "core/volume/SeriesInfo.h"
 
@@ -107,6 +110,14 @@ public:
     // Every series of the index (patients, studies, series with their
     // completeness), ordered by patient name, study date, study, series number.
     std::vector<StoredSeries> listSeries() const;
+
+    // The offset "link here" set between two series in different Frames of Reference
+    // (linked viewports): a point in b is the point in a plus the offset, LPS mm. One
+    // per pair; asked in the other order, the offset comes back negated.
+    void setSeriesOffset(const std::string& seriesA, const std::string& seriesB,
+                         const glm::dvec3& offset);
+    std::optional<glm::dvec3> seriesOffset(const std::string& seriesA,
+                                           const std::string& seriesB) const;
 
     // Groups the index writes of a retrieval into one transaction (one commit
     // instead of one per instance). Commits when destroyed, also on an

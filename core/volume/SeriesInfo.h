@@ -14,6 +14,8 @@ struct SeriesInfo {
     std::string patientName;
     std::string patientId;
     std::string studyDate;
+    // (0020,0052): series that share it share patient coordinates (linked views).
+    std::string frameOfReferenceUid;
 };
 
 } // namespace lucent

@@ -11,6 +11,7 @@
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QSettings>
+#include <QStackedWidget>
 #include <QStandardPaths>
 #include <QStatusBar>
 #include <QTabWidget>
@@ -33,6 +34,10 @@
 #include "ui/theme/Theme.h"
 #include "ui/theme/ThemeMenu.h"
 #include "ui/transfer/TransferFunctionEditor.h"
+#include "ui/viewports/Viewport.h"
+#include "ui/viewports/ViewportGrid.h"
+#include "ui/viewports/ViewportLinks.h"
+#include "ui/viewports/ViewportWorkspace.h"
 #include "ui/volume/RenderServerSettings.h"
 #include "ui/volume/SurfacePanel.h"
 #include "ui/volume/VolumeView.h"
@@ -91,7 +96,14 @@ MainWindow::MainWindow(QWidget* parent)
     }
     volumeView_ = new VolumeView(this);
     layout_ = new ViewLayout({views_[0], views_[1], views_[2], volumeView_}, this);
-    setCentralWidget(layout_);
+    workspace_ = new ViewportWorkspace(this);
+    central_ = new QStackedWidget(this);
+    central_->addWidget(layout_);
+    central_->addWidget(workspace_);
+    setCentralWidget(central_);
+    connect(
+        workspace_, &ViewportWorkspace::message, this,
+        [this](const QString& text, int timeoutMs) { statusBar()->showMessage(text, timeoutMs); });
 
     // The 3D view's controls and the transfer-function editor in a dock.
     tfEditor_ = new TransferFunctionEditor;
@@ -121,7 +133,13 @@ MainWindow::MainWindow(QWidget* parent)
     studyDock->setWidget(studies);
     addDockWidget(Qt::LeftDockWidgetArea, studyDock);
     connect(studies, &StudyBrowser::openRequested, this,
-            [this](const QString& path, const QString& series) { openPath(path, series); });
+            [this](const QString& path, const QString& series) {
+                if (workspaceShown()) {
+                    workspace_->showInActive(path, series); // the grid's active viewport
+                } else {
+                    openPath(path, series);
+                }
+            });
     connect(loader_, &VolumeLoader::loaded, this, [this, studies](std::shared_ptr<Volume> volume) {
         studies->addSeries(loader_->path(), *volume);
         setVolume(std::move(volume));
@@ -151,6 +169,7 @@ MainWindow::MainWindow(QWidget* parent)
     // PACS query/retrieve and the local store in a dock; arrived series open here.
     PacsBrowser* pacs = PacsBrowser::addDock(this, menuBar()->addMenu(tr("&PACS")));
     studies->setStoreFolder(pacs->config().storeFolder);
+    workspace_->links()->setStoreFolder(pacs->config().storeFolder); // "link here" offsets
     // Measurements of stored series are kept there as DICOM SR, as the reader works.
     autosave_ = new MeasurementAutosave(pacs->config().storeFolder, this);
     connect(this, &MainWindow::measurementsOpened, autosave_, &MeasurementAutosave::attach);
@@ -186,6 +205,16 @@ void MainWindow::addViewMenu() {
         layoutActions_->addAction(action);
         connect(action, &QAction::triggered, layout_,
                 [this, arrangement] { layout_->setArrangement(arrangement); });
+    }
+    for (QAction* action : layoutActions_->actions()) {
+        connect(action, &QAction::triggered, this, [this] { showWorkspace(false); });
+    }
+    QMenu* grid = menu->addMenu(tr("Viewport &Grid"));
+    workspace_->fillMenu(grid);
+    for (QAction* action : grid->actions()) {
+        if (action->objectName().startsWith(QStringLiteral("grid-"))) {
+            connect(action, &QAction::triggered, this, [this] { showWorkspace(true); });
+        }
     }
     connect(layout_, &ViewLayout::arrangementChanged, this,
             [this](ViewLayout::Arrangement arrangement) {
@@ -305,6 +334,20 @@ void MainWindow::openCurvedMpr(const std::vector<glm::dvec3>& points, const glm:
     curvedMpr_->raise();
 }
 
+bool MainWindow::workspaceShown() const {
+    return central_->currentWidget() == workspace_;
+}
+
+void MainWindow::showWorkspace(bool shown) {
+    central_->setCurrentWidget(shown ? static_cast<QWidget*>(workspace_) : layout_);
+    Viewport* first = workspace_->grid()->viewport(0);
+    if (shown && volume_ && !volume_->empty() && first != nullptr && first->session() == nullptr) {
+        workspace_->grid()->setActiveViewport(first);
+        workspace_->showVolume(volume_, loader_->path(),
+                               QString::fromStdString(volume_->seriesUid));
+    }
+}
+
 SliceView* MainWindow::view(Orientation orientation) const {
     return views_[static_cast<std::size_t>(orientation)];
 }
@@ -337,11 +380,7 @@ void MainWindow::openPath(const QString& path, const QString& series) {
 void MainWindow::setVolume(std::shared_ptr<const Volume> volume) {
     volume_ = std::move(volume);
     if (volume_ && !volume_->empty()) {
-        // Start at the middle voxel, so that thin slices fall on voxel centres.
-        cursor_->setPoint(volume_->geometry().toPatient(glm::dvec3(volume_->dims() / 2)));
-        const WindowLevel window = defaultWindow(*volume_);
-        cursor_->setWindowStep(window.step);
-        cursor_->setWindow(window.center, window.width);
+        centreOn(*cursor_, *volume_);
         info_->setText(describe(*volume_));
         info_->setToolTip(QString::fromStdString([&] {
             std::string all;

@@ -12,6 +12,7 @@
 
 class QActionGroup;
 class QLabel;
+class QStackedWidget;
 
 namespace lucent {
 
@@ -25,6 +26,7 @@ class ShortcutsDialog;
 class SliceView;
 class TransferFunctionEditor;
 class ViewLayout;
+class ViewportWorkspace;
 class VolumeLoader;
 class VolumeView;
 
@@ -56,6 +58,12 @@ public:
     SliceView* view(Orientation orientation) const;
     VolumeView* volumeView() const { return volumeView_; }
     ViewLayout* viewLayout() const { return layout_; }
+    // The multi-series viewport grid (View > Viewport Grid), in place of the MPR
+    // layout of one series while it is shown.
+    ViewportWorkspace* workspace() const { return workspace_; }
+    bool workspaceShown() const;
+    // Shows the viewport grid (true) or the MPR layout of the series opened last.
+    void showWorkspace(bool shown);
     MprCursor* cursor() const { return cursor_; }
     // The curved MPR window of the last path drawn (P on an MPR view); nullptr before.
     CurvedMprView* curvedMpr() const { return curvedMpr_; }
@@ -104,6 +112,8 @@ private:
     std::array<SliceView*, 3> views_{};
     VolumeView* volumeView_ = nullptr;
     ViewLayout* layout_ = nullptr;
+    ViewportWorkspace* workspace_ = nullptr;
+    QStackedWidget* central_ = nullptr;
     QActionGroup* layoutActions_ = nullptr;
     TransferFunctionEditor* tfEditor_ = nullptr;
     QLabel* info_;

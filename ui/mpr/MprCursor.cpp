@@ -55,4 +55,15 @@ glm::dvec3 MprCursor::planeNormal(Orientation orientation) const {
     return glm::cross(planeU(orientation), planeV(orientation));
 }
 
+void centreOn(MprCursor& cursor, const Volume& volume) {
+    if (volume.empty()) {
+        return;
+    }
+    cursor.resetRotations();
+    cursor.setPoint(volume.geometry().toPatient(glm::dvec3(volume.dims() / 2)));
+    const WindowLevel window = defaultWindow(volume);
+    cursor.setWindowStep(window.step);
+    cursor.setWindow(window.center, window.width);
+}
+
 } // namespace lucent

@@ -7,6 +7,7 @@
 #include <glm/glm.hpp>
 
 #include "core/mpr/PlaneSampler.h"
+#include "core/volume/Volume.h"
 
 namespace lucent {
 
@@ -52,5 +53,9 @@ private:
     double windowStep_ = 1.0;
     std::array<glm::dmat3, 3> rotations_{glm::dmat3(1.0), glm::dmat3(1.0), glm::dmat3(1.0)};
 };
+
+// Where a cursor starts on a volume: the middle voxel (thin slices fall on voxel
+// centres), the volume's default window, no rotation.
+void centreOn(MprCursor& cursor, const Volume& volume);
 
 } // namespace lucent

@@ -33,6 +33,14 @@ double scaleBarLengthMm(double pixelSize, double maxPixels) {
     return decade;
 }
 
+QString formatStudyDate(const std::string& dicomDate) {
+    QString date = QString::fromStdString(dicomDate);
+    if (date.size() == 8 && date.toLongLong() > 0) {
+        date = date.left(4) + u'-' + date.mid(4, 2) + u'-' + date.right(2);
+    }
+    return date;
+}
+
 QStringList seriesOverlayLines(const SeriesInfo& info) {
     QStringList lines;
     auto add = [&lines](const std::string& text) {
@@ -44,10 +52,7 @@ QStringList seriesOverlayLines(const SeriesInfo& info) {
     if (!info.patientId.empty()) {
         lines << QStringLiteral("ID %1").arg(QString::fromStdString(info.patientId));
     }
-    QString date = QString::fromStdString(info.studyDate);
-    if (date.size() == 8 && date.toLongLong() > 0) {
-        date = date.left(4) + u'-' + date.mid(4, 2) + u'-' + date.right(2);
-    }
+    const QString date = formatStudyDate(info.studyDate);
     if (!date.isEmpty()) {
         lines << date;
     }

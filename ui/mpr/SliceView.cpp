@@ -122,11 +122,30 @@ void SliceView::setZoom(double zoom, const QPointF& anchor) {
     pan_.y += (anchor.y() - 0.5 * (before.height - 1)) * (oldSize - newSize);
     zoom_ = zoom;
     update();
+    emit zoomPanChanged();
+}
+
+void SliceView::setPan(const glm::dvec2& pan) {
+    setZoomAndPan(zoom_, pan);
+}
+
+void SliceView::setZoomAndPan(double zoom, const glm::dvec2& pan) {
+    zoom = std::clamp(zoom, 0.05, 64.0);
+    if (zoom == zoom_ && pan == pan_) {
+        return;
+    }
+    zoom_ = zoom;
+    pan_ = pan;
+    update();
+    emit zoomPanChanged();
 }
 
 void SliceView::resetZoomAndPan() {
-    zoom_ = 1.0;
-    pan_ = glm::dvec2(0.0);
+    setZoomAndPan(1.0, glm::dvec2(0.0));
+}
+
+void SliceView::setReferencePlanes(std::vector<ReferencePlane> planes) {
+    references_ = std::move(planes);
     update();
 }
 
@@ -258,6 +277,7 @@ void SliceView::paintEvent(QPaintEvent*) {
                               .arg(cursor_->windowWidth(), 0, 'g', 5)
                               .arg(cursor_->windowCenter(), 0, 'g', 5);
     paintSliceOverlay(painter, rect(), overlay);
+    paintReferenceLines(painter, rect(), p, references_);
     measure_.paint(painter, p, measurementTolerance());
     paintCurvedPath(painter, p, path_);
 }
@@ -351,6 +371,7 @@ void SliceView::mouseMoveEvent(QMouseEvent* event) {
         // The image follows the mouse: the centre moves the other way.
         pan_ = dragPan_ - glm::dvec2(d.x(), d.y()) * plane().pixelSize;
         update();
+        emit zoomPanChanged();
     } else if (drag_ == Drag::Rotate) {
         rotateOthers(event->position());
     } else if (measure_.busy()) {

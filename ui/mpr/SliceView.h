@@ -9,6 +9,7 @@
 
 #include "core/mpr/PlaneSampler.h"
 #include "core/volume/Volume.h"
+#include "ui/mpr/ReferenceLines.h"
 #include "ui/mpr/SliceMeasurements.h"
 #include "ui/mpr/SliceTools.h"
 
@@ -71,7 +72,15 @@ public:
     void setZoom(double zoom, const QPointF& anchor);
     // The pan: how far the image centre moved from the volume's, mm along u and v.
     glm::dvec2 pan() const { return pan_; }
+    void setPan(const glm::dvec2& pan);
     void resetZoomAndPan();
+    // Zoom and pan together (a linked view takes both from another).
+    void setZoomAndPan(double zoom, const glm::dvec2& pan);
+
+    // Planes of other viewports (in this view's patient coordinates) drawn where they
+    // cut this plane: the reference lines of a viewport grid.
+    void setReferencePlanes(std::vector<ReferencePlane> planes);
+    const std::vector<ReferencePlane>& referencePlanes() const { return references_; }
 
     // Thick slab along the plane normal; a thickness of 0 is a thin slice.
     double slabThickness() const { return slabThickness_; }
@@ -108,6 +117,8 @@ public:
 
 signals:
     void toolChanged(lucent::SliceTool tool);
+    // The zoom or the pan changed (by the user or a setter).
+    void zoomPanChanged();
     // A curved path clicked on this view, and the view's normal (the up of a
     // stretched reformation: the path is seen as it was drawn).
     void curvedPathDrawn(const std::vector<glm::dvec3>& points, const glm::dvec3& viewNormal);
@@ -154,6 +165,7 @@ private:
     Tool tool_ = Tool::Crosshair;
     SliceMeasurements measure_{this};
     std::vector<glm::dvec3> path_;
+    std::vector<ReferencePlane> references_;
     QTimer* cine_;
 
     enum class Drag { None, Crosshair, Window, Pan, Rotate, Measure };

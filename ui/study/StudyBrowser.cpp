@@ -1,5 +1,9 @@
 #include "ui/study/StudyBrowser.h"
 
+#include <QMimeData>
+
+#include "ui/study/SeriesDrag.h"
+
 #include <filesystem>
 #include <thread>
 
@@ -68,8 +72,31 @@ QTreeWidgetItem* child(QTreeWidgetItem* parent, const QString& key, const QStrin
 
 } // namespace
 
+namespace {
+
+// The series rows drag as DraggedSeries, onto a viewport of the grid.
+class SeriesTree : public QTreeWidget {
+public:
+    using QTreeWidget::QTreeWidget;
+
+protected:
+    QStringList mimeTypes() const override { return {QString::fromLatin1(kSeriesMimeType)}; }
+    QMimeData* mimeData(const QList<QTreeWidgetItem*>& items) const override {
+        for (const QTreeWidgetItem* item : items) {
+            const QString path = item->data(0, StudyBrowser::kPathRole).toString();
+            if (!path.isEmpty()) {
+                return seriesMimeData({path, item->data(0, StudyBrowser::kSeriesRole).toString()})
+                    .release(); // the drag owns it
+            }
+        }
+        return nullptr;
+    }
+};
+
+} // namespace
+
 StudyBrowser::StudyBrowser(QWidget* parent)
-    : QWidget(parent), tree_(new QTreeWidget(this)), status_(new QLabel(this)),
+    : QWidget(parent), tree_(new SeriesTree(this)), status_(new QLabel(this)),
       thumbnails_(new SeriesThumbnailer(kThumbnailSize, this)) {
     auto* layout = new QVBoxLayout(this);
     layout->setContentsMargins(0, 0, 0, 0);
@@ -79,6 +106,8 @@ StudyBrowser::StudyBrowser(QWidget* parent)
     tree_->setIconSize(QSize(kThumbnailSize, kThumbnailSize));
     tree_->setWordWrap(true);
     tree_->setIndentation(12);
+    tree_->setDragEnabled(true);
+    tree_->setDragDropMode(QAbstractItemView::DragOnly);
     status_->setWordWrap(true);
     connect(tree_, &QTreeWidget::itemClicked, this, [this](QTreeWidgetItem* item) {
         const QString path = item->data(0, kPathRole).toString();

@@ -1,0 +1,132 @@
+#include "ui/viewports/SeriesLibrary.h"
+
+#include <QMetaObject>
+
+#include "core/io/Catalog.h"
+#include "ui/viewports/SeriesSession.h"
+
+namespace lucent {
+
+SeriesLibrary::SeriesLibrary(QObject* parent) : QObject(parent) {}
+
+SeriesLibrary::~SeriesLibrary() {
+    for (Pending& p : pending_) {
+        p.worker.request_stop();
+    }
+    pending_.clear(); // joins
+}
+
+SeriesSession* SeriesLibrary::find(const QString& path, const QString& series) const {
+    for (SeriesSession* s : sessions_) {
+        if (s->path() == path &&
+            (s->series() == series || (!series.isEmpty() && s->seriesUid() == series))) {
+            return s;
+        }
+    }
+    return nullptr;
+}
+
+SeriesSession* SeriesLibrary::findUid(const std::string& seriesUid) const {
+    for (SeriesSession* s : sessions_) {
+        if (!seriesUid.empty() && s->volume()->seriesUid == seriesUid) {
+            return s;
+        }
+    }
+    return nullptr;
+}
+
+SeriesSession* SeriesLibrary::adopt(std::shared_ptr<const Volume> volume, const QString& path,
+                                    const QString& series) {
+    if (SeriesSession* known = find(path, series)) {
+        return known;
+    }
+    if (SeriesSession* known = findUid(volume->seriesUid)) {
+        return known;
+    }
+    auto* session = new SeriesSession(std::move(volume), path, series, this);
+    sessions_.push_back(session);
+    return session;
+}
+
+void SeriesLibrary::request(const QString& path, const QString& series) {
+    if (SeriesSession* known = find(path, series)) {
+        QMetaObject::invokeMethod(
+            this, [this, path, series, known] { emit ready(path, series, known); },
+            Qt::QueuedConnection);
+        return;
+    }
+    for (const Pending& p : pending_) {
+        if (p.path == path && p.series == series) {
+            return;
+        }
+    }
+    Pending& p = pending_.emplace_back();
+    p.path = path;
+    p.series = series;
+    p.worker = std::jthread([this, path, series](std::stop_token stop) {
+        std::shared_ptr<Volume> volume;
+        QString error;
+        try {
+            LoadControl control;
+            control.stop = stop;
+            volume = std::make_shared<Volume>(
+                loadPath(path.toStdString(), series.toStdString(), control));
+        } catch (const LoadCancelled&) {
+            return;
+        } catch (const std::exception& e) {
+            error = QString::fromUtf8(e.what());
+        }
+        QMetaObject::invokeMethod(
+            this, [this, path, series, volume, error] { finish(path, series, volume, error); },
+            Qt::QueuedConnection);
+    });
+}
+
+void SeriesLibrary::finish(const QString& path, const QString& series,
+                           std::shared_ptr<Volume> volume, const QString& error) {
+    for (auto it = pending_.begin(); it != pending_.end(); ++it) {
+        if (it->path == path && it->series == series) {
+            it->worker.detach(); // it has posted this and is ending
+            pending_.erase(it);
+            break;
+        }
+    }
+    if (!volume) {
+        emit failed(path, series, error);
+        return;
+    }
+    emit ready(path, series, adopt(std::move(volume), path, series));
+}
+
+SeriesSession* SeriesLibrary::sibling(SeriesSession* session) {
+    auto* twin = new SeriesSession(session->volume(), session->path(), session->series(), this);
+    sessions_.push_back(twin);
+    return twin;
+}
+
+std::size_t SeriesLibrary::bytes() const {
+    std::set<const Volume*> counted;
+    std::size_t total = 0;
+    for (const SeriesSession* s : sessions_) {
+        if (counted.insert(s->volume().get()).second) {
+            total += s->bytes();
+        }
+    }
+    return total;
+}
+
+int SeriesLibrary::trim(const std::set<const SeriesSession*>& shown, std::size_t budgetBytes) {
+    int dropped = 0;
+    for (auto it = sessions_.begin(); it != sessions_.end() && bytes() > budgetBytes;) {
+        if (shown.count(*it) != 0) {
+            ++it;
+            continue;
+        }
+        (*it)->deleteLater();
+        it = sessions_.erase(it);
+        ++dropped;
+    }
+    return dropped;
+}
+
+} // namespace lucent
