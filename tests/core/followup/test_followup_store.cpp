@@ -1,93 +1,29 @@
-// Lesions tracked over two real CT studies of one patient in a real study store: the
-// Philips phantom's 5 mm series made a prior study (new study, series and instance UIDs,
-// an earlier date, by DCMTK's dcmodify on copies) and its 1 mm series as the follow-up.
-// Measurements marked target, non-target and lymph node are saved as Lucent's SRs, read
-// back with their tracking UIDs and roles (exact geometry too), gathered into the RECIST
-// table, which is checked against sums computed here from the points, and printed by
-// `lucent-cli measurements --patient ID --recist [--json]`.
+// Lesions tracked over two real CT studies of one patient in a real study store
+// (tests/core/followup/TwoStudies.h). Measurements marked target, non-target and lymph node are
+// saved as Lucent's SRs, read back with their tracking UIDs and roles (exact geometry too),
+// gathered into the RECIST table, which is checked against sums computed here from the points, and
+// printed by `lucent-cli measurements --patient ID --recist [--json]`.
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
-#include <QProcess>
 #include <QTemporaryDir>
 #include <QTest>
 
 #include <dcmtk/config/osconfig.h>
-#include <dcmtk/dcmdata/dcdeftag.h>
-#include <dcmtk/dcmdata/dcfilefo.h>
 #include <dcmtk/dcmsr/cmr/tid1500.h>
 #include <dcmtk/dcmsr/codes/dcm.h>
 #include <dcmtk/dcmsr/dsrdoc.h>
 
 #include "core/followup/FollowUpCollection.h"
 #include "core/followup/FollowUpText.h"
-#include "core/report/MeasurementArchive.h"
-#include "core/report/MeasurementReport.h"
-#include "tests/core/report/MeasuredSeries.h"
+#include "tests/core/followup/TwoStudies.h"
 #include "tests/support/CliRunner.h"
 
 using namespace lucent;
 namespace fs = std::filesystem;
+using namespace lucent::test;
 
 namespace {
-
-const fs::path kFollowUpDir = test::kRealData / "dcm_qa_ct/Philips_S21570/S2020";
-const char* kPatient = "PLASTIC"; // the phantom's Patient ID
-
-std::vector<fs::path> filesIn(const fs::path& folder) {
-    std::vector<fs::path> files;
-    for (const auto& e : fs::directory_iterator(folder)) {
-        if (e.is_regular_file() && e.path().filename() != "LICENSE") {
-            files.push_back(e.path());
-        }
-    }
-    std::sort(files.begin(), files.end());
-    return files;
-}
-
-std::string tag(DcmItem& d, const DcmTagKey& key) {
-    OFString v;
-    d.findAndGetOFString(key, v);
-    return v.c_str();
-}
-
-// Stores a file as a retrieval would, with the index facts read from its header.
-bool store(StudyStore& store, const fs::path& file) {
-    DcmFileFormat f;
-    if (f.loadFile(file.c_str(), EXS_Unknown, EGL_noChange, 4096).bad()) {
-        return false;
-    }
-    DcmDataset& d = *f.getDataset();
-    InstanceRecord r;
-    r.series = {tag(d, DCM_SeriesInstanceUID), tag(d, DCM_StudyInstanceUID), tag(d, DCM_Modality),
-                tag(d, DCM_SeriesDescription), tag(d, DCM_PatientName),      tag(d, DCM_PatientID),
-                tag(d, DCM_StudyDate)};
-    r.sopInstanceUid = tag(d, DCM_SOPInstanceUID);
-    const fs::path temp = store.temporaryFile();
-    fs::copy_file(file, temp);
-    return store.add(temp, r);
-}
-
-Measurement lesion(MeasurementKind kind, const SlicePlane& plane, std::vector<glm::dvec2> pixels,
-                   const std::string& label, LesionRole role, bool node, const std::string& uid) {
-    Measurement m;
-    m.kind = kind;
-    m.plane = plane;
-    for (const glm::dvec2& p : pixels) {
-        m.points.push_back(plane.pointAt(p.x, p.y));
-    }
-    m.label = label;
-    m.lesion = {role, node, uid};
-    return m;
-}
-
-glm::dvec3 centreOf(const Measurement& m) {
-    glm::dvec3 c(0.0);
-    for (const glm::dvec3& p : m.points) {
-        c += p / static_cast<double>(m.points.size());
-    }
-    return c;
-}
 
 // A TID 1500 SR as another program writes one: a length "Node B" on `image`, its tracking
 // UID, the RECIST category Target and the finding site Lymph node in SRT's older codes.
@@ -134,10 +70,7 @@ class TestFollowUpStore : public QObject {
 
     QTemporaryDir dir_;
     std::unique_ptr<StudyStore> store_;
-    ReferencedSeries prior_, current_;
-    std::vector<Measurement> priorMeasurements_, currentMeasurements_;
-    const std::string liver_ = newDicomUid(), node_ = newDicomUid(), bone_ = newDicomUid(),
-                      newLesion_ = newDicomUid();
+    TwoStudies studies_;
 
     QString storeDir() const { return dir_.path() + "/store"; }
 
@@ -145,60 +78,8 @@ private slots:
     void initTestCase() {
         REQUIRE_DATA("dcm_qa_ct/Philips_S21570/S2010");
         REQUIRE_DATA("dcm_qa_ct/Philips_S21570/S2020");
-        // The prior: the 5 mm series as another study a year earlier.
-        const fs::path priorDir = fs::path(dir_.path().toStdString()) / "prior";
-        fs::create_directories(priorDir);
-        QStringList args{"-nb", "-gin",
-                         "-m",  "StudyDate=20140206",
-                         "-m",  QString("StudyInstanceUID=%1").arg(newDicomUid().c_str()),
-                         "-m",  QString("SeriesInstanceUID=%1").arg(newDicomUid().c_str())};
-        for (const fs::path& file : test::seriesFiles()) {
-            const fs::path copy = priorDir / file.filename();
-            fs::copy_file(file, copy);
-            fs::permissions(copy, fs::perms::owner_write, fs::perm_options::add);
-            args << QString::fromStdString(copy.string());
-        }
-        QProcess modify;
-        modify.start("dcmodify", args);
-        QVERIFY2(modify.waitForFinished(60000) && modify.exitCode() == 0,
-                 modify.readAllStandardError().constData());
-
         store_ = std::make_unique<StudyStore>(storeDir().toStdString());
-        for (const fs::path& file : filesIn(priorDir)) {
-            QVERIFY(store(*store_, file));
-        }
-        for (const fs::path& file : filesIn(kFollowUpDir)) {
-            QVERIFY(store(*store_, file));
-        }
-        prior_ = readReferencedSeries(filesIn(priorDir));
-        current_ = readReferencedSeries(filesIn(kFollowUpDir));
-        QVERIFY(prior_.studyUid != current_.studyUid);
-
-        const SlicePlane before = test::acquiredPlane(prior_, 14);
-        using K = MeasurementKind;
-        using R = LesionRole;
-        priorMeasurements_ = {
-            lesion(K::Bidirectional, before, {{200, 300}, {251.5, 310}, {224, 290}, {226, 322.25}},
-                   "Liver 1", R::Target, false, liver_),
-            lesion(K::Bidirectional, before, {{300, 200}, {340, 204}, {318, 190}, {319, 219.5}},
-                   "Node 1", R::Target, true, node_),
-            lesion(K::Distance, before, {{100, 100}, {130, 110}}, "Bone 1", R::NonTarget, false,
-                   bone_),
-            lesion(K::Distance, before, {{50, 50}, {90, 60}}, "plain", R::None, false, ""),
-        };
-        const SlicePlane after = test::acquiredPlane(current_, 70);
-        currentMeasurements_ = {
-            lesion(K::Distance, after, {{200, 300}, {258.25, 312}}, "Liver 1", R::Target, false,
-                   liver_),
-            lesion(K::Bidirectional, after, {{300, 200}, {345, 205}, {318, 188}, {320, 224.75}},
-                   "Node 1", R::Target, true, node_),
-            lesion(K::Arrow, after, {{140, 140}, {120, 110}}, "Bone 1", R::NonTarget, false, bone_),
-            lesion(K::Distance, after, {{400, 380}, {420, 392}}, "New 1", R::NonTarget, false,
-                   newLesion_),
-        };
-        MeasurementArchive archive(*store_);
-        QVERIFY(!archive.save(prior_.seriesUid, priorMeasurements_).empty());
-        QVERIFY(!archive.save(current_.seriesUid, currentMeasurements_).empty());
+        makeTwoStudies(dir_.path().toStdString(), *store_, studies_);
     }
 
     // Read back by a fresh archive: the exact geometry, and each lesion's tracking UID,
@@ -206,33 +87,36 @@ private slots:
     // kept from then on.
     void readBackWithTrackingUids() {
         MeasurementArchive archive(*store_);
-        std::vector<Measurement> prior = archive.load(prior_.seriesUid).measurements;
-        test::compareMeasurements(prior, priorMeasurements_, 1e-6, false);
+        std::vector<Measurement> prior = archive.load(studies_.prior.seriesUid).measurements;
+        compareMeasurements(prior, studies_.priorMeasurements, 1e-6, false);
         for (std::size_t i = 0; i < 3; ++i) {
-            QVERIFY(prior[i].lesion == priorMeasurements_[i].lesion);
+            QVERIFY(prior[i].lesion == studies_.priorMeasurements[i].lesion);
         }
         QCOMPARE(prior[3].lesion.role, LesionRole::None);
         QVERIFY(!prior[3].lesion.trackingUid.empty());
-        const std::vector<Measurement> current = archive.load(current_.seriesUid).measurements;
-        QCOMPARE(current.size(), currentMeasurements_.size());
-        for (std::size_t i = 0; i < current.size(); ++i) {
-            QVERIFY(current[i].lesion == currentMeasurements_[i].lesion);
+        const std::vector<Measurement> current =
+            archive.load(studies_.current.seriesUid).measurements;
+        QCOMPARE(current.size(), studies_.currentMeasurements.size());
+        for (std::size_t i = 0; i < 4; ++i) {
+            QVERIFY(current[i].lesion == studies_.currentMeasurements[i].lesion);
         }
         QCOMPARE(current[0].lesion.trackingUid, prior[0].lesion.trackingUid); // one lesion
 
         const std::string plainUid = prior[3].lesion.trackingUid;
-        archive.save(prior_.seriesUid, prior);
-        QCOMPARE(
-            MeasurementArchive(*store_).load(prior_.seriesUid).measurements[3].lesion.trackingUid,
-            plainUid);
+        archive.save(studies_.prior.seriesUid, prior);
+        QCOMPARE(MeasurementArchive(*store_)
+                     .load(studies_.prior.seriesUid)
+                     .measurements[3]
+                     .lesion.trackingUid,
+                 plainUid);
     }
 
     // Another program's SR: its tracking UID, Target and the SRT lymph node read too.
     void foreignReportLesion() {
         const fs::path file = fs::path(dir_.path().toStdString()) / "foreign.dcm";
         const std::string uid = newDicomUid();
-        QVERIFY(writeForeignLesion(file, current_, current_.images[70], uid));
-        const ReadReport read = readMeasurementReport(file, &current_);
+        QVERIFY(writeForeignLesion(file, studies_.current, studies_.current.images[70], uid));
+        const ReadReport read = readMeasurementReport(file, &studies_.current);
         QCOMPARE(read.measurements.size(), std::size_t(1));
         const Measurement& m = read.measurements[0];
         QVERIFY(m.readOnly);
@@ -252,8 +136,8 @@ private slots:
         QCOMPARE(t.timepoints[0].studyDate, std::string("20140206"));
         QCOMPARE(t.timepoints[1].studyDate, std::string("20150206"));
 
-        const auto& p = priorMeasurements_;
-        const auto& c = currentMeasurements_;
+        const auto& p = studies_.priorMeasurements;
+        const auto& c = studies_.currentMeasurements;
         // Liver by its long axis, the node by its short axis.
         const double baseline = bidirectionalLongAxisMm(p[0]) + bidirectionalShortAxisMm(p[1]);
         const double followUp = measurementLengthMm(c[0]) + bidirectionalShortAxisMm(c[1]);
@@ -268,9 +152,9 @@ private slots:
 
         QCOMPARE(t.lesions.size(), std::size_t(4));
         const LesionRow& liver = t.lesions[0];
-        QCOMPARE(liver.trackingUid, liver_);
-        QCOMPARE(liver.at[0]->where.seriesUid, prior_.seriesUid);
-        QCOMPARE(liver.at[1]->where.seriesUid, current_.seriesUid);
+        QCOMPARE(liver.trackingUid, studies_.liver);
+        QCOMPARE(liver.at[0]->where.seriesUid, studies_.prior.seriesUid);
+        QCOMPARE(liver.at[1]->where.seriesUid, studies_.current.seriesUid);
         QVERIFY(glm::distance(liver.at[0]->where.centre, centreOf(p[0])) < 1e-6);
         QVERIFY(glm::distance(liver.at[1]->where.centre, centreOf(c[0])) < 1e-6);
         QVERIFY(t.lesions[1].lymphNode);
@@ -288,8 +172,8 @@ private slots:
 
     void commandLine() {
         const FollowUpTable t = assessRecist(collectFollowUp(*store_, kPatient).timepoints);
-        test::CliRun run = test::runCli(
-            {"measurements", "--patient", kPatient, "--store", storeDir(), "--recist"});
+        CliRun run =
+            runCli({"measurements", "--patient", kPatient, "--store", storeDir(), "--recist"});
         QVERIFY2(run.exitCode == 0, qPrintable(run.err));
         QVERIFY2(run.out.contains(QString::fromStdString(followUpText(t))), qPrintable(run.out));
         QVERIFY2(run.out.contains("2 timepoint(s), 4 tracked lesion(s)"), qPrintable(run.out));
@@ -301,7 +185,7 @@ private slots:
         QVERIFY2(run.out.contains(QRegularExpression("Response +Baseline +PD")),
                  qPrintable(run.out));
 
-        run = test::runCli(
+        run = runCli(
             {"measurements", "--patient", kPatient, "--store", storeDir(), "--recist", "--json"});
         QVERIFY2(run.exitCode == 0, qPrintable(run.err));
         const QJsonObject json = QJsonDocument::fromJson(run.out.toUtf8()).object();
@@ -314,14 +198,13 @@ private slots:
         QVERIFY(std::abs(followUp["change_from_baseline_percent"].toDouble() -
                          *t.timepoints[1].fromBaselinePercent) < 1e-9);
         const QJsonObject liver = json["lesions"].toArray()[0].toObject();
-        QCOMPARE(liver["tracking_uid"].toString(), QString::fromStdString(liver_));
+        QCOMPARE(liver["tracking_uid"].toString(), QString::fromStdString(studies_.liver));
         QCOMPARE(liver["timepoints"].toArray()[1].toObject()["series_uid"].toString(),
-                 QString::fromStdString(current_.seriesUid));
+                 QString::fromStdString(studies_.current.seriesUid));
         QVERIFY(json["lesions"].toArray()[3].toObject()["new_lesion"].toBool());
 
-        QCOMPARE(test::runCli({"measurements", "--recist", "--store", storeDir()}).exitCode, 2);
-        run = test::runCli(
-            {"measurements", "--patient", "NOBODY", "--store", storeDir(), "--recist"});
+        QCOMPARE(runCli({"measurements", "--recist", "--store", storeDir()}).exitCode, 2);
+        run = runCli({"measurements", "--patient", "NOBODY", "--store", storeDir(), "--recist"});
         QCOMPARE(run.exitCode, 3);
         QVERIFY2(run.err.contains("NOBODY"), qPrintable(run.err));
     }
