@@ -19,6 +19,12 @@ std::string studyDateOf(const StudyStore& store, const std::string& seriesUid) {
 }
 
 FollowUpSources collectFollowUp(StudyStore& store, const std::string& patientId) {
+    MeasurementArchive archive(store);
+    return collectFollowUp(store, archive, patientId);
+}
+
+FollowUpSources collectFollowUp(StudyStore& store, MeasurementArchive& archive,
+                                const std::string& patientId) {
     FollowUpSources out;
     out.patientId = patientId;
     std::map<std::string, const StoredSeries*> images; // the patient's image series by UID
@@ -53,7 +59,6 @@ FollowUpSources collectFollowUp(StudyStore& store, const std::string& patientId)
             }
         }
     }
-    MeasurementArchive archive(store);
     std::map<std::string, TimepointMeasurements> byDate;
     for (const std::string& uid : measured) {
         const SeriesInfo& info = images.at(uid)->info;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/followup/Recist.h"
+#include "core/report/MeasurementArchive.h"
 #include "core/store/StudyStore.h"
 
 namespace lucent {
@@ -19,7 +20,10 @@ struct FollowUpSources {
     std::vector<std::string> problems; // series whose measurements could not be read, why
 };
 
-// Throws StoreError naming the store when it holds no series of the patient.
+// Throws StoreError naming the store when it holds no series of the patient. `archive` (of
+// `store`) keeps the image headers it read: a panel that refreshes keeps one.
+FollowUpSources collectFollowUp(StudyStore& store, MeasurementArchive& archive,
+                                const std::string& patientId);
 FollowUpSources collectFollowUp(StudyStore& store, const std::string& patientId);
 
 // The study date (YYYYMMDD) of an indexed series; "" when unknown.

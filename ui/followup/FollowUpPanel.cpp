@@ -13,6 +13,7 @@
 
 #include "core/followup/FollowUpCollection.h"
 #include "core/followup/FollowUpText.h"
+#include "core/report/MeasurementArchive.h"
 #include "core/store/StudyStore.h"
 #include "ui/theme/Theme.h"
 
@@ -54,7 +55,11 @@ FollowUpPanel::FollowUpPanel(QWidget* parent)
     showTable();
 }
 
+FollowUpPanel::~FollowUpPanel() = default;
+
 void FollowUpPanel::setStoreFolder(const QString& folder) {
+    archive_.reset();
+    store_.reset();
     folder_ = folder;
     refresh();
 }
@@ -73,8 +78,12 @@ void FollowUpPanel::refresh() {
         problem = tr("No study store: measurements are followed over the studies kept there");
     } else {
         try {
-            StudyStore store(folder_.toStdString());
-            const FollowUpSources sources = collectFollowUp(store, patientId_.toStdString());
+            if (!archive_) {
+                store_ = std::make_unique<StudyStore>(folder_.toStdString());
+                archive_ = std::make_unique<MeasurementArchive>(*store_);
+            }
+            const FollowUpSources sources =
+                collectFollowUp(*store_, *archive_, patientId_.toStdString());
             table_ = assessRecist(sources.timepoints);
             QStringList lines;
             for (const std::string& p : sources.problems) {
@@ -146,12 +155,10 @@ void FollowUpPanel::cellClicked(int row) {
 
 std::vector<LesionChoice> FollowUpPanel::earlierLesions(const std::string& seriesUid) const {
     std::string date;
-    if (storeExists(folder_)) {
-        try {
-            date = studyDateOf(StudyStore(folder_.toStdString()), seriesUid);
-        } catch (const std::exception&) {
-            // The store cannot be opened: every lesion is offered.
-        }
+    try {
+        date = store_ ? studyDateOf(*store_, seriesUid) : std::string();
+    } catch (const std::exception&) {
+        // The index cannot be read: every lesion is offered, as for an unknown date.
     }
     std::vector<LesionChoice> out;
     for (const LesionRow& row : table_.lesions) {

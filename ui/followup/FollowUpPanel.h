@@ -1,5 +1,6 @@
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,9 @@ class QTableWidget;
 
 namespace lucent {
 
+class MeasurementArchive;
+class StudyStore;
+
 // The RECIST 1.1 follow-up of one patient (a dock of the main window): every tracked lesion
 // by timepoint (its diameter in mm; "present" for a non-target lesion), the sum of
 // diameters, its change from baseline and from the nadir, the response and why
@@ -29,6 +33,7 @@ class FollowUpPanel : public QWidget {
 
 public:
     explicit FollowUpPanel(QWidget* parent = nullptr);
+    ~FollowUpPanel() override;
 
     void setStoreFolder(const QString& folder); // and refresh()
     void showPatient(const QString& patientId); // and refresh(); "" shows nothing
@@ -57,6 +62,9 @@ private:
     void cellClicked(int row);
     void exportClicked();
 
+    // Opened once per folder: the archive keeps the image headers it read.
+    std::unique_ptr<StudyStore> store_;
+    std::unique_ptr<MeasurementArchive> archive_;
     QString folder_;
     QString patientId_;
     FollowUpTable table_;
