@@ -230,7 +230,7 @@ std::vector<const LesionRow*> lesionsBefore(const FollowUpTable& table,
                                             const std::string& studyDate) {
     std::vector<const LesionRow*> out;
     for (const LesionRow& row : table.lesions) {
-        if (table.timepoints[row.firstTimepoint].studyDate < studyDate) {
+        if (studyDate.empty() || table.timepoints[row.firstTimepoint].studyDate < studyDate) {
             out.push_back(&row);
         }
     }

@@ -106,7 +106,8 @@ struct FollowUpTable {
 // The table of the timepoints (any order; sorted by date here).
 FollowUpTable assessRecist(std::vector<TimepointMeasurements> timepoints);
 
-// The lesions first seen before `studyDate` (YYYYMMDD), for "same lesion as".
+// The lesions first seen before `studyDate` (YYYYMMDD; "" : every lesion), for "same lesion
+// as".
 std::vector<const LesionRow*> lesionsBefore(const FollowUpTable& table,
                                             const std::string& studyDate);
 

@@ -161,11 +161,9 @@ std::vector<LesionChoice> FollowUpPanel::earlierLesions(const std::string& serie
         // The index cannot be read: every lesion is offered, as for an unknown date.
     }
     std::vector<LesionChoice> out;
-    for (const LesionRow& row : table_.lesions) {
-        const std::string& first = table_.timepoints[row.firstTimepoint].studyDate;
-        if (date.empty() || first < date) {
-            out.push_back({row.trackingUid, row.name, row.role, row.lymphNode, first});
-        }
+    for (const LesionRow* row : lesionsBefore(table_, date)) {
+        out.push_back({row->trackingUid, row->name, row->role, row->lymphNode,
+                       table_.timepoints[row->firstTimepoint].studyDate});
     }
     return out;
 }

@@ -100,6 +100,17 @@ private slots:
         QVERIFY(!pd.reasons.empty());
     }
 
+    // Thresholds met exactly where floating point misses them by an ulp: 43 -> 30.1 is
+    // -30 % (PR); 26 -> 31.2 is +20 % and +5.2 mm (PD).
+    void exactThresholdsInFloatingPoint() {
+        FollowUpTable t = assessRecist({at("20100101", {target("a", 30), target("b", 13)}),
+                                        at("20100401", {target("a", 21.1), target("b", 9)})});
+        QCOMPARE(t.timepoints[1].response, RecistResponse::PR);
+        t = assessRecist({at("20100101", {target("a", 10), target("b", 16)}),
+                          at("20100401", {target("a", 12), target("b", 19.2)})});
+        QCOMPARE(t.timepoints[1].response, RecistResponse::PD);
+    }
+
     // Just short of -30 %: 70.5 of 100 is -29.5 % -> SD.
     void justShortOfPartialResponseIsStable() {
         const FollowUpTable t =
@@ -139,6 +150,14 @@ private slots:
         QCOMPARE(t.lesions[1].firstTimepoint, std::size_t(1));
         QCOMPARE(t.timepoints[2].sumMm, 28.0);
         QCOMPARE(t.timepoints[2].response, RecistResponse::SD);
+        // "Same lesion as" at the second follow-up offers all four, at the first only the
+        // baseline's two.
+        QCOMPARE(lesionsBefore(t, "20100701").size(), std::size_t(4));
+        const auto early = lesionsBefore(t, "20100401");
+        QCOMPARE(early.size(), std::size_t(2));
+        QCOMPARE(early[0]->trackingUid, std::string("a"));
+        QCOMPARE(early[1]->trackingUid, std::string("x"));
+        QCOMPARE(lesionsBefore(t, "").size(), std::size_t(4));
     }
 
     // Baseline 25 + node 18 = 43. The lesion gone and the node at 9.5 mm short axis: CR
