@@ -1,5 +1,6 @@
 // lucent-cli measurements: the measurements of a series in the study store, or
-// of one SR file (core/report), as text or JSON.
+// of one SR file (core/report), as text or JSON; with --patient ID --recist, the
+// patient's RECIST 1.1 follow-up table (core/followup).
 #include <QCommandLineParser>
 #include <QJsonArray>
 #include <QJsonDocument>
@@ -8,6 +9,8 @@
 
 #include "CliCommand.h"
 #include "core/exchange/InstanceFiles.h"
+#include "core/followup/FollowUpCollection.h"
+#include "core/followup/FollowUpText.h"
 #include "core/pacs/PacsConfig.h"
 #include "core/report/MeasurementArchive.h"
 #include "core/report/MeasurementReport.h"
@@ -53,15 +56,97 @@ void print(const std::vector<Measurement>& measurements, const std::vector<std::
     }
 }
 
+QString storeFolder(const QCommandLineParser& p) {
+    return p.isSet("store") ? p.value("store") : PacsConfig::defaultStoreFolder();
+}
+
+QJsonValue optionalNumber(const std::optional<double>& v) {
+    return v ? QJsonValue(*v) : QJsonValue(QJsonValue::Null);
+}
+
+QJsonArray strings(const std::vector<std::string>& list) {
+    QJsonArray out;
+    for (const std::string& s : list) {
+        out.append(QString::fromStdString(s));
+    }
+    return out;
+}
+
+QJsonObject toJson(const LesionRow& row) {
+    QJsonArray at;
+    for (const std::optional<LesionObservation>& o : row.at) {
+        if (!o) {
+            at.append(QJsonValue::Null);
+            continue;
+        }
+        const glm::dvec3& c = o->where.centre;
+        at.append(QJsonObject{{"diameter_mm", o->diameterMm},
+                              {"long_axis_mm", o->longAxisMm},
+                              {"short_axis_mm", o->shortAxisMm},
+                              {"gone", o->gone},
+                              {"text", QString::fromStdString(formatLesionCell(row, o))},
+                              {"series_uid", QString::fromStdString(o->where.seriesUid)},
+                              {"centre_lps_mm", QJsonArray{c.x, c.y, c.z}}});
+    }
+    return {{"tracking_uid", QString::fromStdString(row.trackingUid)},
+            {"name", QString::fromStdString(row.name)},
+            {"role", lesionRoleName(row.role)},
+            {"lymph_node", row.lymphNode},
+            {"new_lesion", row.firstTimepoint > 0},
+            {"timepoints", at}};
+}
+
+void printFollowUp(const FollowUpSources& sources, bool json, QTextStream& out) {
+    const FollowUpTable table = assessRecist(sources.timepoints);
+    if (json) {
+        QJsonArray timepoints, lesions;
+        for (const TimepointAssessment& t : table.timepoints) {
+            timepoints.append(
+                QJsonObject{{"study_date", QString::fromStdString(formatStudyDate(t.studyDate))},
+                            {"study_uids", strings(t.studyUids)},
+                            {"sum_mm", t.sumMm},
+                            {"evaluable", t.evaluable},
+                            {"nadir_mm", optionalNumber(t.nadirMm)},
+                            {"change_from_baseline_percent", optionalNumber(t.fromBaselinePercent)},
+                            {"change_from_nadir_percent", optionalNumber(t.fromNadirPercent)},
+                            {"response", recistResponseName(t.response)},
+                            {"reasons", strings(t.reasons)}});
+        }
+        for (const LesionRow& row : table.lesions) {
+            lesions.append(toJson(row));
+        }
+        out << QJsonDocument(
+                   QJsonObject{{"patient_id", QString::fromStdString(sources.patientId)},
+                               {"patient_name", QString::fromStdString(sources.patientName)},
+                               {"timepoints", timepoints},
+                               {"lesions", lesions},
+                               {"problems", strings(sources.problems)}})
+                   .toJson();
+        return;
+    }
+    out << "Patient " << QString::fromStdString(sources.patientId) << " ("
+        << QString::fromStdString(sources.patientName) << "), RECIST 1.1, "
+        << table.timepoints.size() << " timepoint(s), " << table.lesions.size()
+        << " tracked lesion(s)\n"
+        << QString::fromStdString(followUpText(table));
+    for (const std::string& p : sources.problems) {
+        out << "not read: " << QString::fromStdString(p) << "\n";
+    }
+}
+
 } // namespace
 
 int runMeasurements(const QStringList& args) {
     QCommandLineParser p;
     p.setApplicationDescription(
         "Prints the measurements of a series in the study store (from every DICOM SR there "
-        "that refers to it), or of one SR file, and what of them cannot be shown.");
+        "that refers to it), or of one SR file, and what of them cannot be shown; or a "
+        "patient's RECIST 1.1 follow-up table (--patient ID --recist).");
     p.addOptions({
         {"series", "A Series Instance UID of the study store.", "UID"},
+        {"patient", "With --recist: a Patient ID of the study store.", "ID"},
+        {"recist", "The patient's RECIST 1.1 follow-up table: tracked lesions by timepoint, sum of "
+                   "diameters, change from baseline and nadir, response."},
         {"store", "The study store folder (default: ~/.local/share/lucent/store).", "DIR"},
         {"images",
          "With an SR FILE: the folder of the images it refers to, to place 2D coordinates of SRs "
@@ -80,16 +165,23 @@ int runMeasurements(const QStringList& args) {
         QTextStream(stdout) << p.helpText();
         return kOk;
     }
-    if (p.positionalArguments().size() + (p.isSet("series") ? 1 : 0) != 1) {
-        err << "lucent-cli measurements: give one SR FILE or --series UID\n";
+    const int sources = static_cast<int>(p.positionalArguments().size()) +
+                        (p.isSet("series") ? 1 : 0) + (p.isSet("patient") ? 1 : 0);
+    if (sources != 1 || p.isSet("recist") != p.isSet("patient")) {
+        err << "lucent-cli measurements: give one SR FILE, --series UID, or --patient ID "
+               "--recist\n";
         return kUsage;
     }
     QTextStream out(stdout);
     try {
+        if (p.isSet("patient")) {
+            StudyStore store(storeFolder(p).toStdString());
+            printFollowUp(collectFollowUp(store, p.value("patient").toStdString()), p.isSet("json"),
+                          out);
+            return kOk;
+        }
         if (p.isSet("series")) {
-            const QString folder =
-                p.isSet("store") ? p.value("store") : PacsConfig::defaultStoreFolder();
-            StudyStore store(folder.toStdString());
+            StudyStore store(storeFolder(p).toStdString());
             MeasurementArchive archive(store);
             const MeasurementArchive::Loaded loaded = archive.load(p.value("series").toStdString());
             print(loaded.measurements, loaded.notShown, p.isSet("json"), out);

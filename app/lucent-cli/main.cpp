@@ -33,6 +33,9 @@ const char* kUsageText =
     "                                       copy instances out, de-identified or not\n"
     "  measurements (--series UID [--store DIR] | SR_FILE [--images DIR]) [--json]\n"
     "                                       measurements saved as DICOM SR, and what is not shown\n"
+    "  measurements --patient ID [--store DIR] --recist [--json]\n"
+    "                                       RECIST 1.1 follow-up: lesions by timepoint, sums,\n"
+    "                                       change from baseline and nadir, response\n"
     "Exit status: 0 ok, 2 usage, 3 nothing loadable or bad input, 4 PACS or network failure.\n";
 
 } // namespace

@@ -46,6 +46,18 @@ const char* measurementKindName(MeasurementKind kind) {
     return "Measurement";
 }
 
+const char* lesionRoleName(LesionRole role) {
+    switch (role) {
+    case LesionRole::None:
+        return "";
+    case LesionRole::Target:
+        return "Target";
+    case LesionRole::NonTarget:
+        return "Non-target";
+    }
+    return "";
+}
+
 int measurementPointCount(MeasurementKind kind) {
     switch (kind) {
     case MeasurementKind::Distance:

@@ -25,6 +25,22 @@ enum class MeasurementKind { Distance, Angle, CobbAngle, Arrow, Bidirectional, E
 const char* measurementKindName(MeasurementKind kind); // "Distance", "Cobb angle", ...
 int measurementPointCount(MeasurementKind kind);
 
+// What a measurement is in a RECIST 1.1 read: a target lesion (its diameter counts in the
+// sum), a non-target lesion (followed, not summed) or neither. One lesion measured on
+// several studies of a patient is one tracked lesion: the same trackingUid in each study's
+// SR (DICOM's Tracking Unique Identifier); the measurement's label is its Tracking
+// Identifier ("Liver 1").
+enum class LesionRole { None, Target, NonTarget };
+const char* lesionRoleName(LesionRole role); // "", "Target", "Non-target"
+
+struct LesionTracking {
+    LesionRole role = LesionRole::None;
+    bool lymphNode = false;  // measured by its short axis
+    std::string trackingUid; // a DICOM UID; empty: none given yet (the SR writer makes one)
+
+    bool operator==(const LesionTracking&) const = default;
+};
+
 struct Measurement {
     std::uint64_t id = 0; // given by MeasurementDocument; unique within it
     MeasurementKind kind = MeasurementKind::Distance;
@@ -36,6 +52,7 @@ struct Measurement {
     RoiStatistics statistics; // Ellipse only
     std::string unit;         // of the statistics: "HU" for CT, "" otherwise
     bool readOnly = false;    // read from an SR that Lucent did not write
+    LesionTracking lesion;
 
     bool complete() const { return static_cast<int>(points.size()) == measurementPointCount(kind); }
 };

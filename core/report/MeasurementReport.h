@@ -3,14 +3,18 @@
 // written and read with DCMTK's dcmsr (private to lucent_report).
 //
 // Each measurement is one Measurement Group (TID 1501): its label as the Tracking
-// Identifier, its values as TID 300 numeric measurements (UCUM mm, deg, mm2 and
-// [hnsf'U]), an arrow's text as a TEXT item. Its points go as SCOORD on the image
-// of an acquired slice when they all lie on one (with that image's reference),
-// else as SCOORD3D in patient mm with the series' Frame of Reference. Because both
-// keep coordinates in 32-bit floats, Lucent also stores each measurement's exact
-// points, plane and statistics in a TEXT item with the private code
-// (LUCENT-GEOMETRY, 99LUCENT): its own SRs read back exactly, and other readers
-// list that item as one they do not know. Lucent's SRs carry Manufacturer "Lucent".
+// Identifier, its lesion's tracking UID (a new one when it has none) as the Tracking Unique
+// Identifier, a RECIST target or non-target lesion as the qualitative evaluation
+// (112016, DCM, "Baseline Category") = (112074, DCM, "Target Lesion at Baseline") or
+// (112075, DCM, "Non-Target Lesion at Baseline") (CID 6145), a lymph node as Finding Site
+// (363698007, SCT) = (59441001, SCT, "Lymph node"); all of them read back from any SR
+// (the SRT codes of finding site and lymph node too). Its values as TID 300 numeric measurements
+// (UCUM mm, deg, mm2 and [hnsf'U]), an arrow's text as a TEXT item. Its points go as SCOORD on the
+// image of an acquired slice when they all lie on one (with that image's reference), else as
+// SCOORD3D in patient mm with the series' Frame of Reference. Because both keep coordinates in
+// 32-bit floats, Lucent also stores each measurement's exact points, plane and statistics in a TEXT
+// item with the private code (LUCENT-GEOMETRY, 99LUCENT): its own SRs read back exactly, and other
+// readers list that item as one they do not know. Lucent's SRs carry Manufacturer "Lucent".
 
 #include <filesystem>
 #include <string>
@@ -58,6 +62,9 @@ struct ReadReport {
 // file when it is not DICOM, not an SR, or not a TID 1500 Measurement Report.
 ReadReport readMeasurementReport(const std::filesystem::path& file,
                                  const ReferencedSeries* series = nullptr);
+
+// A new DICOM UID (DCMTK's generator under its site root): a new lesion's tracking UID.
+std::string newDicomUid();
 
 // True when the file is an SR document (its SOP class), without reading its content.
 bool isStructuredReport(const std::filesystem::path& file);

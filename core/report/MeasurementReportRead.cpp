@@ -108,6 +108,28 @@ std::string describeItem(DSRContentItem& item) {
     return out.empty() ? std::string(DSRTypes::valueTypeToReadableName(item.getValueType())) : out;
 }
 
+// A RECIST category or a lymph node's finding site, read into `lesion`; false for any other
+// coded item.
+bool lesionItem(const DSRCodedEntryValue& name, const DSRCodedEntryValue& value,
+                LesionTracking& lesion) {
+    if (sameCode(name, baselineCategoryCode())) {
+        if (sameCode(value, targetLesionCode())) {
+            lesion.role = LesionRole::Target;
+            return true;
+        }
+        if (sameCode(value, nonTargetLesionCode())) {
+            lesion.role = LesionRole::NonTarget;
+            return true;
+        }
+        return sameCode(value, nonLesionCode());
+    }
+    if ((isFindingSite(name) || sameCode(name, findingCode())) && isLymphNode(value)) {
+        lesion.lymphNode = true;
+        return true;
+    }
+    return false;
+}
+
 ReportGroup readGroup(DSRDocumentTree& tree, const ReferencedSeries* series) {
     ReportGroup group;
     if (tree.gotoChild() == 0) {
@@ -119,8 +141,11 @@ ReportGroup readGroup(DSRDocumentTree& tree, const ReferencedSeries* series) {
         const DSRTypes::E_ValueType type = item.getValueType();
         if (type == DSRTypes::VT_Text && sameCode(code, trackingIdentifierCode())) {
             group.trackingIdentifier = item.getStringValue().c_str();
-        } else if (type == DSRTypes::VT_UIDRef && code.getCodeValue() == "112040") {
-            // Tracking Unique Identifier: a new one with every save.
+        } else if (type == DSRTypes::VT_UIDRef && sameCode(code, trackingUniqueIdentifierCode())) {
+            group.lesion.trackingUid = item.getStringValue().c_str();
+        } else if (type == DSRTypes::VT_Code && item.getCodeValuePtr() != nullptr &&
+                   lesionItem(code, *item.getCodeValuePtr(), group.lesion)) {
+            // read into group.lesion
         } else if (type == DSRTypes::VT_Text && sameCode(code, commentCode())) {
             group.comment = item.getStringValue().c_str();
         } else if (type == DSRTypes::VT_Text && sameCode(code, geometryCode())) {

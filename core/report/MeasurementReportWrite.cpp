@@ -32,8 +32,7 @@ void check(const OFCondition& c, const fs::path& file, const std::string& what) 
 }
 
 std::string newUid() {
-    char buffer[100];
-    return dcmGenerateUniqueIdentifier(buffer, SITE_INSTANCE_UID_ROOT);
+    return newDicomUid();
 }
 
 // A DS string (at most 16 characters) as close to v as fits, and v itself as the
@@ -140,7 +139,13 @@ void addGroup(CMR_TID1500& report, const Measurement& m, const ReferencedSeries&
     Group& group = report.getIndividualMeasurements();
     check(group.setTrackingIdentifier(m.label.empty() ? what : m.label), file,
           what + ": tracking identifier");
-    check(group.setTrackingUniqueIdentifier(newUid()), file, what + ": tracking UID");
+    const std::string trackingUid = m.lesion.trackingUid.empty() ? newUid() : m.lesion.trackingUid;
+    check(group.setTrackingUniqueIdentifier(trackingUid.c_str()), file,
+          what + ": tracking UID '" + trackingUid + "'");
+    if (m.lesion.lymphNode) {
+        check(group.addFindingSite(DSRCodedEntryValue(lymphNodeCode())), file,
+              what + ": finding site");
+    }
     const ReferencedImage* image = series.acquiredImageOf(m);
     if (image == nullptr && series.frameOfReferenceUid.empty()) {
         throw ReportError(file.string() + ": " + what +
@@ -155,6 +160,13 @@ void addGroup(CMR_TID1500& report, const Measurement& m, const ReferencedSeries&
                                    numeric(v.value, v.unit), OFTrue, OFFalse),
               file, what + ": " + v.code.CodeMeaning.c_str());
         addRegion(group, v, m, image, series.frameOfReferenceUid, file);
+    }
+    if (m.lesion.role != LesionRole::None) {
+        const DSRBasicCodedEntry category =
+            m.lesion.role == LesionRole::Target ? targetLesionCode() : nonTargetLesionCode();
+        check(group.addQualitativeEvaluation(DSRCodedEntryValue(baselineCategoryCode()),
+                                             DSRCodedEntryValue(category)),
+              file, what + ": lesion category");
     }
     const auto addText = [&](const DSRBasicCodedEntry& code, const std::string& text) {
         group.gotoRoot();
@@ -190,6 +202,11 @@ void saveWhole(DcmFileFormat& format, const fs::path& file) {
 }
 
 } // namespace
+
+std::string newDicomUid() {
+    char buffer[100];
+    return dcmGenerateUniqueIdentifier(buffer, SITE_INSTANCE_UID_ROOT);
+}
 
 WrittenReport writeMeasurementReport(const fs::path& file, const ReferencedSeries& series,
                                      const std::vector<Measurement>& measurements,

@@ -46,6 +46,41 @@ inline DSRBasicCodedEntry measurementGroupCode() {
 inline DSRBasicCodedEntry trackingIdentifierCode() {
     return {"112039", "DCM", "Tracking Identifier"};
 }
+inline DSRBasicCodedEntry trackingUniqueIdentifierCode() {
+    return {"112040", "DCM", "Tracking Unique Identifier"};
+}
+// A lesion's RECIST category (CID 6145 "Baseline Category", PS3.16: "From RECIST"), as a
+// qualitative evaluation of its group (TID 1501 row 11).
+inline DSRBasicCodedEntry baselineCategoryCode() {
+    return {"112016", "DCM", "Baseline Category"};
+}
+inline DSRBasicCodedEntry targetLesionCode() {
+    return {"112074", "DCM", "Target Lesion at Baseline"};
+}
+inline DSRBasicCodedEntry nonTargetLesionCode() {
+    return {"112075", "DCM", "Non-Target Lesion at Baseline"};
+}
+inline DSRBasicCodedEntry nonLesionCode() {
+    return {"112076", "DCM", "Non-Lesion at Baseline"};
+}
+// A lymph node: Finding Site (TID 1501 row 6) = Lymph node; SRT, the older codes, read too.
+inline DSRBasicCodedEntry findingSiteCode() {
+    return {"363698007", "SCT", "Finding Site"};
+}
+inline DSRBasicCodedEntry findingCode() {
+    return {"121071", "DCM", "Finding"};
+}
+inline DSRBasicCodedEntry lymphNodeCode() {
+    return {"59441001", "SCT", "Lymph node"};
+}
+inline bool isFindingSite(const DSRCodedEntryValue& code) {
+    return (code.getCodeValue() == "363698007" && code.getCodingSchemeDesignator() == "SCT") ||
+           (code.getCodeValue() == "G-C0E3" && code.getCodingSchemeDesignator() == "SRT");
+}
+inline bool isLymphNode(const DSRCodedEntryValue& code) {
+    return (code.getCodeValue() == "59441001" && code.getCodingSchemeDesignator() == "SCT") ||
+           (code.getCodeValue() == "T-C4000" && code.getCodingSchemeDesignator() == "SRT");
+}
 inline DSRBasicCodedEntry imageRegionCode() {
     return {"111030", "DCM", "Image Region"};
 }

@@ -99,6 +99,7 @@ InterpretedGroup interpretGroup(const ReportGroup& group, bool lucentWrote) {
             m.label = decoded->labelled ? group.trackingIdentifier : std::string();
             m.text = group.comment.value_or(std::string());
             m.readOnly = !lucentWrote;
+            m.lesion = group.lesion;
             if (m.complete()) {
                 out.measurement = std::move(m);
                 for (const std::string& item : group.otherItems) {
@@ -112,6 +113,7 @@ InterpretedGroup interpretGroup(const ReportGroup& group, bool lucentWrote) {
     Measurement m;
     m.label = group.trackingIdentifier;
     m.readOnly = true;
+    m.lesion = group.lesion;
     const ReportNumber* shape = nullptr; // the number whose region gives the points
     const ReportNumber* shortAxis = nullptr;
     std::vector<const ReportNumber*> statistics;

@@ -30,6 +30,8 @@ struct ReportNumber {
 
 struct ReportGroup {
     std::string trackingIdentifier;
+    // Tracking Unique Identifier, RECIST category (Baseline Category), lymph node (Finding Site).
+    LesionTracking lesion;
     std::vector<ReportNumber> numbers;
     std::optional<std::string> comment;  // TEXT (121106, DCM, "Comment")
     std::optional<std::string> geometry; // Lucent's private TEXT item

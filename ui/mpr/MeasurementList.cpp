@@ -4,6 +4,7 @@
 #include <QHBoxLayout>
 #include <QHeaderView>
 #include <QLabel>
+#include <QMenu>
 #include <QPushButton>
 #include <QTableWidget>
 #include <QVBoxLayout>
@@ -21,7 +22,7 @@ MeasurementList::MeasurementList(MprCursor* cursor, QWidget* parent)
     notShown_->setTextInteractionFlags(Qt::TextSelectableByMouse);
     table_->setObjectName(QStringLiteral("measurementTable"));
     table_->setHorizontalHeaderLabels(
-        {tr("Kind"), tr("Name"), tr("Value"), tr("Plane"), tr("Slice")});
+        {tr("Kind"), tr("Name"), tr("Value"), tr("Plane"), tr("Slice"), tr("Lesion")});
     table_->setSelectionBehavior(QAbstractItemView::SelectRows);
     table_->setSelectionMode(QAbstractItemView::SingleSelection);
     table_->setEditTriggers(QAbstractItemView::DoubleClicked | QAbstractItemView::EditKeyPressed |
@@ -46,6 +47,16 @@ MeasurementList::MeasurementList(MprCursor* cursor, QWidget* parent)
     });
     connect(table_, &QTableWidget::cellClicked, this, [this](int row, int) { rowClicked(row); });
     connect(table_, &QTableWidget::cellChanged, this, &MeasurementList::cellEdited);
+    table_->setContextMenuPolicy(Qt::CustomContextMenu);
+    connect(table_, &QTableWidget::customContextMenuRequested, this, [this](const QPoint& at) {
+        const std::uint64_t id = idAt(table_->rowAt(at.y()));
+        if (id == 0) {
+            return;
+        }
+        QMenu* menu = contextMenu(id);
+        menu->setAttribute(Qt::WA_DeleteOnClose);
+        menu->popup(table_->viewport()->mapToGlobal(at));
+    });
     connect(table_, &QTableWidget::itemSelectionChanged, this, [this] {
         const std::uint64_t id = idAt(table_->currentRow());
         const SeriesMeasurements* m = measurements_;
@@ -106,9 +117,12 @@ void MeasurementList::refresh() {
             const std::optional<int> slice =
                 volume ? measurementSlice(m, volume->geometry()) : std::nullopt;
             const QString cells[ColumnCount] = {
-                QString::fromLatin1(measurementKindName(m.kind)), QString::fromStdString(m.label),
+                QString::fromLatin1(measurementKindName(m.kind)),
+                QString::fromStdString(m.label),
                 QString::fromStdString(measurementValueText(m)).replace('\n', ' '),
-                measurementPlaneName(m), slice ? QString::number(*slice) : QString()};
+                measurementPlaneName(m),
+                slice ? QString::number(*slice) : QString(),
+                QString::fromStdString(lesionMarkText(m.lesion))};
             for (int c = 0; c < ColumnCount; ++c) {
                 auto* item = new QTableWidgetItem(cells[c]);
                 Qt::ItemFlags flags = Qt::ItemIsSelectable | Qt::ItemIsEnabled;
@@ -129,6 +143,16 @@ void MeasurementList::refresh() {
     clear_->setEnabled(measurements_ != nullptr && !measurements_->measurements().empty());
     refreshing_ = false;
     showSelection();
+}
+
+QMenu* MeasurementList::contextMenu(std::uint64_t id) {
+    auto* menu = new QMenu(this);
+    if (measurements_ != nullptr) {
+        addLesionActions(*menu, *measurements_, id,
+                         choices_ ? choices_(measurements_->seriesUid())
+                                  : std::vector<LesionChoice>());
+    }
+    return menu;
 }
 
 void MeasurementList::showSelection() {

@@ -50,6 +50,7 @@ inline std::vector<Measurement> everyKind(const Volume& volume, const SlicePlane
     };
     add(MeasurementKind::Distance, {at(cx - 40.3, cy + 7.1), at(cx + 52.9, cy - 12.7)},
         prefix + " distance");
+    out.back().lesion = {LesionRole::NonTarget, false, "2.25.1" + std::to_string(prefix.size())};
     add(MeasurementKind::Angle, {at(cx + 30.2, cy + 1.3), at(cx, cy), at(cx + 11.7, cy - 29.9)},
         "");
     add(MeasurementKind::CobbAngle,
@@ -61,6 +62,7 @@ inline std::vector<Measurement> everyKind(const Volume& volume, const SlicePlane
     add(MeasurementKind::Bidirectional,
         {at(cx - 20, cy + 50), at(cx + 24, cy + 58), at(cx + 0.5, cy + 44), at(cx + 1.9, cy + 65)},
         prefix + " lesion 1");
+    out.back().lesion = {LesionRole::Target, true, "2.25.2" + std::to_string(prefix.size())};
     EllipseRoi roi{at(cx - 3.3, cy - 40.7), 17.25, 9.5};
     Measurement e = makeEllipseMeasurement(plane, roi);
     e.id = out.size() + 1;
@@ -117,6 +119,11 @@ inline void compareMeasurements(const std::vector<Measurement>& read,
         QCOMPARE(r.label, w.label);
         QCOMPARE(r.text, w.text);
         QCOMPARE(r.points.size(), w.points.size());
+        // RECIST role, lymph node and tracking UID (a new one where none was given).
+        QVERIFY2(r.lesion.role == w.lesion.role && r.lesion.lymphNode == w.lesion.lymphNode, what);
+        QVERIFY2(w.lesion.trackingUid.empty() ? !r.lesion.trackingUid.empty()
+                                              : r.lesion.trackingUid == w.lesion.trackingUid,
+                 what);
         for (std::size_t p = 0; p < r.points.size(); ++p) {
             QVERIFY2(glm::distance(r.points[p], w.points[p]) <= tolerance,
                      what + " point " +
