@@ -41,12 +41,6 @@ std::size_t columnsOf(const std::string& text) {
 
 } // namespace
 
-std::string formatStudyDate(const std::string& d) {
-    const bool digits = d.size() == 8 && std::all_of(d.begin(), d.end(),
-                                                     [](char c) { return c >= '0' && c <= '9'; });
-    return digits ? d.substr(0, 4) + "-" + d.substr(4, 2) + "-" + d.substr(6, 2) : d;
-}
-
 std::string formatPercent(const std::optional<double>& percent) {
     if (!percent) {
         return {};

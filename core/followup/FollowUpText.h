@@ -6,11 +6,10 @@
 #include <vector>
 
 #include "core/followup/Recist.h"
+#include "core/volume/SeriesInfo.h" // formatStudyDate
 
 namespace lucent {
 
-// "20150206" -> "2015-02-06"; other text as it is.
-std::string formatStudyDate(const std::string& yyyymmdd);
 // "+25.0 %", "-30.0 %"; "" for none.
 std::string formatPercent(const std::optional<double>& percent);
 // A lesion at one timepoint: "23.4" (mm, the diameter RECIST sums), "0 (gone)",

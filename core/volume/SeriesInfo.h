@@ -18,4 +18,7 @@ struct SeriesInfo {
     std::string frameOfReferenceUid;
 };
 
+// A DICOM date YYYYMMDD as YYYY-MM-DD, for people; anything else as it is.
+std::string formatStudyDate(const std::string& dicomDate);
+
 } // namespace lucent

@@ -92,7 +92,10 @@ MainWindow::MainWindow(QWidget* parent)
                                                   Orientation::Sagittal};
     for (std::size_t n = 0; n < views_.size(); ++n) {
         views_[n] = new SliceView(orientations[n], cursor_, this);
-        connect(views_[n], &SliceView::curvedPathDrawn, this, &MainWindow::openCurvedMpr);
+        connect(views_[n], &SliceView::curvedPathDrawn, this,
+                [this](const std::vector<glm::dvec3>& points, const glm::dvec3& up) {
+                    openCurvedMpr(volume_, points, up);
+                });
     }
     volumeView_ = new VolumeView(this);
     layout_ = new ViewLayout({views_[0], views_[1], views_[2], volumeView_}, this);
@@ -179,6 +182,8 @@ MainWindow::MainWindow(QWidget* parent)
     connect(pacs->service(), &PacsService::retrievalFinished, studies, &StudyBrowser::refreshStore);
     connect(pacs, &PacsBrowser::openSeries, this,
             [this](const QString& folder, const QString& series) { openPath(folder, series); });
+    addFollowUpDock(pacs->config().storeFolder);
+    wireViewports();
     addViewMenu();
     QMenu* help = menuBar()->addMenu(tr("&Help"));
     help->addAction(tr("&Keyboard Shortcuts..."), QKeySequence(QKeySequence::HelpContents), this,
@@ -318,14 +323,15 @@ MovieExportDialog* MainWindow::openMovieExport() {
 
 MainWindow::~MainWindow() = default;
 
-void MainWindow::openCurvedMpr(const std::vector<glm::dvec3>& points, const glm::dvec3& up) {
+void MainWindow::openCurvedMpr(const std::shared_ptr<const Volume>& volume,
+                               const std::vector<glm::dvec3>& points, const glm::dvec3& up) {
     if (curvedMpr_ == nullptr) {
         curvedMpr_ = new CurvedMprView(cursor_, this);
         curvedMpr_->setWindowFlag(Qt::Window);
         curvedMpr_->resize(900, 640);
     }
     try {
-        curvedMpr_->setPath(volume_, points, up);
+        curvedMpr_->setPath(volume, points, up);
     } catch (const std::invalid_argument& e) {
         statusBar()->showMessage(QString::fromStdString(e.what()), 8000);
         return;
@@ -408,35 +414,6 @@ void MainWindow::setVolume(std::shared_ptr<const Volume> volume) {
 } // namespace lucent
 
 namespace lucent {
-
-void MainWindow::showMeasurementsOf(const std::shared_ptr<const Volume>& volume) {
-    SeriesMeasurements* shown = nullptr;
-    bool created = false;
-    if (volume && !volume->empty()) {
-        // A series without a UID gets measurements of its own each time it is opened.
-        const auto known = volume->seriesUid.empty() ? seriesMeasurements_.end()
-                                                     : seriesMeasurements_.find(volume->seriesUid);
-        if (known != seriesMeasurements_.end()) {
-            shown = known->second;
-            shown->setVolume(volume);
-        } else {
-            shown = new SeriesMeasurements(volume, this);
-            created = true;
-            if (!volume->seriesUid.empty()) {
-                seriesMeasurements_[volume->seriesUid] = shown;
-            }
-        }
-    }
-    SeriesMeasurements* before = measurements_;
-    measurements_ = shown;
-    measurementControls_->setMeasurements(shown);
-    if (before != nullptr && before != shown && before->seriesUid().empty()) {
-        before->deleteLater(); // nothing can open it again
-    }
-    if (created) {
-        emit measurementsOpened(shown);
-    }
-}
 
 ShortcutsDialog* MainWindow::showShortcuts() {
     if (shortcuts_ == nullptr) {

@@ -17,6 +17,9 @@ class QStackedWidget;
 namespace lucent {
 
 class CurvedMprView;
+class FollowUpPanel;
+class Viewport;
+struct LesionLocation;
 class MeasurementAutosave;
 class MeasurementControls;
 class MovieExportDialog;
@@ -73,6 +76,11 @@ public:
     MeasurementControls* measurementControls() const { return measurementControls_; }
     // Keeps the measurements of stored series as DICOM SR in the study store.
     MeasurementAutosave* measurementAutosave() const { return autosave_; }
+    // The measurements of a series: the same object for every view of it, made (and
+    // announced by measurementsOpened) the first time; nullptr for no volume.
+    SeriesMeasurements* measurementsFor(const std::shared_ptr<const Volume>& volume);
+    // The RECIST follow-up of the patient shown (a dock).
+    FollowUpPanel* followUp() const { return followUp_; }
     // Help > Keyboard Shortcuts: opens (or raises) the dialog and returns it.
     ShortcutsDialog* showShortcuts();
 
@@ -105,8 +113,14 @@ private:
     void openFolderDialog();
     void openFileDialog();
     void screenshotDialog(ScreenshotScope scope);
-    void openCurvedMpr(const std::vector<glm::dvec3>& points, const glm::dvec3& up);
+    void openCurvedMpr(const std::shared_ptr<const Volume>& volume,
+                       const std::vector<glm::dvec3>& points, const glm::dvec3& up);
     void showMeasurementsOf(const std::shared_ptr<const Volume>& volume);
+    // MainWindowViewports.cpp: the viewport grid's tools, the follow-up dock.
+    void wireViewports();
+    void addFollowUpDock(const QString& storeFolder);
+    void viewportContentChanged(Viewport* viewport);
+    void goToLesion(const std::vector<LesionLocation>& where);
 
     MprCursor* cursor_;
     std::array<SliceView*, 3> views_{};
@@ -126,6 +140,8 @@ private:
     SeriesMeasurements* measurements_ = nullptr;
     MeasurementAutosave* autosave_ = nullptr;
     ShortcutsDialog* shortcuts_ = nullptr;
+    FollowUpPanel* followUp_ = nullptr;
+    QString storeFolder_;
 };
 
 } // namespace lucent

@@ -33,14 +33,6 @@ double scaleBarLengthMm(double pixelSize, double maxPixels) {
     return decade;
 }
 
-QString formatStudyDate(const std::string& dicomDate) {
-    QString date = QString::fromStdString(dicomDate);
-    if (date.size() == 8 && date.toLongLong() > 0) {
-        date = date.left(4) + u'-' + date.mid(4, 2) + u'-' + date.right(2);
-    }
-    return date;
-}
-
 QStringList seriesOverlayLines(const SeriesInfo& info) {
     QStringList lines;
     auto add = [&lines](const std::string& text) {
@@ -52,7 +44,7 @@ QStringList seriesOverlayLines(const SeriesInfo& info) {
     if (!info.patientId.empty()) {
         lines << QStringLiteral("ID %1").arg(QString::fromStdString(info.patientId));
     }
-    const QString date = formatStudyDate(info.studyDate);
+    const QString date = QString::fromStdString(formatStudyDate(info.studyDate));
     if (!date.isEmpty()) {
         lines << date;
     }

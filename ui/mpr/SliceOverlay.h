@@ -48,9 +48,6 @@ void paintCurvedPath(QPainter& painter, const SlicePlane& plane,
 // spans at most maxPixels pixels of pixelSize mm.
 double scaleBarLengthMm(double pixelSize, double maxPixels);
 
-// A DICOM date YYYYMMDD as YYYY-MM-DD; anything else as it is.
-QString formatStudyDate(const std::string& dicomDate);
-
 // Patient name, ID, study date (YYYY-MM-DD when given as YYYYMMDD) and series
 // description (with the modality), leaving out what is unknown.
 QStringList seriesOverlayLines(const SeriesInfo& info);

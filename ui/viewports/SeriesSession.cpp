@@ -1,7 +1,6 @@
 #include "ui/viewports/SeriesSession.h"
 
 #include "ui/mpr/MprCursor.h"
-#include "ui/mpr/SliceOverlay.h"
 
 namespace lucent {
 
@@ -22,7 +21,7 @@ QString SeriesSession::title() const {
         parts << series;
     }
     if (!volume_->studyDate.empty()) {
-        parts << formatStudyDate(volume_->studyDate);
+        parts << QString::fromStdString(formatStudyDate(volume_->studyDate));
     }
     return parts.join(QStringLiteral(" | "));
 }

@@ -19,6 +19,8 @@ Viewport* ViewportGrid::viewport(int index) const {
 Viewport* ViewportGrid::makeViewport(int number) {
     auto* viewport = new Viewport(number, this);
     connect(viewport, &Viewport::pressed, this, [this, viewport] { setActiveViewport(viewport); });
+    connect(viewport, &Viewport::contentChanged, this,
+            [this, viewport] { emit viewportContentChanged(viewport); });
     connect(viewport, &Viewport::seriesDropped, this,
             [this, viewport](const QString& path, const QString& series) {
                 setActiveViewport(viewport);

@@ -35,6 +35,8 @@ signals:
     // Viewports were added or removed (a new shape).
     void viewportsChanged();
     void seriesDropped(lucent::Viewport* viewport, const QString& path, const QString& series);
+    // A viewport shows something new (a series, another view, or nothing).
+    void viewportContentChanged(lucent::Viewport* viewport);
 
 private:
     Viewport* makeViewport(int number);

@@ -26,10 +26,10 @@ class ViewportGrid;
 // same anatomy (SeriesLink: the same position within a Frame of Reference, else the
 // "link here" offset kept in the study store), onto their nearest slice; window and
 // level follow between series of one modality that showed the same window; zoom and
-// pan between parallel MPR views. Planes more than kParallelToleranceDegrees apart do not scroll together,
-// and a series pair with no known relation does not move: both say why in
-// notice(). Every MPR viewport shows the planes of the other viewports it can
-// place (same Frame of Reference or an offset) as reference lines.
+// pan between parallel MPR views. Planes more than kParallelToleranceDegrees apart do not scroll
+// together, and a series pair with no known relation does not move: both say why in notice(). Every
+// MPR viewport shows the planes of the other viewports it can place (same Frame of Reference or an
+// offset) as reference lines.
 class ViewportLinks : public QObject {
     Q_OBJECT
 
@@ -71,7 +71,7 @@ private:
     ViewportGrid* grid_;
     std::unique_ptr<StudyStore> store_;
     std::map<std::pair<std::string, std::string>, glm::dvec3> sessionOffsets_; // without a store
-    std::map<const SeriesSession*, std::pair<double, double>> windows_; // last seen
+    std::map<const SeriesSession*, std::pair<double, double>> windows_;        // last seen
     std::set<QString> said_; // notices given already (each once per session)
     QString lastNotice_;
     bool propagating_ = false;

@@ -8,6 +8,7 @@
 #include <QPointer>
 #include <QVBoxLayout>
 
+#include "ui/mpr/MprCursor.h"
 #include "ui/viewports/SeriesLibrary.h"
 #include "ui/viewports/SeriesSession.h"
 #include "ui/viewports/Viewport.h"
@@ -92,6 +93,39 @@ void ViewportWorkspace::showVolume(std::shared_ptr<const Volume> volume, const Q
         active->setProperty("wantedSeries", QVariant());
         active->show(session, active->session() != nullptr ? active->view() : ViewportView::Axial);
         emit seriesShown(active);
+    }
+}
+
+void ViewportWorkspace::goTo(const std::vector<SeriesPoint>& points) {
+    const int needed = static_cast<int>(points.size());
+    if (grid_->count() < needed) {
+        grid_->setShape(regularGridShape(1, needed));
+        setCaption(grid_->shape().name);
+    }
+    for (int n = 0; n < needed; ++n) {
+        const SeriesPoint& where = points[static_cast<std::size_t>(n)];
+        Viewport* showing = nullptr;
+        for (Viewport* v : grid_->viewports()) {
+            if (v->session() != nullptr && v->session()->seriesUid() == where.seriesUid) {
+                showing = v;
+                break;
+            }
+        }
+        if (showing != nullptr) {
+            showing->session()->cursor()->setPoint(where.point);
+            continue;
+        }
+        Viewport* target = grid_->viewport(n);
+        auto connection = std::make_shared<QMetaObject::Connection>();
+        *connection = connect(this, &ViewportWorkspace::seriesShown, this,
+                              [target, where, connection](Viewport* shown) {
+                                  if (shown != target || shown->session() == nullptr) {
+                                      return;
+                                  }
+                                  disconnect(*connection);
+                                  shown->session()->cursor()->setPoint(where.point);
+                              });
+        showSeries(target, where.path, where.seriesUid, ViewportView::Axial);
     }
 }
 

@@ -1,6 +1,9 @@
 #pragma once
 
 #include <memory>
+#include <vector>
+
+#include <glm/glm.hpp>
 
 #include <QString>
 #include <QWidget>
@@ -42,6 +45,16 @@ public:
     // Puts a volume loaded elsewhere into the library and the active viewport.
     void showVolume(std::shared_ptr<const Volume> volume, const QString& path,
                     const QString& series);
+
+    // A place to go to in a series (a lesion measured there, for one).
+    struct SeriesPoint {
+        QString path; // where to load the series from when no viewport shows it
+        QString seriesUid;
+        glm::dvec3 point; // LPS mm
+    };
+    // Moves each series' crosshair to its point; a series no viewport shows goes into
+    // the n-th viewport (the grid grows to 1xN when it has fewer), loaded first.
+    void goTo(const std::vector<SeriesPoint>& points);
 
     // The layouts, link and "link here" actions, for the View menu.
     void fillMenu(QMenu* menu);
