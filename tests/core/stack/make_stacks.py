@@ -3,8 +3,9 @@
 DATA_DIR (../shared/data), with DCMTK and GDCM only: dcmj2pnm windows a CT slice
 to an 8-bit PGM; this script colours it (a fixed map, written as PPM and BMP: image
 files, not DICOM); img2dcm makes an RGB Secondary Capture of it in the CT's study;
-dcmcjpeg, dcmdjpeg, dcmcrle, gdcmconv and dcmquant re-encode that (JPEG baseline
-YBR_FULL_422, uncompressed YBR_FULL, RLE, JPEG lossless, JPEG 2000, palette colour);
+dcmcjpeg, dcmdjpeg, dcmcrle, dcmcjpls, gdcmconv and dcmquant re-encode that (JPEG
+baseline YBR_FULL_422, uncompressed YBR_FULL, RLE, JPEG lossless, JPEG-LS, JPEG 2000,
+palette colour);
 gdcmimg makes multi-frame cine objects from several coloured (or grey) slices;
 dcmodify sets what the tools leave out (frame time, MONOCHROME1). Each case is one
 folder with one file and its own series UID. Sources of the expected pixels:
@@ -111,6 +112,7 @@ def main():
     case(out, "rle", lambda t: run("dcmcrle", source, t))
     case(out, "jpeg_lossless", lambda t: run("dcmcjpeg", "+e1", source, t))
     case(out, "j2k_lossless", lambda t: run("gdcmconv", "--j2k", source, t))
+    case(out, "jpegls_lossless", lambda t: run("dcmcjpls", source, t))
     palette = case(out, "palette", lambda t: run("dcmquant", source, t))
     run("dcm2pnm", "+op", palette, out / "palette.ppm")
 

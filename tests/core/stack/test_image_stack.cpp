@@ -85,6 +85,8 @@ private slots:
                                        << "RGB";
         QTest::newRow("JPEG 2000 lossless") << "j2k_lossless"
                                             << "RGB";
+        QTest::newRow("JPEG-LS lossless (dcmdjpls)") << "jpegls_lossless"
+                                                     << "RGB";
     }
     void losslessColourIsExact() {
         QFETCH(QString, name);
@@ -282,6 +284,7 @@ private slots:
                  QString("j2k_lossless: 2D stack, 1 frame, RGB; "
                          "jpeg_baseline_ybr422: 2D stack, 1 frame, YBR_FULL_422 colour; "
                          "jpeg_lossless: 2D stack, 1 frame, RGB; "
+                         "jpegls_lossless: 2D stack, 1 frame, RGB; "
                          "palette: 2D stack, 1 frame, palette colour; "
                          "rgb: 2D stack, 1 frame, RGB; rle: 2D stack, 1 frame, RGB; "
                          "us_cine: 2D stack, 6 frames, RGB; "
