@@ -117,6 +117,11 @@ StackHeader decodeFile(const SeriesEntry& e, const FileWork& work, ImageStack& s
             }
             src = decoded->frame(ref.frame);
             format = decoded->format;
+            if (px.samplesPerPixel == 3 && format.bitsAllocated != 8) {
+                throw LoadError(work.file + ": the codec returned " +
+                                std::to_string(format.bitsAllocated) +
+                                "-bit colour samples, the header says 8");
+            }
             photometric = px.samplesPerPixel == 3 ? decoded->photometric : px.photometric;
             planar = decoded->planarConfiguration;
         }
@@ -218,6 +223,15 @@ ImageStack loadStack(const SeriesEntry& e, const LoadControl& control) {
     s.window = h.window;
     s.frameTimeMs = nominalFrameTime(h);
     return s;
+}
+
+ImageStack loadStackPreview(const SeriesEntry& entry, const LoadControl& control) {
+    if (entry.format != SourceFormat::Dicom || entry.slices.size() <= 1) {
+        return loadStack(entry, control);
+    }
+    SeriesEntry one = entry;
+    one.slices = {entry.slices[entry.slices.size() / 2]};
+    return loadStack(one, control);
 }
 
 } // namespace lucent

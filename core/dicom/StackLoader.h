@@ -15,4 +15,8 @@ namespace lucent {
 // LoadCancelled.
 ImageStack loadStack(const SeriesEntry& entry, const LoadControl& control = {});
 
+// The entry's middle frame alone, for thumbnails (one file decoded, not the whole
+// cine or series); other formats as loadStack.
+ImageStack loadStackPreview(const SeriesEntry& entry, const LoadControl& control = {});
+
 } // namespace lucent

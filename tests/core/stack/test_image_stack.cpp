@@ -8,6 +8,7 @@
 #include <QJsonObject>
 #include <QTest>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -198,6 +199,15 @@ private slots:
         }
         // Frames differ (six slices of the head), so a frame mix-up would show.
         QVERIFY(!std::equal(s.rgbFrame(0).begin(), s.rgbFrame(0).end(), s.rgbFrame(5).begin()));
+    }
+
+    void previewIsTheMiddleFrame() {
+        REQUIRE_STACKS();
+        const Catalog c = scanPath(kStacks / "us_cine");
+        const ImageStack whole = loadStack(c.series.at(0));
+        const ImageStack preview = loadStackPreview(c.series.at(0));
+        QCOMPARE(preview.frameCount(), 1);
+        QVERIFY(std::ranges::equal(preview.rgbFrame(0), whole.rgbFrame(3)));
     }
 
     void ultrasoundCineJpegDecodesEveryFrame() {
