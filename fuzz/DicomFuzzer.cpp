@@ -1,16 +1,17 @@
 // fuzz_dicom: one input is one DICOM file. It goes the way a file of a study
 // goes: the structural walk (DicomStructure.h) and the header scan and series
 // grouping of that one file (SeriesScanner.h), a DICOMDIR's references, then the frames
-// of each entry it yields are decoded (FrameDecoder.h: native reads, GDCM's
-// codecs; not JPEG-LS, which a child process decodes), rescaled and resampled. Bad input must end
-// in a skip reason or a LoadError; anything else (a crash, an assertion, another exception, UB, a
-// leak) is a finding.
+// of each entry it yields (a volume, or a 2D stack: colour, palette, cine) are decoded
+// (FrameDecoder.h: native reads, GDCM's codecs; not JPEG-LS, which a child process decodes),
+// rescaled and resampled. Bad input must end in a skip reason or a LoadError; anything else (a
+// crash, an assertion, another exception, UB, a leak) is a finding.
 #include <cstddef>
 #include <cstdint>
 
 #include "core/dicom/FrameDecoder.h"
 #include "core/dicom/ImageRecord.h"
 #include "core/dicom/SeriesScanner.h"
+#include "core/dicom/StackLoader.h"
 #include "core/io/Catalog.h"
 #include "fuzz/ScratchFile.h"
 
@@ -51,7 +52,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             continue;
         }
         try {
-            (void)lucent::loadSeries(entry, control);
+            // 2D stacks (colour, palette, cine) decode through loadStack.
+            if (entry.kind == lucent::SeriesKind::Stack) {
+                (void)lucent::loadStack(entry, control);
+            } else {
+                (void)lucent::loadSeries(entry, control);
+            }
         } catch (const lucent::LoadError&) {
         }
     }

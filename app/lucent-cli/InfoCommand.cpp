@@ -8,6 +8,7 @@
 #include "CliCommand.h"
 #include "TerminalProgress.h"
 #include "core/io/Catalog.h"
+#include "core/stack/ImageStack.h"
 
 namespace lucent::cli {
 namespace {
@@ -16,13 +17,19 @@ QJsonArray vec(const glm::dvec3& v) {
     return {v.x, v.y, v.z};
 }
 
+// "2D stack, 6 frames, RGB"
+std::string stackLabel(const SeriesEntry& e) {
+    return describeStack(static_cast<int>(e.slices.size()), e.pixels.photometric,
+                         e.pixels.samplesPerPixel);
+}
+
 QJsonObject toJson(const SeriesEntry& e) {
     const VolumeGeometry& g = e.geometry;
     QJsonArray warnings;
     for (const std::string& w : e.warnings) {
         warnings.append(QString::fromStdString(w));
     }
-    return QJsonObject{
+    QJsonObject o{
         {"uid", QString::fromStdString(e.seriesUid)},
         {"id", QString::fromStdString(e.id)},
         {"modality", QString::fromStdString(e.modality)},
@@ -37,6 +44,14 @@ QJsonObject toJson(const SeriesEntry& e) {
         {"resampled", e.resampled},
         {"warnings", warnings},
     };
+    if (e.format == SourceFormat::Dicom) {
+        o["photometric"] = QString::fromStdString(e.pixels.photometric);
+        o["samples_per_pixel"] = e.pixels.samplesPerPixel;
+    }
+    if (e.kind == SeriesKind::Stack) {
+        o["stack"] = QString::fromStdString(stackLabel(e));
+    }
+    return o;
 }
 
 QString fixed(double v, int decimals) {
@@ -65,6 +80,9 @@ void printTable(const Catalog& catalog, QTextStream& out) {
                         -24)
                    .arg(QString::fromStdString(e.description));
         out << "     id: " << QString::fromStdString(e.id) << "\n";
+        if (e.kind == SeriesKind::Stack) {
+            out << "     " << QString::fromStdString(stackLabel(e)) << "\n";
+        }
         out << "     origin (LPS mm): " << fixed(g.origin.x, 2) << ", " << fixed(g.origin.y, 2)
             << ", " << fixed(g.origin.z, 2) << "\n";
         for (const std::string& w : e.warnings) {

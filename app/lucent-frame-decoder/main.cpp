@@ -37,7 +37,8 @@ void limitAddressSpace(const lucent::DecodeRequest& request) {
     const std::uint64_t frames = static_cast<std::uint64_t>(request.layout.rows) *
                                  static_cast<std::uint64_t>(request.layout.columns) *
                                  static_cast<std::uint64_t>(request.frames) *
-                                 static_cast<std::uint64_t>(request.layout.bitsAllocated / 8);
+                                 static_cast<std::uint64_t>(request.layout.bitsAllocated / 8) *
+                                 static_cast<std::uint64_t>(request.layout.samplesPerPixel);
     rlimit limit{};
     ::getrlimit(RLIMIT_AS, &limit);
     const std::uint64_t wanted = mappedBytes() + 8 * frames + (std::uint64_t(512) << 20);

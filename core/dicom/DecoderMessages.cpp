@@ -76,23 +76,30 @@ bool getText(int fd, std::string& text) {
 
 struct LayoutFields {
     std::int32_t rows, columns, bitsAllocated, bitsStored, highBit, isSigned, frames;
+    std::int32_t samplesPerPixel, planarConfiguration;
 };
 
 } // namespace
 
 bool writeRequest(int fd, const DecodeRequest& r) {
     const PixelLayout& l = r.layout;
-    const LayoutFields f{l.rows,    l.columns,          l.bitsAllocated, l.bitsStored,
-                         l.highBit, l.isSigned ? 1 : 0, r.frames};
-    return putText(fd, r.file) && putText(fd, l.transferSyntax) && put(fd, f);
+    const LayoutFields f{l.rows,       l.columns,         l.bitsAllocated,
+                         l.bitsStored, l.highBit,         l.isSigned ? 1 : 0,
+                         r.frames,     l.samplesPerPixel, l.planarConfiguration};
+    return putText(fd, r.file) && putText(fd, l.transferSyntax) && putText(fd, l.photometric) &&
+           put(fd, f);
 }
 
 std::optional<DecodeRequest> readRequest(int fd) {
     DecodeRequest r;
     LayoutFields f{};
-    if (!getText(fd, r.file) || !getText(fd, r.layout.transferSyntax) || !get(fd, f)) {
+    if (!getText(fd, r.file) || !getText(fd, r.layout.transferSyntax) ||
+        !getText(fd, r.layout.photometric) || !get(fd, f) || f.samplesPerPixel < 1 ||
+        f.samplesPerPixel > 4) {
         return std::nullopt;
     }
+    r.layout.samplesPerPixel = f.samplesPerPixel;
+    r.layout.planarConfiguration = f.planarConfiguration;
     r.layout.rows = f.rows;
     r.layout.columns = f.columns;
     r.layout.bitsAllocated = f.bitsAllocated;
@@ -114,8 +121,10 @@ bool writeReply(int fd, const DecodeReply& reply) {
                          d.format.bitsStored,
                          d.format.highBit,
                          d.format.isSigned ? 1 : 0,
-                         0};
-    return put(fd, std::uint8_t{1}) && put(fd, f) &&
+                         0,
+                         1,
+                         d.planarConfiguration};
+    return put(fd, std::uint8_t{1}) && put(fd, f) && putText(fd, d.photometric) &&
            put(fd, static_cast<std::uint64_t>(d.frameBytes)) &&
            put(fd, static_cast<std::uint64_t>(d.buffer.size())) &&
            writeAll(fd, d.buffer.data(), d.buffer.size());
@@ -133,11 +142,12 @@ std::optional<DecodeReply> readReply(int fd, std::size_t maxBytes) {
     LayoutFields f{};
     std::uint64_t frameBytes = 0;
     std::uint64_t size = 0;
-    if (!get(fd, f) || !get(fd, frameBytes) || !get(fd, size) || size > maxBytes ||
-        frameBytes > size) {
+    DecodedFrames d;
+    if (!get(fd, f) || !getText(fd, d.photometric) || !get(fd, frameBytes) || !get(fd, size) ||
+        size > maxBytes || frameBytes > size) {
         return std::nullopt;
     }
-    DecodedFrames d;
+    d.planarConfiguration = f.planarConfiguration;
     d.format = {f.bitsAllocated, f.bitsStored, f.highBit, f.isSigned != 0};
     d.frameBytes = static_cast<std::size_t>(frameBytes);
     d.buffer.resize(static_cast<std::size_t>(size));

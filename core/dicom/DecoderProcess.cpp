@@ -154,7 +154,8 @@ DecodedFrames DecoderProcess::decode(const std::string& file, const PixelLayout&
     }
     // The most a codec may return: every frame at 8 bytes a sample.
     const std::size_t most = static_cast<std::size_t>(expected.rows) * expected.columns *
-                             static_cast<std::size_t>(frames) * 8;
+                             static_cast<std::size_t>(frames) * 8 *
+                             static_cast<std::size_t>(expected.samplesPerPixel);
     const std::optional<DecodeReply> reply = readReply(socket_, most);
     if (!reply) {
         throw LoadError(file + ": the frame decoder " + howItEnded() +

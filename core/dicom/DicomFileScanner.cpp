@@ -230,6 +230,50 @@ std::string readPixelLayout(const gdcm::DataSet& ds, const std::string& syntax, 
     return {};
 }
 
+// Colour (three samples: RGB, YBR) and palette colour images are 2D stacks; what
+// their samples are is checked here. Why they cannot be read, else "".
+std::string readColourLayout(const gdcm::DataSet& ds, int samples, PixelLayout& px) {
+    px.samplesPerPixel = samples;
+    px.planarConfiguration = tagUShort(ds, 0x0028, 0x0006).value_or(0) == 1 ? 1 : 0;
+    px.photometric = trimmed(tagString(ds, 0x0028, 0x0004));
+    if (px.photometric.empty()) {
+        px.photometric = samples == 3 ? "RGB" : "MONOCHROME2";
+    }
+    const std::string& pi = px.photometric;
+    const std::string what = "PhotometricInterpretation (0028,0004) " + pi + " with " +
+                             std::to_string(samples) + " sample(s) per pixel";
+    if (samples == 1) {
+        if (pi != "MONOCHROME1" && pi != "MONOCHROME2" && pi != "PALETTE COLOR") {
+            return "unsupported " + what;
+        }
+        return {};
+    }
+    if (samples != 3) {
+        return "unsupported SamplesPerPixel (0028,0002) " + std::to_string(samples) +
+               " (ARGB and CMYK are retired)";
+    }
+    if (pi != "RGB" && pi != "YBR_FULL" && pi != "YBR_FULL_422" && pi != "YBR_RCT" &&
+        pi != "YBR_ICT") {
+        return "unsupported " + what;
+    }
+    if (px.bitsAllocated != 8) {
+        return "unsupported colour image with BitsAllocated " + std::to_string(px.bitsAllocated) +
+               " (8 is read)";
+    }
+    return {};
+}
+
+// The bytes of one uncompressed frame: YBR_FULL_422 keeps two luminance samples
+// and one pair of chrominance samples for every two pixels (PS3.3 C.7.6.3.1.2).
+std::uint64_t storedFrameBytes(const PixelLayout& px) {
+    const std::uint64_t pixels = static_cast<std::uint64_t>(px.rows) * px.columns;
+    const std::uint64_t bytes = static_cast<std::uint64_t>(px.bitsAllocated / 8);
+    if (px.photometric == "YBR_FULL_422") {
+        return pixels * 2 * bytes;
+    }
+    return pixels * bytes * static_cast<std::uint64_t>(px.samplesPerPixel);
+}
+
 // Uncompressed pixel data: whole in the file, and where little endian frames
 // start (`offset`, read straight from the file; 0 when GDCM decodes them).
 std::string nativePixels(const DicomStructure& structure, std::uint64_t expected,
@@ -332,21 +376,20 @@ FileScan scanDicomFile(const std::string& file) {
                         std::to_string(cols) + ")");
         }
         base.samplesPerPixel = tagUShort(ds, 0x0028, 0x0002).value_or(1);
-        if (base.samplesPerPixel != 1) {
-            return skip("colour image (" + std::to_string(base.samplesPerPixel) +
-                        " samples per pixel): only greyscale volumes are supported");
-        }
         PixelLayout& px = base.pixels;
         px.rows = rows;
         px.columns = cols;
         if (const std::string wrong = readPixelLayout(ds, syntax, px); !wrong.empty()) {
             return skip(wrong);
         }
+        if (const std::string wrong = readColourLayout(ds, base.samplesPerPixel, px);
+            !wrong.empty()) {
+            return skip(wrong);
+        }
 
         const int frames = std::max(1, tagInt(ds, 0x0028, 0x0008).value_or(1));
         base.frameCount = frames;
-        const std::uint64_t frameBytes = static_cast<std::uint64_t>(rows) * cols *
-                                         static_cast<std::uint64_t>(px.bitsAllocated / 8);
+        const std::uint64_t frameBytes = storedFrameBytes(px);
         std::uint64_t offset = 0;
         if (const std::string wrong =
                 nativePixels(structure, frameBytes * std::uint64_t(frames), offset);
@@ -383,16 +426,16 @@ FileScan scanDicomFile(const std::string& file) {
             out.images.push_back(std::move(base));
             return out;
         }
-        // Legacy multi-frame: frames stacked along the normal at SpacingBetweenSlices.
+        // Legacy multi-frame: frames stacked along the normal at SpacingBetweenSlices;
+        // without them (ultrasound, XA cine) the frames are a 2D stack in time.
         const auto between = tagDoubles(ds, 0x0018, 0x0088);
-        if (!base.hasPosition || !between || (*between)[0] <= 0.0) {
-            return skip("multi-frame image without per-frame positions or SpacingBetweenSlices");
-        }
+        const bool cine = !base.hasPosition || !between || (*between)[0] <= 0.0;
         const glm::dvec3 normal = glm::normalize(glm::cross(base.rowDir, base.colDir));
         for (int f = 0; f < frames; ++f) {
             ImageRecord r = base;
             r.frame = f;
-            r.position = base.position + normal * ((*between)[0] * f);
+            r.cine = cine;
+            r.position = cine ? base.position : base.position + normal * ((*between)[0] * f);
             r.pixelOffset = offset == 0 ? 0 : offset + frameBytes * f;
             out.images.push_back(std::move(r));
         }

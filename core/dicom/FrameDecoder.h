@@ -27,6 +27,10 @@ struct DecodedFrames {
     std::vector<char> buffer;
     RawFormat format;
     std::size_t frameBytes = 0;
+    // Colour: what the samples are after decoding (a codec may turn YBR into RGB)
+    // and how they are laid out.
+    std::string photometric = "MONOCHROME2";
+    int planarConfiguration = 0;
     const char* frame(int index) const { return buffer.data() + frameBytes * index; }
 };
 // Every frame of one compressed file, by the decoder its transfer syntax needs.

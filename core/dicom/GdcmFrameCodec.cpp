@@ -22,6 +22,14 @@ RawFormat rawFormatOf(const PixelLayout& layout) {
 
 namespace {
 
+// GDCM's names are padded to an even length ("RGB ").
+std::string trimmedPhotometric(std::string name) {
+    while (!name.empty() && name.back() == ' ') {
+        name.pop_back();
+    }
+    return name;
+}
+
 // The JPEG (ISO 10918) transfer syntaxes, decoded by GDCM's JPEG codec.
 bool isJpegProcess(const std::string& transferSyntax) {
     return transferSyntax == "1.2.840.10008.1.2.4.50" ||
@@ -58,11 +66,12 @@ std::string jpegFrameHeaderProblem(const unsigned char* p, std::size_t n,
             const int rows = p[at + 5] << 8 | p[at + 6];
             const int columns = p[at + 7] << 8 | p[at + 8];
             const int components = p[at + 9];
-            if (rows != expected.rows || columns != expected.columns || components != 1) {
+            if (rows != expected.rows || columns != expected.columns ||
+                components != expected.samplesPerPixel) {
                 return "the JPEG frame is " + std::to_string(columns) + "x" + std::to_string(rows) +
                        " with " + std::to_string(components) + " component(s), the header says " +
                        std::to_string(expected.columns) + "x" + std::to_string(expected.rows) +
-                       " with 1";
+                       " with " + std::to_string(expected.samplesPerPixel);
             }
             sawFrame = true;
         }
@@ -126,7 +135,8 @@ void checkRleFrames(const std::string& file, const gdcm::DataElement& pixels,
     if (fragments == nullptr || fragments->GetNumberOfFragments() < std::size_t(frames)) {
         throw LoadError(where + "fewer fragments than its " + std::to_string(frames) + " frame(s)");
     }
-    const std::uint32_t segments = static_cast<std::uint32_t>(expected.bitsAllocated / 8);
+    const std::uint32_t segments =
+        static_cast<std::uint32_t>(expected.bitsAllocated / 8 * expected.samplesPerPixel);
     for (std::size_t i = 0; i < fragments->GetNumberOfFragments(); ++i) {
         const gdcm::ByteValue* bv = fragments->GetFragment(static_cast<unsigned>(i)).GetByteValue();
         const std::size_t n = bv ? static_cast<std::size_t>(bv->GetLength()) : std::size_t(0);
@@ -190,11 +200,18 @@ gdcm::Image imageToDecode(const std::string& file, const gdcm::File& parsed,
     if (frames > 1) {
         image.SetDimension(2, static_cast<unsigned>(frames));
     }
-    image.SetPixelFormat(gdcm::PixelFormat(1, static_cast<unsigned short>(expected.bitsAllocated),
+    image.SetPixelFormat(gdcm::PixelFormat(static_cast<unsigned short>(expected.samplesPerPixel),
+                                           static_cast<unsigned short>(expected.bitsAllocated),
                                            static_cast<unsigned short>(expected.bitsStored),
                                            static_cast<unsigned short>(expected.highBit),
                                            expected.isSigned ? 1 : 0));
-    image.SetPhotometricInterpretation(gdcm::PhotometricInterpretation::MONOCHROME2);
+    // The scan accepted only interpretations GDCM knows (MONOCHROME*, PALETTE COLOR, RGB, YBR_*).
+    const auto pi = gdcm::PhotometricInterpretation::GetPIType(expected.photometric.c_str());
+    image.SetPhotometricInterpretation(
+        gdcm::PhotometricInterpretation(pi == gdcm::PhotometricInterpretation::UNKNOWN
+                                            ? gdcm::PhotometricInterpretation::MONOCHROME2
+                                            : pi));
+    image.SetPlanarConfiguration(static_cast<unsigned>(expected.planarConfiguration));
     image.SetTransferSyntax(parsed.GetHeader().GetDataSetTransferSyntax());
     image.SetDataElement(ds.GetDataElement(pixelData));
     return image;
@@ -232,8 +249,25 @@ DecodedFrames decodeFramesWithGdcm(const std::string& file, const PixelLayout& e
                             : "unknown transfer syntax") +
             ")");
     }
+    // A codec may have changed the samples (JPEG: YBR_FULL_422 to YBR_FULL or RGB;
+    // JPEG 2000: YBR_RCT/ICT to RGB); the image says what they are now.
+    const char* pi = gdcm::PhotometricInterpretation::GetPIString(
+        image.GetPhotometricInterpretation().GetType());
+    out.photometric = pi != nullptr ? trimmedPhotometric(pi) : expected.photometric;
+    out.planarConfiguration = static_cast<int>(image.GetPlanarConfiguration());
     out.frameBytes = static_cast<std::size_t>(expected.rows) * expected.columns *
-                     static_cast<std::size_t>(out.format.bitsAllocated / 8);
+                     static_cast<std::size_t>(out.format.bitsAllocated / 8) *
+                     static_cast<std::size_t>(expected.samplesPerPixel);
+    // GDCM leaves a JPEG's YBR_FULL_422 as the image's interpretation, but libjpeg has
+    // upsampled the chrominance: a buffer of whole frames holds YBR_FULL. Only
+    // uncompressed (big endian) data is still subsampled.
+    if (out.photometric == "YBR_FULL_422" && expected.samplesPerPixel == 3) {
+        if (out.buffer.size() >= out.frameBytes * static_cast<std::size_t>(frames)) {
+            out.photometric = "YBR_FULL";
+        } else {
+            out.frameBytes = out.frameBytes * 2 / 3;
+        }
+    }
     return out;
 }
 

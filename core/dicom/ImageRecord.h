@@ -14,6 +14,7 @@ struct ImageRecord : SeriesInfo {
     int frame = 0;
     int frameCount = 1;
     bool enhanced = false; // per-frame functional groups (Enhanced CT/MR)
+    bool cine = false;     // a frame of a multi-frame object without slice positions
 
     std::string sopClassUid;
     std::string sopInstanceUid;

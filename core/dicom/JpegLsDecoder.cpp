@@ -76,14 +76,16 @@ DecodedFrames decodeJpegLsWithDcmtk(const std::string& file, const PixelLayout& 
         throw LoadError(file + ": cannot create a temporary folder for JPEG-LS decoding");
     }
     const fs::path out = tmp.path() / "decoded.dcm";
-    if (run({"dcmdjpls", "--write-xfer-little", file, out.string()}) != 0) {
+    if (run({"dcmdjpls", "--write-xfer-little", "--color-by-pixel", file, out.string()}) != 0) {
         throw LoadError(file + ": dcmdjpls could not decode the JPEG-LS data");
     }
     const DicomStructure st = checkDicomStructure(out.string());
     DecodedFrames decoded;
     decoded.format = rawFormatOf(expected);
     decoded.frameBytes = static_cast<std::size_t>(expected.rows) * expected.columns *
-                         static_cast<std::size_t>(expected.bitsAllocated / 8);
+                         static_cast<std::size_t>(expected.bitsAllocated / 8) *
+                         static_cast<std::size_t>(expected.samplesPerPixel);
+    decoded.photometric = expected.photometric; // dcmdjpls keeps the colour model
     const std::size_t bytes = decoded.frameBytes * static_cast<std::size_t>(frames);
     if (!st.ok || !st.hasPixelData || st.encapsulated || st.pixelLength < bytes) {
         throw LoadError(file + ": dcmdjpls output has no usable pixel data");

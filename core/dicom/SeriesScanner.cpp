@@ -22,8 +22,17 @@ struct Group {
     const ImageRecord& first() const { return *images.front(); }
 };
 
+// Colour, palette colour and cine frames make 2D stacks (SeriesKind::Stack), not volumes.
+bool isStackImage(const ImageRecord& r) {
+    return r.pixels.samplesPerPixel != 1 || r.pixels.photometric == "PALETTE COLOR" || r.cine;
+}
+
 bool sameStack(const ImageRecord& a, const ImageRecord& b) {
     constexpr double kOrientationTolerance = 1e-3;
+    if (isStackImage(a) != isStackImage(b) || a.pixels.photometric != b.pixels.photometric ||
+        (a.cine && a.file != b.file)) {
+        return false;
+    }
     if (a.localizer != b.localizer || a.pixels.rows != b.pixels.rows ||
         a.pixels.columns != b.pixels.columns || a.hasPosition != b.hasPosition ||
         a.enhanced != b.enhanced) {
@@ -165,6 +174,32 @@ SeriesEntry makeEntry(const Group& group, SeriesKind kind, std::vector<SkippedFi
     if (e.kind == SeriesKind::Volume && e.slices.size() == 1) {
         e.kind = SeriesKind::Image;
     }
+    e.hasPosition = f.hasPosition;
+    e.hasPixelSpacing = f.hasPixelSpacing;
+    return e;
+}
+
+// A 2D stack: its images in the order read (instance number, file, frame), each
+// with its own position; the geometry is the first image's plane.
+SeriesEntry makeStackEntry(const Group& group) {
+    const ImageRecord& f = group.first();
+    SeriesEntry e;
+    static_cast<SeriesInfo&>(e) = f;
+    e.kind = SeriesKind::Stack;
+    e.format = SourceFormat::Dicom;
+    e.pixels = f.pixels;
+    e.hasPosition = f.hasPosition;
+    e.hasPixelSpacing = f.hasPixelSpacing;
+    appendFileWarnings(group, e.warnings);
+    e.geometry.dims = {f.pixels.columns, f.pixels.rows, static_cast<int>(group.images.size())};
+    e.geometry.spacing = {f.pixelSpacing.x, f.pixelSpacing.y, 1.0};
+    e.geometry.origin = f.position;
+    e.geometry.direction =
+        glm::dmat3(f.rowDir, f.colDir, glm::normalize(glm::cross(f.rowDir, f.colDir)));
+    for (const ImageRecord* r : group.images) {
+        e.slices.push_back(
+            {r->file, r->frame, r->position, r->slope, r->intercept, r->pixelOffset});
+    }
     return e;
 }
 
@@ -211,7 +246,7 @@ void scanDicomFiles(const std::vector<std::string>& files, Catalog& catalog,
                          });
         std::vector<Group> groups;
         for (const ImageRecord* r : images) {
-            if (!r->hasPosition) {
+            if (!r->hasPosition && !isStackImage(*r)) {
                 groups.push_back({{r}}); // without a position an image cannot join a stack
                 continue;
             }
@@ -225,6 +260,9 @@ void scanDicomFiles(const std::vector<std::string>& files, Catalog& catalog,
         }
         // The main stack is the largest non-localizer group; other orientations are scouts.
         std::stable_sort(groups.begin(), groups.end(), [](const Group& a, const Group& b) {
+            if (isStackImage(a.first()) != isStackImage(b.first())) {
+                return !isStackImage(a.first());
+            }
             if (a.first().localizer != b.first().localizer) {
                 return !a.first().localizer;
             }
@@ -241,7 +279,8 @@ void scanDicomFiles(const std::vector<std::string>& files, Catalog& catalog,
             if (f.localizer || otherOrientation) {
                 kind = SeriesKind::Localizer;
             }
-            SeriesEntry e = makeEntry(g, kind, catalog.skipped);
+            SeriesEntry e =
+                isStackImage(f) ? makeStackEntry(g) : makeEntry(g, kind, catalog.skipped);
             e.id = n == 0 ? uid : uid + "#" + std::to_string(n + 1);
             if (f.enhanced && !f.imageType.empty()) {
                 e.description +=

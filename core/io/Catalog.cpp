@@ -106,6 +106,8 @@ const char* seriesKindName(SeriesKind kind) {
         return "localizer";
     case SeriesKind::Image:
         return "image";
+    case SeriesKind::Stack:
+        return "stack";
     }
     return "?";
 }
@@ -184,6 +186,10 @@ Catalog scanPath(const fs::path& path, const LoadControl& control) {
 }
 
 Volume loadSeries(const SeriesEntry& entry, const LoadControl& control) {
+    if (entry.kind == SeriesKind::Stack) {
+        throw LoadError("series " + entry.id + " (" + entry.pixels.photometric +
+                        ") is a 2D image stack, not a volume: open it with loadStack");
+    }
     Volume v;
     switch (entry.format) {
     case SourceFormat::Dicom:

@@ -7,8 +7,9 @@
 
 namespace lucent {
 
-// What an entry of a catalog is: a stack that makes a volume, a scout, or a lone image.
-enum class SeriesKind { Volume, Localizer, Image };
+// What an entry of a catalog is: a stack that makes a volume, a scout, a lone image, or
+// 2D frames that make no volume (colour images, multi-frame cine): loadStack, not loadSeries.
+enum class SeriesKind { Volume, Localizer, Image, Stack };
 const char* seriesKindName(SeriesKind kind);
 
 enum class SourceFormat { Dicom, MetaImage, Nifti, InVesalius };
@@ -33,7 +34,10 @@ struct PixelLayout {
     int bitsStored = 16;
     int highBit = 15;
     bool isSigned = false;
-    std::string transferSyntax; // UID
+    std::string transferSyntax;              // UID
+    int samplesPerPixel = 1;                 // 3 for colour
+    int planarConfiguration = 0;             // colour: 0 RGBRGB..., 1 RR..GG..BB..
+    std::string photometric = "MONOCHROME2"; // PhotometricInterpretation (0028,0004)
 };
 
 // Something a path holds that can be loaded as a volume. The geometry is the
@@ -51,6 +55,10 @@ struct SeriesEntry : SeriesInfo {
     PixelLayout pixels;
     // DICOM only: true when the images are resampled onto geometry (tilt, uneven gaps).
     bool resampled = false;
+    // DICOM only: whether the images carry a patient position and orientation, and a
+    // pixel spacing (without them the geometry is the image grid at 1 mm).
+    bool hasPosition = true;
+    bool hasPixelSpacing = true;
 
     // Other formats: the file to read.
     std::string file;
