@@ -136,9 +136,11 @@ MainWindow::MainWindow(QWidget* parent)
     studyDock->setWidget(studies);
     addDockWidget(Qt::LeftDockWidgetArea, studyDock);
     connect(studies, &StudyBrowser::openRequested, this,
-            [this](const QString& path, const QString& series) {
-                if (workspaceShown()) {
-                    workspace_->showInActive(path, series); // the grid's active viewport
+            [this, studies](const QString& path, const QString& series) {
+                if (workspaceShown() || studies->opensAsStack(path, series)) {
+                    // The grid's active viewport (2D images open only there).
+                    showWorkspace(true);
+                    workspace_->showInActive(path, series);
                 } else {
                     openPath(path, series);
                 }

@@ -114,7 +114,8 @@ void MainWindow::wireViewports() {
     connect(grid, &ViewportGrid::viewportContentChanged, this, &MainWindow::viewportContentChanged);
     // The measurement list, its tools and the follow-up show the active viewport's series.
     connect(grid, &ViewportGrid::activeViewportChanged, this, [this](Viewport* active) {
-        if (active != nullptr && active->session() != nullptr && workspaceShown()) {
+        if (active != nullptr && active->session() != nullptr && active->session()->volume() &&
+            workspaceShown()) {
             SeriesMeasurements* shown = measurementsFor(active->session()->volume());
             measurements_ = shown;
             measurementControls_->setMeasurements(shown);

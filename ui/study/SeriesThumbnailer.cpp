@@ -2,11 +2,25 @@
 
 #include <QPointer>
 
+#include "core/dicom/StackLoader.h"
 #include "core/io/Catalog.h"
 #include "core/io/SeriesPreview.h"
+#include "core/stack/StackRendering.h"
 #include "ui/study/StudyBrowser.h"
 
 namespace lucent {
+
+namespace {
+
+// A colour or cine series: its middle frame through its own window.
+QImage stackThumbnail(const SeriesEntry& entry, const LoadControl& control, int size) {
+    const ImageStack stack = loadStackPreview(entry, control);
+    const ImageRGBA8 frame = renderStackFrame(stack, 0, stack.defaultWindow());
+    const QImage rgba(frame.pixels.data(), frame.width, frame.height, QImage::Format_RGBA8888);
+    return rgba.scaled(size, size, Qt::KeepAspectRatio, Qt::SmoothTransformation);
+}
+
+} // namespace
 
 SeriesThumbnailer::SeriesThumbnailer(int size, QObject* parent) : QObject(parent), size_(size) {
     pool_.setMaxThreadCount(1);
@@ -57,13 +71,17 @@ void SeriesThumbnailer::request(const QString& path, const QString& seriesUid,
                 }
                 e = *found;
             }
-            Volume preview = loadPreviewImage(*e, control);
-            if (e->kind == SeriesKind::Localizer) {
-                // A scout's values are projections, not HU: window it by its own
-                // percentiles (what defaultWindow does for non-CT data).
-                preview.modality.clear();
+            if (e->kind == SeriesKind::Stack) {
+                image = stackThumbnail(*e, control, size);
+            } else {
+                Volume preview = loadPreviewImage(*e, control);
+                if (e->kind == SeriesKind::Localizer) {
+                    // A scout's values are projections, not HU: window it by its own
+                    // percentiles (what defaultWindow does for non-CT data).
+                    preview.modality.clear();
+                }
+                image = StudyBrowser::thumbnail(preview, size);
             }
-            image = StudyBrowser::thumbnail(preview, size);
         } catch (const LoadCancelled&) {
             return;
         } catch (const std::exception& ex) {

@@ -128,6 +128,11 @@ StudyBrowser::StudyBrowser(QWidget* parent)
 
 StudyBrowser::~StudyBrowser() = default;
 
+bool StudyBrowser::opensAsStack(const QString& path, const QString& seriesUid) const {
+    const QTreeWidgetItem* item = findSeries(path, seriesUid);
+    return item != nullptr && item->data(0, kStackRole).toBool();
+}
+
 QTreeWidgetItem* StudyBrowser::seriesItem(const SeriesInfo& info, const QString& path,
                                           const QString& source) {
     const QString uid = text(info.seriesUid);
@@ -197,15 +202,15 @@ void StudyBrowser::addSeries(const QString& path, const Volume& volume) {
 }
 
 void StudyBrowser::addEntry(const QString& path, const SeriesEntry& entry) {
-    if (entry.kind == SeriesKind::Image) {
-        return; // lone images (e.g. reports, secondary captures) are not series to read
-    }
     QTreeWidgetItem* item = seriesItem(entry, path, QStringLiteral("folder"));
+    item->setData(0, kStackRole, entry.kind != SeriesKind::Volume);
     if (item->text(0).isEmpty()) {
         QString label =
             QStringLiteral("%1 %2").arg(text(entry.modality), text(entry.description)).trimmed();
         if (entry.kind == SeriesKind::Localizer) {
             label += tr(" (localizer)");
+        } else if (entry.kind == SeriesKind::Stack || entry.kind == SeriesKind::Image) {
+            label += tr(" (images)");
         }
         item->setText(0, label.trimmed() + "\n" + dimsLabel(entry.geometry.dims));
     }

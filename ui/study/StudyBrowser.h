@@ -28,6 +28,9 @@ public:
     static constexpr int kPathRole = Qt::UserRole;
     static constexpr int kSeriesRole = Qt::UserRole + 1;
     static constexpr int kSourceRole = Qt::UserRole + 2; // "folder" or "store"
+    // True for a series that opens as a 2D image stack (colour, cine, localizer, lone
+    // image), not as a volume.
+    static constexpr int kStackRole = Qt::UserRole + 3;
 
     explicit StudyBrowser(QWidget* parent = nullptr);
     ~StudyBrowser() override;
@@ -46,6 +49,8 @@ public:
     int count() const;
     QTreeWidget* tree() const { return tree_; }
     QTreeWidgetItem* findSeries(const QString& path, const QString& seriesUid) const;
+    // Whether a listed series opens as a 2D image stack (kStackRole).
+    bool opensAsStack(const QString& path, const QString& seriesUid) const;
     // Folder scans and thumbnails still on their way.
     int pending() const;
 

@@ -2,6 +2,7 @@
 
 #include <QMetaObject>
 
+#include "core/dicom/StackLoader.h"
 #include "core/io/Catalog.h"
 #include "ui/viewports/SeriesSession.h"
 
@@ -28,7 +29,7 @@ SeriesSession* SeriesLibrary::find(const QString& path, const QString& series) c
 
 SeriesSession* SeriesLibrary::findUid(const std::string& seriesUid) const {
     for (SeriesSession* s : sessions_) {
-        if (!seriesUid.empty() && s->volume()->seriesUid == seriesUid) {
+        if (!seriesUid.empty() && s->info().seriesUid == seriesUid) {
             return s;
         }
     }
@@ -65,25 +66,42 @@ void SeriesLibrary::request(const QString& path, const QString& series) {
     p.series = series;
     p.worker = std::jthread([this, path, series](std::stop_token stop) {
         std::shared_ptr<Volume> volume;
+        std::shared_ptr<ImageStack> stack;
         QString error;
         try {
             LoadControl control;
             control.stop = stop;
-            volume = std::make_shared<Volume>(
-                loadPath(path.toStdString(), series.toStdString(), control));
+            const Catalog catalog = scanPath(path.toStdString(), control);
+            const SeriesEntry* entry =
+                series.isEmpty() ? catalog.defaultEntry() : catalog.find(series.toStdString());
+            if (entry == nullptr && series.isEmpty() && !catalog.series.empty()) {
+                entry = &catalog.series.front(); // only images: the first stack
+            }
+            if (entry == nullptr) {
+                throw LoadError(path.toStdString() + ": no series " + series.toStdString());
+            }
+            if (entry->kind == SeriesKind::Volume) {
+                volume = std::make_shared<Volume>(loadSeries(*entry, control));
+            } else {
+                stack = std::make_shared<ImageStack>(loadStack(*entry, control));
+            }
         } catch (const LoadCancelled&) {
             return;
         } catch (const std::exception& e) {
             error = QString::fromUtf8(e.what());
         }
         QMetaObject::invokeMethod(
-            this, [this, path, series, volume, error] { finish(path, series, volume, error); },
+            this,
+            [this, path, series, volume, stack, error] {
+                finish(path, series, volume, stack, error);
+            },
             Qt::QueuedConnection);
     });
 }
 
 void SeriesLibrary::finish(const QString& path, const QString& series,
-                           std::shared_ptr<Volume> volume, const QString& error) {
+                           std::shared_ptr<Volume> volume, std::shared_ptr<ImageStack> stack,
+                           const QString& error) {
     for (auto it = pending_.begin(); it != pending_.end(); ++it) {
         if (it->path == path && it->series == series) {
             it->worker.detach(); // it has posted this and is ending
@@ -91,14 +109,22 @@ void SeriesLibrary::finish(const QString& path, const QString& series,
             break;
         }
     }
-    if (!volume) {
+    if (volume) {
+        emit ready(path, series, adopt(std::move(volume), path, series));
+    } else if (stack) {
+        auto* session = new SeriesSession(std::shared_ptr<const ImageStack>(std::move(stack)), path,
+                                          series, this);
+        sessions_.push_back(session);
+        emit ready(path, series, session);
+    } else {
         emit failed(path, series, error);
-        return;
     }
-    emit ready(path, series, adopt(std::move(volume), path, series));
 }
 
 SeriesSession* SeriesLibrary::sibling(SeriesSession* session) {
+    if (!session->volume()) {
+        return session; // a stack has no cursor or window to keep apart
+    }
     auto* twin = new SeriesSession(session->volume(), session->path(), session->series(), this);
     sessions_.push_back(twin);
     return twin;
@@ -108,7 +134,10 @@ std::size_t SeriesLibrary::bytes() const {
     std::set<const Volume*> counted;
     std::size_t total = 0;
     for (const SeriesSession* s : sessions_) {
-        if (counted.insert(s->volume().get()).second) {
+        if (counted
+                .insert(s->volume() ? static_cast<const void*>(s->volume().get())
+                                    : static_cast<const void*>(s->stack().get()))
+                .second) {
             total += s->bytes();
         }
     }

@@ -9,13 +9,15 @@
 #include <QObject>
 #include <QString>
 
+#include "core/stack/ImageStack.h"
 #include "core/volume/Volume.h"
 
 namespace lucent {
 
 class SeriesSession;
 
-// The series loaded for the viewport grid, one SeriesSession each, found by where
+// The series loaded for the viewport grid (volumes, and 2D image stacks for what is
+// no volume: colour, cine, localizers, lone images), one SeriesSession each, found by where
 // they came from (path and series id/UID) or by series UID. Loads run in the
 // background, one worker each, and end in ready() or failed(). Sessions that no
 // viewport shows are dropped by trim() once all sessions together hold more than a
@@ -57,7 +59,7 @@ private:
         std::jthread worker;
     };
     void finish(const QString& path, const QString& series, std::shared_ptr<Volume> volume,
-                const QString& error);
+                std::shared_ptr<ImageStack> stack, const QString& error);
 
     std::list<SeriesSession*> sessions_; // children, oldest first
     std::list<Pending> pending_;         // last: joined before the rest goes

@@ -11,6 +11,21 @@ SeriesSession::SeriesSession(std::shared_ptr<const Volume> volume, QString path,
     centreOn(*cursor_, *volume_);
 }
 
+SeriesSession::SeriesSession(std::shared_ptr<const ImageStack> stack, QString path, QString series,
+                             QObject* parent)
+    : QObject(parent), stack_(std::move(stack)), path_(std::move(path)), series_(std::move(series)),
+      cursor_(new MprCursor(this)) {}
+
+const SeriesInfo& SeriesSession::info() const {
+    return volume_ ? static_cast<const SeriesInfo&>(*volume_)
+                   : static_cast<const SeriesInfo&>(*stack_);
+}
+
+std::size_t SeriesSession::bytes() const {
+    return volume_ ? volume_->byteCount()
+                   : stack_->grey.size() * sizeof(float) + stack_->rgb.size();
+}
+
 QString SeriesSession::title() const {
     QStringList parts;
     const QString series = QStringLiteral("%1 %2")
@@ -20,8 +35,8 @@ QString SeriesSession::title() const {
     if (!series.isEmpty()) {
         parts << series;
     }
-    if (!volume_->studyDate.empty()) {
-        parts << QString::fromStdString(formatStudyDate(volume_->studyDate));
+    if (!info().studyDate.empty()) {
+        parts << QString::fromStdString(formatStudyDate(info().studyDate));
     }
     return parts.join(QStringLiteral(" | "));
 }

@@ -380,7 +380,7 @@ QString StudyHanging::saveLayout(const QString& name, QString* error) {
         ViewportSpec spec{cell.row, cell.column, cell.rowSpan, cell.columnSpan,
                           {},       v->view(),   {},           v->linkGroup()};
         if (const SeriesSession* session = v->session()) {
-            const std::string uid = session->volume()->seriesUid;
+            const std::string uid = session->info().seriesUid;
             const auto known =
                 std::find_if(series_.begin(), series_.end(),
                              [&](const HangingSeries& s) { return s.seriesUid == uid; });
@@ -388,12 +388,12 @@ QString StudyHanging::saveLayout(const QString& name, QString* error) {
                 SeriesRule rule;
                 rule.name = "series " + std::to_string(slotOf.size() + 1);
                 rule.studyOrder = known != series_.end() ? std::max(0, known->studyOrder) : 0;
-                rule.modalities = {session->volume()->modality};
-                rule.description = "^" + escapeRegex(session->volume()->description) + "$";
+                rule.modalities = {session->info().modality};
+                rule.description = "^" + escapeRegex(session->info().description) + "$";
                 p.seriesSlots.push_back(rule);
                 slotOf[uid] = rule.name;
                 if (p.study.modalities.empty() && rule.studyOrder == 0) {
-                    p.study.modalities = {session->volume()->modality};
+                    p.study.modalities = {session->info().modality};
                 }
             }
             spec.seriesSlot = slotOf[uid];

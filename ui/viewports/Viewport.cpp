@@ -11,6 +11,7 @@
 #include "ui/mpr/SliceView.h"
 #include "ui/study/SeriesDrag.h"
 #include "ui/viewports/SeriesSession.h"
+#include "ui/viewports/StackView.h"
 #include "ui/volume/VolumeView.h"
 
 namespace lucent {
@@ -83,6 +84,9 @@ QWidget* Viewport::content() const {
     if (volume_ != nullptr) {
         return volume_;
     }
+    if (stack_ != nullptr) {
+        return stack_;
+    }
     return empty_;
 }
 
@@ -99,6 +103,7 @@ void Viewport::clearContent() {
     }
     slice_ = nullptr;
     volume_ = nullptr;
+    stack_ = nullptr;
     empty_ = nullptr;
 }
 
@@ -111,6 +116,10 @@ void Viewport::show(SeriesSession* session, ViewportView view) {
         hint->setAlignment(Qt::AlignCenter);
         hint->setStyleSheet(QStringLiteral("color: grey; background: black"));
         empty_ = hint;
+    } else if (session_->stack()) {
+        view_ = ViewportView::Stack;
+        stack_ = new StackView(this);
+        stack_->setStack(session_->stack());
     } else if (view == ViewportView::Volume3D) {
         volume_ = new VolumeView(this);
         volume_->setVolume(session_->volume());

@@ -13,10 +13,12 @@ namespace lucent {
 
 class SeriesSession;
 class SliceView;
+class StackView;
 class VolumeView;
 
 // One cell of the viewport grid: a series of a SeriesSession shown as an MPR plane
-// (SliceView, every tool of the MPR views), as 3D (VolumeView) or empty. Its corner
+// (SliceView, every tool of the MPR views), as 3D (VolumeView), as the 2D images of a
+// stack (StackView), or empty. Its corner
 // names the series and the study date; its link button puts it in a link group
 // (ViewportLinks). A series dragged from the study browser and dropped on it is
 // asked for with seriesDropped.
@@ -37,6 +39,8 @@ public:
     // The MPR view shown (nullptr for 3D or empty) and the 3D view (nullptr otherwise).
     SliceView* sliceView() const { return slice_; }
     VolumeView* volumeView() const { return volume_; }
+    // The 2D image stack shown (a session of a stack), else nullptr.
+    StackView* stackView() const { return stack_; }
     QWidget* content() const;
 
     // 0: not linked; viewports of the same non-zero group move together.
@@ -69,6 +73,7 @@ private:
     ViewportView view_ = ViewportView::Axial;
     SliceView* slice_ = nullptr;
     VolumeView* volume_ = nullptr;
+    StackView* stack_ = nullptr;
     QWidget* empty_ = nullptr;
     QVBoxLayout* column_;
     QLabel* title_;

@@ -14,7 +14,7 @@ namespace lucent {
 namespace {
 
 std::string uidOf(const SeriesSession& s) {
-    return s.volume()->seriesUid;
+    return s.info().seriesUid;
 }
 
 QString describe(const Viewport& v) {
@@ -187,7 +187,7 @@ void ViewportLinks::windowChanged(SeriesSession* source) {
     for (Viewport* to : grid_->viewports()) {
         SeriesSession* target = to->session();
         if (target == nullptr || target == source || groups.count(to->linkGroup()) == 0 ||
-            target->volume()->modality != source->volume()->modality ||
+            target->info().modality != source->info().modality ||
             std::pair(target->cursor()->windowCenter(), target->cursor()->windowWidth()) !=
                 before) {
             continue;
@@ -241,7 +241,10 @@ void ViewportLinks::updateReferenceLines() {
 }
 
 int ViewportLinks::linkHere(Viewport* viewport, QString* message) {
-    SeriesSession* here = viewport != nullptr ? viewport->session() : nullptr;
+    SeriesSession* here =
+        viewport != nullptr && viewport->session() != nullptr && viewport->session()->volume()
+            ? viewport->session()
+            : nullptr;
     QStringList done;
     int linked = 0;
     if (here != nullptr) {
@@ -251,8 +254,8 @@ int ViewportLinks::linkHere(Viewport* viewport, QString* message) {
         std::set<SeriesSession*> seen{here};
         for (Viewport* other : grid_->viewports()) {
             SeriesSession* there = other->session();
-            if (there == nullptr || other->linkGroup() != viewport->linkGroup() ||
-                !seen.insert(there).second ||
+            if (there == nullptr || !there->volume() ||
+                other->linkGroup() != viewport->linkGroup() || !seen.insert(there).second ||
                 (!here->volume()->frameOfReferenceUid.empty() &&
                  here->volume()->frameOfReferenceUid == there->volume()->frameOfReferenceUid)) {
                 continue;
