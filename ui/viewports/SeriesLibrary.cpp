@@ -131,7 +131,7 @@ SeriesSession* SeriesLibrary::sibling(SeriesSession* session) {
 }
 
 std::size_t SeriesLibrary::bytes() const {
-    std::set<const Volume*> counted;
+    std::set<const void*> counted;
     std::size_t total = 0;
     for (const SeriesSession* s : sessions_) {
         if (counted
