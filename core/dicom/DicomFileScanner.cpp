@@ -50,6 +50,9 @@ void readCommon(const gdcm::DataSet& ds, ImageRecord& r) {
     r.patientId = tagString(ds, 0x0010, 0x0020);
     r.studyDate = tagString(ds, 0x0008, 0x0020);
     r.frameOfReferenceUid = tagString(ds, 0x0020, 0x0052);
+    r.studyTime = tagString(ds, 0x0008, 0x0030);
+    r.studyDescription = tagString(ds, 0x0008, 0x1030);
+    r.bodyPart = tagString(ds, 0x0018, 0x0015);
     r.imageType = tagString(ds, 0x0008, 0x0008);
     r.seriesNumber = tagInt(ds, 0x0020, 0x0011).value_or(0);
     r.instanceNumber = tagInt(ds, 0x0020, 0x0013).value_or(0);

@@ -21,6 +21,7 @@ struct ImageRecord : SeriesInfo {
     std::string imageType; // ImageType, or FrameType for enhanced frames
     bool localizer = false;
     int seriesNumber = 0;
+    std::string studyDescription, studyTime, bodyPart;
     int instanceNumber = 0;
 
     bool hasPosition = false;

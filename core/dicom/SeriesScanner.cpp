@@ -125,6 +125,11 @@ SeriesEntry makeEntry(const Group& group, SeriesKind kind, std::vector<SkippedFi
     e.format = SourceFormat::Dicom;
     e.pixels = f.pixels;
     e.voxelType = chooseVoxelType(group.images);
+    e.seriesNumber = f.seriesNumber;
+    e.sliceThickness = f.sliceThickness;
+    e.studyDescription = f.studyDescription;
+    e.studyTime = f.studyTime;
+    e.bodyPart = f.bodyPart;
     if (!f.hasPixelSpacing) {
         e.warnings.push_back("no PixelSpacing: 1 mm assumed in the image plane");
     }

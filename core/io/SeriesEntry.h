@@ -49,6 +49,12 @@ struct SeriesEntry : SeriesInfo {
     VolumeGeometry geometry;
     VoxelType voxelType = VoxelType::Int16;
     std::vector<std::string> warnings;
+    // DICOM only: of the first image (hanging protocols match on them).
+    int seriesNumber = 0;
+    double sliceThickness = 0.0; // mm, 0 when absent
+    std::string studyDescription;
+    std::string studyTime; // DICOM TM text (0008,0030)
+    std::string bodyPart;  // BodyPartExamined (0018,0015)
 
     // DICOM only: the images, sorted ascending along the slice normal.
     std::vector<SliceRef> slices;

@@ -93,12 +93,14 @@ QueryMatch toMatch(const QJsonObject& o, QueryLevel level) {
     m.patientBirthDate = value(o, "00100030").toStdString();
     m.studyUid = value(o, "0020000D").toStdString();
     m.studyDate = value(o, "00080020").toStdString();
+    m.studyTime = value(o, "00080030").toStdString();
     m.studyDescription = value(o, "00081030").toStdString();
     m.accessionNumber = value(o, "00080050").toStdString();
     m.modalitiesInStudy = value(o, "00080061").toStdString();
     m.seriesUid = value(o, "0020000E").toStdString();
     m.seriesDescription = value(o, "0008103E").toStdString();
     m.modality = value(o, "00080060").toStdString();
+    m.bodyPart = value(o, "00180015").toStdString();
     m.seriesNumber = value(o, "00200011").toInt();
     m.instances = value(o, level == QueryLevel::Series ? "00201209" : "00201208").toInt();
     return m;

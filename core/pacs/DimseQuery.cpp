@@ -45,6 +45,7 @@ std::vector<QueryMatch> findOnce(DimseAssociation& a, QueryLevel level, const Qu
     } else {
         q.putAndInsertString(DCM_StudyInstanceUID, f.studyUid.c_str());
         q.putAndInsertString(DCM_StudyDate, f.dateRange.c_str());
+        q.putAndInsertString(DCM_StudyTime, "");
         q.putAndInsertString(DCM_StudyDescription, "");
         q.putAndInsertString(DCM_AccessionNumber, f.accessionNumber.c_str());
     }
@@ -57,6 +58,7 @@ std::vector<QueryMatch> findOnce(DimseAssociation& a, QueryLevel level, const Qu
         q.putAndInsertString(DCM_Modality, modality.c_str());
         q.putAndInsertString(DCM_SeriesNumber, "");
         q.putAndInsertString(DCM_SeriesDescription, "");
+        q.putAndInsertString(DCM_BodyPartExamined, "");
         q.putAndInsertString(DCM_NumberOfSeriesRelatedInstances, "");
     }
     OwnedResponses<QRResponse> r;
@@ -77,12 +79,14 @@ std::vector<QueryMatch> findOnce(DimseAssociation& a, QueryLevel level, const Qu
             m.patientBirthDate = text(d, DCM_PatientBirthDate);
             m.studyUid = text(d, DCM_StudyInstanceUID);
             m.studyDate = text(d, DCM_StudyDate);
+            m.studyTime = text(d, DCM_StudyTime);
             m.studyDescription = text(d, DCM_StudyDescription);
             m.accessionNumber = text(d, DCM_AccessionNumber);
             m.modalitiesInStudy = text(d, DCM_ModalitiesInStudy);
             m.seriesUid = text(d, DCM_SeriesInstanceUID);
             m.seriesDescription = text(d, DCM_SeriesDescription);
             m.modality = text(d, DCM_Modality);
+            m.bodyPart = text(d, DCM_BodyPartExamined);
             m.seriesNumber = number(d, DCM_SeriesNumber);
             m.instances =
                 number(d, level == QueryLevel::Series ? DCM_NumberOfSeriesRelatedInstances

@@ -35,12 +35,14 @@ struct QueryMatch {
     std::string patientBirthDate;
     std::string studyUid;
     std::string studyDate;
+    std::string studyTime;
     std::string studyDescription;
     std::string accessionNumber;
     std::string modalitiesInStudy;
     std::string seriesUid;
     std::string seriesDescription;
     std::string modality;
+    std::string bodyPart; // BodyPartExamined, series level
     int seriesNumber = 0;
     int instances = 0; // in the study (study level) or series (series level)
 };

@@ -184,10 +184,14 @@ void PacsService::retrieve(const PacsNodeConfig& node, const QList<SeriesRequest
             } catch (const std::exception& e) {
                 message = QString::fromStdString(e.what());
             }
-            post([this, uid, ok, message, arrived] {
+            const bool announce = request.announce;
+            post([this, uid, ok, message, arrived, announce] {
                 --pending_;
-                emit retrievalFinished(uid, ok, message);
                 if (!arrived.isEmpty()) {
+                    emit seriesStored(arrived, uid);
+                }
+                emit retrievalFinished(uid, ok, message);
+                if (!arrived.isEmpty() && announce) {
                     emit seriesArrived(arrived, uid);
                 }
                 if (pending_ == 0) {

@@ -30,6 +30,9 @@ struct SeriesRequest {
     QString studyUid;
     QString seriesUid;
     QString label; // for the progress list
+    // False for a fetch in the background (a prior): seriesArrived is not emitted, so
+    // nothing opens it in the main window; seriesStored still is.
+    bool announce = true;
 };
 
 class PacsService : public QObject {
@@ -64,8 +67,10 @@ signals:
     void retrievalQueued(const QString& seriesUid, const QString& label);
     void retrievalProgress(const QString& seriesUid, int completed, int remaining, int failed);
     void retrievalFinished(const QString& seriesUid, bool ok, const QString& message);
-    // A series is complete in the store: its folder, ready to open.
+    // A series asked for with `announce` is complete in the store: its folder, ready to open.
     void seriesArrived(const QString& folder, const QString& seriesUid);
+    // Any series retrieved is complete in the store (announced or not).
+    void seriesStored(const QString& folder, const QString& seriesUid);
     void allRetrievalsFinished();
     void instanceNotStored(const QString& key, const QString& file, const QString& message);
 
