@@ -72,7 +72,7 @@ fi
 expect_files "$server" usr/bin/lucent-server usr/share/man/man1/lucent-server.1.gz \
   lib/systemd/system/lucent-server.service etc/lucent/lucent-server.conf \
   usr/share/doc/lucent-server/copyright usr/share/doc/lucent-server/changelog.gz
-expect_files "$common" usr/share/lucent/presets/ct-bone.json usr/libexec/lucent/lucent-frame-decoder \
+expect_files "$common" usr/share/lucent/presets/ct-bone.json usr/share/lucent/hanging/mpr-2x2.json usr/libexec/lucent/lucent-frame-decoder \
   usr/share/doc/lucent-common/copyright usr/share/doc/lucent-common/changelog.gz
 
 # Control data: dependencies that dpkg-shlibdeps found, the conffile, the

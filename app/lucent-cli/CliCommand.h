@@ -57,5 +57,6 @@ int runOptions(const QStringList& args);      // the render options table
 int runSurface(const QStringList& args);      // isosurface meshes and the method of spheres
 int runMeasurements(const QStringList& args); // a series' or an SR's measurements
 int runMovie(const QStringList& args);        // turntable or cine movies (MP4, WebM, GIF)
+int runHang(const QStringList& args);         // hanging protocols: which series goes where
 
 } // namespace lucent::cli

@@ -36,6 +36,9 @@ const char* kUsageText =
     "  measurements --patient ID [--store DIR] --recist [--json]\n"
     "                                       RECIST 1.1 follow-up: lesions by timepoint, sums,\n"
     "                                       change from baseline and nadir, response\n"
+    "  hang PATH... [--protocol NAME] [--protocols DIR] [--json]\n"
+    "                                       the hanging protocol that wins, which series goes "
+    "where\n"
     "Exit status: 0 ok, 2 usage, 3 nothing loadable or bad input, 4 PACS or network failure.\n";
 
 } // namespace
@@ -95,6 +98,9 @@ int main(int argc, char** argv) {
     }
     if (command == "movie") {
         return lucent::cli::runMovie(args);
+    }
+    if (command == "hang") {
+        return lucent::cli::runHang(args);
     }
     if (command == "compare") {
         return lucent::cli::runCompare(args);

@@ -35,6 +35,11 @@ int main(int argc, char** argv) {
                                     QStringLiteral("Open the series with this UID or id."),
                                     QStringLiteral("UID"));
     parser.addOption(series);
+    const QCommandLineOption study(
+        QStringLiteral("study"),
+        QStringLiteral("Open PATH as a study: its hanging protocol in the viewport grid, with the "
+                       "patient's prior fetched from PACS when the protocol asks for one."));
+    parser.addOption(study);
     parser.process(app);
     const QStringList args = parser.positionalArguments();
     if (args.size() > 1) {
@@ -58,7 +63,14 @@ int main(int argc, char** argv) {
     }
     if (!path.isEmpty()) {
         const QString uid = parser.value(series);
-        QTimer::singleShot(0, &window, [&window, path, uid] { window.openPath(path, uid); });
+        const bool asStudy = parser.isSet(study);
+        QTimer::singleShot(0, &window, [&window, path, uid, asStudy] {
+            if (asStudy) {
+                window.openStudy(path);
+            } else {
+                window.openPath(path, uid);
+            }
+        });
     }
     return QApplication::exec();
 }

@@ -43,9 +43,8 @@ std::vector<QueryMatch> qidoSearch(const DicomWebService& s, QueryLevel level,
                 query.addQueryItem("ModalitiesInStudy", QString::fromStdString(modality));
             }
         }
-        for (const char* field :
-             {"00081030", "00080061", "00201208", "00201209", "0008103E", "00200011", "00080030",
-              "00180015"}) {
+        for (const char* field : {"00081030", "00080061", "00201208", "00201209", "0008103E",
+                                  "00200011", "00080030", "00180015"}) {
             query.addQueryItem("includefield", field);
         }
         for (const QJsonValue& v : searchJson(s, path, query)) {

@@ -44,9 +44,8 @@ PatientStudy& studyOf(std::vector<PatientStudy>& studies, const std::string& uid
 }
 
 PatientSeries& seriesOf(PatientStudy& study, const std::string& uid) {
-    const auto found =
-        std::find_if(study.series.begin(), study.series.end(),
-                     [&](const PatientSeries& s) { return s.seriesUid == uid; });
+    const auto found = std::find_if(study.series.begin(), study.series.end(),
+                                    [&](const PatientSeries& s) { return s.seriesUid == uid; });
     if (found != study.series.end()) {
         return *found;
     }
@@ -152,9 +151,10 @@ void mergeNodeStudies(std::vector<PatientStudy>& studies, int node, const QueryM
 }
 
 void orderPriors(std::vector<PatientStudy>& studies, const CurrentStudy& current) {
-    std::stable_sort(studies.begin(), studies.end(), [](const PatientStudy& a, const PatientStudy& b) {
-        return before(b, a.studyDate, a.studyTime);
-    });
+    std::stable_sort(studies.begin(), studies.end(),
+                     [](const PatientStudy& a, const PatientStudy& b) {
+                         return before(b, a.studyDate, a.studyTime);
+                     });
     int next = 1;
     for (PatientStudy& s : studies) {
         s.comparable = isComparable(s, current);

@@ -18,10 +18,8 @@ PriorsForStudy::PriorsForStudy(PacsService& service, QObject* parent)
             [this](const QString& folder, const QString& seriesUid) {
                 for (auto& [study, fetch] : fetches_) {
                     if (fetch.pending.count(seriesUid)) {
-                        fetch.folder =
-                            QString::fromStdString(std::filesystem::path(folder.toStdString())
-                                                       .parent_path()
-                                                       .string());
+                        fetch.folder = QString::fromStdString(
+                            std::filesystem::path(folder.toStdString()).parent_path().string());
                     }
                 }
             });
@@ -49,7 +47,8 @@ PriorsForStudy::Lookup PriorsForStudy::lookUp(const PacsConfig& config,
                                               const CurrentStudy& current) {
     Lookup out;
     try {
-        if (!config.storeFolder.isEmpty() && std::filesystem::exists(config.storeFolder.toStdString())) {
+        if (!config.storeFolder.isEmpty() &&
+            std::filesystem::exists(config.storeFolder.toStdString())) {
             const StudyStore store(config.storeFolder.toStdString());
             out.studies = studiesInStore(store.listSeries(), current.patientId);
         }

@@ -59,7 +59,8 @@ signals:
     void fetchStarted(const QString& studyUid);
     void fetchProgress(const QString& studyUid, int done, int total);
     // Every series asked for is complete in the store (study folder, its series).
-    void studyFetched(const QString& studyUid, const QString& folder, const QStringList& seriesUids);
+    void studyFetched(const QString& studyUid, const QString& folder,
+                      const QStringList& seriesUids);
     // No series of the study arrived (then noPrior too, when it was a prior asked
     // for), or some did not (after studyFetched).
     void fetchFailed(const QString& studyUid, const QString& why);
@@ -93,7 +94,7 @@ private:
     std::vector<PatientStudy> studies_;
     QStringList nodeErrors_;
     bool lookingUp_ = false;
-    std::map<QString, Fetch> fetches_;   // by study UID
+    std::map<QString, Fetch> fetches_;    // by study UID
     std::map<QString, int> ordersWanted_; // study UID -> prior order asked for
     std::uint64_t generation_ = 0;
     std::vector<std::jthread> lookups_;

@@ -160,6 +160,14 @@ MainWindow::MainWindow(QWidget* parent)
     file->addAction(tr("Open &Folder..."), QKeySequence(tr("Ctrl+Shift+O")), this,
                     &MainWindow::openFolderDialog);
     file->addAction(tr("&Open File..."), QKeySequence::Open, this, &MainWindow::openFileDialog);
+    file->addAction(tr("Open &Study (Hanging Protocol, Priors)..."), QKeySequence(tr("Ctrl+Alt+O")),
+                    this, [this] {
+                        const QString dir =
+                            QFileDialog::getExistingDirectory(this, tr("Open study"), lastFolder_);
+                        if (!dir.isEmpty()) {
+                            openStudy(dir);
+                        }
+                    });
     file->addSeparator();
     file->addAction(tr("Save Screenshot of Active &View..."), QKeySequence(tr("Ctrl+Shift+E")),
                     this, [this] { screenshotDialog(ScreenshotScope::ActiveView); });
@@ -185,7 +193,7 @@ MainWindow::MainWindow(QWidget* parent)
     connect(pacs, &PacsBrowser::openSeries, this,
             [this](const QString& folder, const QString& series) { openPath(folder, series); });
     addFollowUpDock(pacs->config().storeFolder);
-    wireViewports();
+    wireViewports(pacs->service());
     addViewMenu();
     QMenu* help = menuBar()->addMenu(tr("&Help"));
     help->addAction(tr("&Keyboard Shortcuts..."), QKeySequence(QKeySequence::HelpContents), this,
@@ -218,6 +226,7 @@ void MainWindow::addViewMenu() {
     }
     QMenu* grid = menu->addMenu(tr("Viewport &Grid"));
     workspace_->fillMenu(grid);
+    addHangingMenu(menu->addMenu(tr("&Hanging Protocols")));
     for (QAction* action : grid->actions()) {
         if (action->objectName().startsWith(QStringLiteral("grid-"))) {
             connect(action, &QAction::triggered, this, [this] { showWorkspace(true); });

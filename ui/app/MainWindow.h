@@ -30,6 +30,10 @@ class SliceView;
 class TransferFunctionEditor;
 class ViewLayout;
 class ViewportWorkspace;
+class StudyHanging;
+class PriorsForStudy;
+class PriorTimeline;
+class PacsService;
 class VolumeLoader;
 class VolumeView;
 
@@ -55,6 +59,11 @@ public:
     // (worker thread, progress with cancel, errors in a dialog with details);
     // series picks one (id or UID). A load still running is cancelled.
     void openPath(const QString& path, const QString& series = {});
+    // Opens a study (a folder, DICOMDIR or store folder) as a radiologist reads it: the
+    // best hanging protocol for it and the patient's priors (StudyHanging) in the grid,
+    // the comparable prior fetched from PACS when the protocol asks for one.
+    void openStudy(const QString& path);
+    StudyHanging* hanging() const { return hanging_; }
     void setVolume(std::shared_ptr<const Volume> volume);
     const std::shared_ptr<const Volume>& volume() const { return volume_; }
 
@@ -81,6 +90,7 @@ public:
     SeriesMeasurements* measurementsFor(const std::shared_ptr<const Volume>& volume);
     // The RECIST follow-up of the patient shown (a dock).
     FollowUpPanel* followUp() const { return followUp_; }
+    PriorTimeline* priorTimeline() const { return priorTimeline_; }
     // Help > Keyboard Shortcuts: opens (or raises) the dialog and returns it.
     ShortcutsDialog* showShortcuts();
 
@@ -117,8 +127,10 @@ private:
                        const std::vector<glm::dvec3>& points, const glm::dvec3& up);
     void showMeasurementsOf(const std::shared_ptr<const Volume>& volume);
     // MainWindowViewports.cpp: the viewport grid's tools, the follow-up dock.
-    void wireViewports();
+    void wireViewports(PacsService* service);
+    void addHangingMenu(QMenu* menu);
     void addFollowUpDock(const QString& storeFolder);
+    void addPriorsDock(PriorsForStudy& priors);
     void viewportContentChanged(Viewport* viewport);
     void goToLesion(const std::vector<LesionLocation>& where);
 
@@ -141,6 +153,8 @@ private:
     MeasurementAutosave* autosave_ = nullptr;
     ShortcutsDialog* shortcuts_ = nullptr;
     FollowUpPanel* followUp_ = nullptr;
+    PriorTimeline* priorTimeline_ = nullptr;
+    StudyHanging* hanging_ = nullptr;
     QString storeFolder_;
 };
 

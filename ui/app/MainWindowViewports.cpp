@@ -1,11 +1,17 @@
 // MainWindow: what the viewport grid's viewports share with the MPR layout (the series'
 // measurements, curved MPR, the measurement list following the active viewport) and the
-// RECIST follow-up dock, whose lesions open in the grid.
+// RECIST follow-up dock, whose lesions open in the grid, and the priors timeline.
 #include "ui/app/MainWindow.h"
 
 #include <QDockWidget>
 #include <QStatusBar>
 
+#include <QFileInfo>
+#include <QInputDialog>
+#include <QMenu>
+#include <QStandardPaths>
+
+#include "core/hanging/HangingProtocolJson.h"
 #include "core/store/StudyStore.h"
 #include "ui/app/MeasurementControls.h"
 #include "ui/followup/FollowUpPanel.h"
@@ -13,7 +19,9 @@
 #include "ui/mpr/MeasurementList.h"
 #include "ui/mpr/SeriesMeasurements.h"
 #include "ui/mpr/SliceView.h"
+#include "ui/priors/PriorTimeline.h"
 #include "ui/viewports/SeriesSession.h"
+#include "ui/viewports/StudyHanging.h"
 #include "ui/viewports/Viewport.h"
 #include "ui/viewports/ViewportGrid.h"
 #include "ui/viewports/ViewportWorkspace.h"
@@ -58,7 +66,7 @@ void MainWindow::addFollowUpDock(const QString& storeFolder) {
     storeFolder_ = storeFolder;
     followUp_ = new FollowUpPanel;
     followUp_->setStoreFolder(storeFolder);
-    auto* dock = new QDockWidget(tr("Follow-up (RECIST 1.1)"), this);
+    auto* dock = new QDockWidget(tr("Follow-up"), this); // the RECIST 1.1 table
     dock->setObjectName(QStringLiteral("followUpDock"));
     dock->setWidget(followUp_);
     // A tab beside the measurement list: the reading area keeps its size.
@@ -77,6 +85,26 @@ void MainWindow::addFollowUpDock(const QString& storeFolder) {
     connect(
         followUp_, &FollowUpPanel::lesionActivated, this,
         [this](const QString&, const std::vector<LesionLocation>& where) { goToLesion(where); });
+}
+
+void MainWindow::addPriorsDock(PriorsForStudy& priors) {
+    priorTimeline_ = new PriorTimeline(priors);
+    auto* dock = new QDockWidget(tr("Priors"), this);
+    dock->setObjectName(QStringLiteral("priorsDock"));
+    dock->setWidget(priorTimeline_);
+    addDockWidget(Qt::RightDockWidgetArea, dock);
+    if (auto* followUp = findChild<QDockWidget*>(QStringLiteral("followUpDock"))) {
+        tabifyDockWidget(followUp, dock);
+    }
+    if (auto* volumeDock = findChild<QDockWidget*>(QStringLiteral("volumeDock"))) {
+        volumeDock->raise();
+    }
+    // A study picked on the timeline goes into the active viewport, beside what is there.
+    connect(priorTimeline_, &PriorTimeline::openStudy, this,
+            [this](const QString& folder, const QString& series) {
+                showWorkspace(true);
+                workspace_->showInActive(folder, series);
+            });
 }
 
 void MainWindow::goToLesion(const std::vector<LesionLocation>& where) {
@@ -109,7 +137,62 @@ void MainWindow::viewportContentChanged(Viewport* viewport) {
             });
 }
 
-void MainWindow::wireViewports() {
+void MainWindow::openStudy(const QString& path) {
+    lastFolder_ = QFileInfo(path).isDir() ? QFileInfo(path).absoluteFilePath()
+                                          : QFileInfo(path).absolutePath();
+    showWorkspace(true);
+    workspace_->setCaption(tr("Opening %1...").arg(path));
+    hanging_->open(path);
+}
+
+void MainWindow::addHangingMenu(QMenu* menu) {
+    menu->addAction(tr("&Next Protocol"), QKeySequence(tr("Alt+Down")), this,
+                    [this] { hanging_->stepProtocol(1); });
+    menu->addAction(tr("&Previous Protocol"), QKeySequence(tr("Alt+Up")), this,
+                    [this] { hanging_->stepProtocol(-1); });
+    menu->addAction(tr("Next &Viewport Set"), QKeySequence(tr("Alt+Right")), this,
+                    [this] { hanging_->stepViewportSet(1); });
+    menu->addAction(tr("Previous Viewport &Set"), QKeySequence(tr("Alt+Left")), this,
+                    [this] { hanging_->stepViewportSet(-1); });
+    menu->addSeparator();
+    menu->addAction(tr("Save &Layout as Protocol..."), this, [this] {
+        const QString name =
+            QInputDialog::getText(this, tr("Save layout as protocol"), tr("Protocol name:"));
+        if (name.trimmed().isEmpty()) {
+            return;
+        }
+        QString error;
+        const QString file = hanging_->saveLayout(name.trimmed(), &error);
+        statusBar()->showMessage(file.isEmpty() ? tr("Not saved: %1").arg(error)
+                                                : tr("Saved protocol %1").arg(file),
+                                 8000);
+    });
+}
+
+void MainWindow::wireViewports(PacsService* service) {
+    hanging_ = new StudyHanging(
+        workspace_, service,
+        QString::fromStdString(
+            userHangingFolder(
+                QStandardPaths::writableLocation(QStandardPaths::GenericDataLocation).toStdString())
+                .string()),
+        this);
+    connect(hanging_, &StudyHanging::message, this,
+            [this](const QString& text, int ms) { statusBar()->showMessage(text, ms); });
+    connect(hanging_, &StudyHanging::hung, this, [this](const QString& protocol, qint64 ms) {
+        statusBar()->showMessage(tr("%1: hung in %2 ms").arg(protocol).arg(ms), 8000);
+    });
+    // The MPR layout of one series is the main window's own page.
+    connect(hanging_, &StudyHanging::mprRequested, this,
+            [this](const QString& path, const QString& series) {
+                showWorkspace(false);
+                if (!volume_ || QString::fromStdString(volume_->seriesUid) != series) {
+                    openPath(path, series);
+                }
+            });
+    if (hanging_->priors() != nullptr) {
+        addPriorsDock(*hanging_->priors());
+    }
     ViewportGrid* grid = workspace_->grid();
     connect(grid, &ViewportGrid::viewportContentChanged, this, &MainWindow::viewportContentChanged);
     // The measurement list, its tools and the follow-up show the active viewport's series.

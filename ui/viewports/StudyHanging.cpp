@@ -79,15 +79,8 @@ StudyHanging::StudyHanging(ViewportWorkspace* workspace, PacsService* service, Q
                 });
         connect(priors_.get(), &PriorsForStudy::noPrior, this,
                 [this](int order, const QString& reason) {
-                    priorsWanted_.erase(order);
                     emit message(tr("No prior %1: %2").arg(order).arg(reason), 8000);
-                    viewportShown();
-                });
-        connect(priors_.get(), &PriorsForStudy::fetchFailed, this,
-                [this](const QString& study, const QString& why) {
-                    priorsWanted_.erase(priors_->priorOrder(study));
-                    emit message(tr("Prior not fetched: %1").arg(why), 10000);
-                    viewportShown();
+                    priorGone(order);
                 });
     }
     connect(workspace_, &ViewportWorkspace::seriesShown, this, [this](Viewport* viewport) {
@@ -184,39 +177,42 @@ void StudyHanging::open(const QString& path) {
     scan(path, store, false);
 }
 
-void StudyHanging::scan(const QString& path, const QString& storeFolder, bool rerank) {
+void StudyHanging::scan(const QString& path, const QString& storeFolder, bool rerank,
+                        int arrivedOrder) {
     const std::uint64_t generation = generation_;
-    scans_.emplace_back([this, path, storeFolder, rerank, generation](std::stop_token stop) {
-        std::vector<HangingSeries> found;
-        LoadControl control;
-        control.stop = stop;
-        try {
-            scanInto(path.toStdString(), control, found);
-            // The patient's other studies in the store (a new open only).
-            std::string patient;
-            for (const HangingSeries& s : found) {
-                if (s.kind == SeriesKind::Volume && !s.patientId.empty()) {
-                    patient = s.patientId;
-                    break;
+    scans_.emplace_back(
+        [this, path, storeFolder, rerank, generation, arrivedOrder](std::stop_token stop) {
+            std::vector<HangingSeries> found;
+            LoadControl control;
+            control.stop = stop;
+            try {
+                scanInto(path.toStdString(), control, found);
+                // The patient's other studies in the store (a new open only).
+                std::string patient;
+                for (const HangingSeries& s : found) {
+                    if (s.kind == SeriesKind::Volume && !s.patientId.empty()) {
+                        patient = s.patientId;
+                        break;
+                    }
                 }
+                for (const std::string& folder : storeFoldersOf(storeFolder, patient)) {
+                    if (folder != path.toStdString()) {
+                        scanInto(folder, control, found);
+                    }
+                }
+            } catch (const LoadCancelled&) {
+                return;
             }
-            for (const std::string& folder : storeFoldersOf(storeFolder, patient)) {
-                if (folder != path.toStdString()) {
-                    scanInto(folder, control, found);
-                }
-            }
-        } catch (const LoadCancelled&) {
-            return;
-        }
-        QMetaObject::invokeMethod(
-            this,
-            [this, found = std::move(found), rerank, generation]() mutable {
-                if (generation == generation_) {
-                    scanned(std::move(found), rerank);
-                }
-            },
-            Qt::QueuedConnection);
-    });
+            QMetaObject::invokeMethod(
+                this,
+                [this, found = std::move(found), rerank, generation, arrivedOrder]() mutable {
+                    if (generation == generation_) {
+                        priorsWanted_.erase(arrivedOrder); // its series are among them now
+                        scanned(std::move(found), rerank);
+                    }
+                },
+                Qt::QueuedConnection);
+        });
 }
 
 void StudyHanging::scanned(std::vector<HangingSeries> found, bool rerank) {
@@ -250,13 +246,16 @@ void StudyHanging::scanned(std::vector<HangingSeries> found, bool rerank) {
     }
     int rank = 0;
     for (int n = 0; rerank && n < static_cast<int>(ranking_.size()); ++n) {
-        if (QString::fromStdString(ranking_[n].protocol->name) == before) {
+        if (ranking_[n].applicable &&
+            QString::fromStdString(ranking_[n].protocol->name) == before) {
             rank = n; // a prior arrived: the same protocol, now with it
         }
     }
-    apply(rank, rerank ? set_ : 0);
+    apply(rank, setShowingPriors(rank, rerank ? set_ : 0));
     const HangingResult* now = applied();
-    if (!rerank && priors_ && now != nullptr && !now->missingStudyOrders.empty()) {
+    if (!rerank && priors_ && now != nullptr) {
+        // The timeline lists the patient's studies on every open; a prior is fetched
+        // only when the protocol asks for one that is not here.
         CurrentStudy current;
         current.patientId = patientId_.toStdString();
         current.studyUid = studyUid_.toStdString();
@@ -276,6 +275,25 @@ void StudyHanging::scanned(std::vector<HangingSeries> found, bool rerank) {
         }
         priors_->start(current, orders);
     }
+}
+
+int StudyHanging::setShowingPriors(int rank, int set) const {
+    const auto showsPrior = [](const HangingResult& r) {
+        return std::any_of(r.viewports.begin(), r.viewports.end(), [](const ViewportAssignment& v) {
+            return v.series != nullptr && v.series->studyOrder > 0;
+        });
+    };
+    const HangingProtocol& protocol = *ranking_[rank].protocol;
+    const RankOptions options{priorsWanted_.empty()};
+    if (showsPrior(applyProtocol(protocol, series_, set, options))) {
+        return set;
+    }
+    for (int n = 0; n < static_cast<int>(protocol.viewportSets.size()); ++n) {
+        if (showsPrior(applyProtocol(protocol, series_, n, options))) {
+            return n;
+        }
+    }
+    return set;
 }
 
 const HangingResult* StudyHanging::applied() const {
@@ -343,9 +361,16 @@ void StudyHanging::viewportShown() {
     emit hung(QString::fromStdString(now->protocol->name), clock_.elapsed());
 }
 
-void StudyHanging::priorReady(int order, const QString& folder) {
+void StudyHanging::priorGone(int order) {
     priorsWanted_.erase(order);
-    scan(folder, {}, true);
+    if (priorsWanted_.empty() && !series_.empty()) {
+        // Every prior there is is here: a protocol that needs a missing one no longer fits.
+        scanned({}, true);
+    }
+}
+
+void StudyHanging::priorReady(int order, const QString& folder) {
+    scan(folder, {}, true, order);
 }
 
 void StudyHanging::stepProtocol(int step) {

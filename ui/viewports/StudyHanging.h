@@ -70,12 +70,17 @@ signals:
 private:
     // Scans path (and, with a store folder, the patient's studies in the store) on a
     // worker; scanned() merges the series on the GUI thread.
-    void scan(const QString& path, const QString& storeFolder, bool rerank);
+    // arrivedOrder: the prior whose folder this is (0: none).
+    void scan(const QString& path, const QString& storeFolder, bool rerank, int arrivedOrder = 0);
     void scanned(std::vector<HangingSeries> found, bool rerank);
-    void rerank();
+    // `set`, or the protocol's first viewport set that shows a prior when `set` shows
+    // none and a prior is here: a follow-up read starts against its prior.
+    int setShowingPriors(int rank, int set) const;
     void show(const HangingResult& result);
     void viewportShown();
     void priorReady(int order, const QString& folder);
+    // A prior asked for is not coming (none, or its fetch failed).
+    void priorGone(int order);
 
     ViewportWorkspace* workspace_;
     PacsService* service_;

@@ -3,7 +3,7 @@
 #include <QFrame>
 #include <QString>
 
-#include "ui/viewports/ViewportView.h"
+#include "core/hanging/HangingProtocol.h"
 
 class QLabel;
 class QToolButton;

@@ -8,8 +8,8 @@
 #include <QString>
 #include <QWidget>
 
+#include "core/hanging/HangingProtocol.h"
 #include "core/volume/Volume.h"
-#include "ui/viewports/ViewportView.h"
 
 class QLabel;
 class QMenu;

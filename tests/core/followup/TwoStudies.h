@@ -49,9 +49,10 @@ inline bool store(StudyStore& store, const std::filesystem::path& file) {
     }
     DcmDataset& d = *f.getDataset();
     InstanceRecord r;
-    r.series = {tag(d, DCM_SeriesInstanceUID), tag(d, DCM_StudyInstanceUID), tag(d, DCM_Modality),
-                tag(d, DCM_SeriesDescription), tag(d, DCM_PatientName),      tag(d, DCM_PatientID),
-                tag(d, DCM_StudyDate),          tag(d, DCM_FrameOfReferenceUID)};
+    r.series = {tag(d, DCM_SeriesInstanceUID), tag(d, DCM_StudyInstanceUID),
+                tag(d, DCM_Modality),          tag(d, DCM_SeriesDescription),
+                tag(d, DCM_PatientName),       tag(d, DCM_PatientID),
+                tag(d, DCM_StudyDate),         tag(d, DCM_FrameOfReferenceUID)};
     r.sopInstanceUid = tag(d, DCM_SOPInstanceUID);
     const std::filesystem::path temp = store.temporaryFile();
     std::filesystem::copy_file(file, temp);

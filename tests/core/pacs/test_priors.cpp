@@ -94,8 +94,8 @@ private slots:
         orthanc_ = std::make_unique<test::OrthancServer>();
         QVERIFY2(orthanc_->isRunning(), qPrintable("Orthanc is needed: " + orthanc_->error()));
         const SeriesEntry entry = scanPath((test::kRealData / kCurrent).string()).series.front();
-        current_ = {entry.patientId, entry.studyUid, entry.modality, entry.bodyPart,
-                    entry.studyDate, entry.studyTime};
+        current_ = {entry.patientId, entry.studyUid,  entry.modality,
+                    entry.bodyPart,  entry.studyDate, entry.studyTime};
         QCOMPARE(current_.studyDate, std::string("20150206"));
         const std::filesystem::path source = test::kRealData / kSource;
         const std::string dir = made_.path().toStdString();
@@ -157,9 +157,8 @@ private slots:
             QVERIFY(s.isComplete(newer_.seriesUid));
             QCOMPARE(s.instancesOf(newer_.seriesUid).size(), newer_.files.size());
             QCOMPARE(ready.first().at(1).toString(),
-                     QString::fromStdString(s.seriesFolder(newer_.studyUid, newer_.seriesUid)
-                                                .parent_path()
-                                                .string()));
+                     QString::fromStdString(
+                         s.seriesFolder(newer_.studyUid, newer_.seriesUid).parent_path().string()));
             QVERIFY(s.instancesOf(older_.seriesUid).empty()); // only the prior asked for
         }
         QVERIFY(priors.study(QString::fromStdString(newer_.studyUid))->completeInStore());
@@ -208,14 +207,16 @@ private:
         const int deadPort = closed.serverPort();
         closed.close();
         c.nodes << PacsNodeConfig{QStringLiteral("nobody home"), QStringLiteral("NOBODY"),
-                                  QStringLiteral("127.0.0.1"), deadPort, RetrievalMethod::CGet, {}};
+                                  QStringLiteral("127.0.0.1"),   deadPort,
+                                  RetrievalMethod::CGet,         {}};
         if (dicomWeb) {
-            c.nodes << PacsNodeConfig{QStringLiteral("Orthanc web"), {}, {}, 0,
-                                      RetrievalMethod::Wado, orthanc_->dicomWebUrl()};
+            c.nodes << PacsNodeConfig{
+                QStringLiteral("Orthanc web"), {}, {}, 0, RetrievalMethod::Wado,
+                orthanc_->dicomWebUrl()};
         } else {
-            c.nodes << PacsNodeConfig{QStringLiteral("Orthanc"), QStringLiteral("ORTHANC"),
+            c.nodes << PacsNodeConfig{QStringLiteral("Orthanc"),   QStringLiteral("ORTHANC"),
                                       QStringLiteral("127.0.0.1"), orthanc_->dicomPort(),
-                                      RetrievalMethod::CGet, {}};
+                                      RetrievalMethod::CGet,       {}};
         }
         return c;
     }
