@@ -2,9 +2,9 @@
 
 #include <cmath>
 #include <map>
-#include <mutex>
 #include <optional>
 
+#include "core/dicom/FirstDecodeError_p.h"
 #include "core/dicom/FrameDecoder.h"
 #include "core/dicom/PixelConversion.h"
 #include "core/dicom/ProgressReporter.h"
@@ -43,8 +43,7 @@ void decodeInto(const SeriesEntry& e, Volume& stack, const LoadControl& control)
     }
     const std::vector<std::pair<std::string, std::vector<int>>> work(byFile.begin(), byFile.end());
     ProgressReporter progress(control, "decoding", work.size());
-    std::mutex errorMutex;
-    std::optional<std::string> error;
+    FirstDecodeError error;
 
     const int count = static_cast<int>(work.size());
 #pragma omp parallel num_threads(workerThreads(control))
@@ -87,21 +86,12 @@ void decodeInto(const SeriesEntry& e, Volume& stack, const LoadControl& control)
                                  out.data() + pixels * static_cast<std::size_t>(k));
                 }
             } catch (const std::exception& ex) {
-                const std::lock_guard lock(errorMutex);
-                if (!error) {
-                    const std::string what = ex.what();
-                    error = what.rfind(file, 0) == 0 ? what : file + ": " + what;
-                }
+                error.record(file, ex);
             }
             progress.step();
         }
     }
-    if (control.stopRequested()) {
-        throw LoadCancelled();
-    }
-    if (error) {
-        throw LoadError(*error);
-    }
+    error.throwIfAny(control);
 }
 
 // Float volumes whose values are all integers that fit int16 become int16:

@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <map>
-#include <mutex>
 #include <numeric>
 #include <optional>
 
 #include "core/dicom/ColourConversion_p.h"
+#include "core/dicom/FirstDecodeError_p.h"
 #include "core/dicom/FrameDecoder.h"
 #include "core/dicom/PixelConversion.h"
 #include "core/dicom/ProgressReporter.h"
@@ -188,8 +188,7 @@ ImageStack loadStack(const SeriesEntry& e, const LoadControl& control) {
     }
     std::vector<std::optional<StackHeader>> headers(work.size());
     ProgressReporter progress(control, "decoding", work.size());
-    std::mutex errorMutex;
-    std::optional<std::string> error;
+    FirstDecodeError error;
     const int count = static_cast<int>(work.size());
 #pragma omp parallel for schedule(dynamic, 4) num_threads(workerThreads(control))
     for (int w = 0; w < count; ++w) {
@@ -200,21 +199,11 @@ ImageStack loadStack(const SeriesEntry& e, const LoadControl& control) {
             headers[static_cast<std::size_t>(w)] =
                 decodeFile(e, work[static_cast<std::size_t>(w)], s);
         } catch (const std::exception& ex) {
-            const std::lock_guard lock(errorMutex);
-            if (!error) {
-                const std::string& file = work[static_cast<std::size_t>(w)].file;
-                const std::string what = ex.what();
-                error = what.rfind(file, 0) == 0 ? what : file + ": " + what;
-            }
+            error.record(work[static_cast<std::size_t>(w)].file, ex);
         }
         progress.step();
     }
-    if (control.stopRequested()) {
-        throw LoadCancelled();
-    }
-    if (error) {
-        throw LoadError(*error);
-    }
+    error.throwIfAny(control);
     // The first frame's file speaks for the stack (window, cine timing).
     const auto first = std::find_if(work.begin(), work.end(), [](const FileWork& f) {
         return std::find(f.slices.begin(), f.slices.end(), 0) != f.slices.end();
