@@ -14,6 +14,7 @@
 
 #include "core/pacs/DicomWebClient.h"
 #include "core/pacs/PacsConfig.h"
+#include "core/pacs/PriorsForStudy.h"
 #include "core/pacs/SeriesRetriever.h"
 #include "core/store/StudyStore.h"
 #include "tests/support/OffscreenPlatform.h"
@@ -60,14 +61,18 @@ private slots:
         const PacsNodeConfig wado{QStringLiteral("Orthanc web"), {}, {}, 0, RetrievalMethod::Wado,
                                   orthanc.dicomWebUrl()};
         std::printf("two 140-slice CTs (current from disk, prior on Orthanc), ms:\n");
-        std::printf("%-8s %16s %16s\n", "method", "retrieval alone", "open -> hung");
+        std::printf("%-8s %16s %16s %14s %14s\n", "method", "retrieval alone", "open -> hung",
+                    "(listed at", "prior stored)");
         for (int round = 0; round < 2; ++round) {
             for (const PacsNodeConfig& node : {cget, wado}) {
                 const qint64 alone = retrieveAlone(node, prior);
-                const qint64 hung = openToHung(node, prior);
-                QVERIFY(alone > 0 && hung > 0);
-                std::printf("%-8s %16lld %16lld\n", node.usesDicomWeb() ? "WADO-RS" : "C-GET",
-                            static_cast<long long>(alone), static_cast<long long>(hung));
+                const Hung hung = openToHung(node, prior);
+                QVERIFY(alone > 0 && hung.hung > 0);
+                std::printf("%-8s %16lld %16lld %14lld %14lld\n",
+                            node.usesDicomWeb() ? "WADO-RS" : "C-GET",
+                            static_cast<long long>(alone), static_cast<long long>(hung.hung),
+                            static_cast<long long>(hung.listed),
+                            static_cast<long long>(hung.stored));
             }
         }
     }
@@ -88,7 +93,13 @@ private:
         return r.complete ? ms : -1;
     }
 
-    qint64 openToHung(const PacsNodeConfig& node, const test::PriorStudy& prior) {
+    struct Hung {
+        qint64 hung = -1;   // open -> every viewport shows its series, the prior's too
+        qint64 listed = -1; // open -> the patient's studies listed (store and PACS)
+        qint64 stored = -1; // open -> the prior complete in the store
+    };
+
+    Hung openToHung(const PacsNodeConfig& node, const test::PriorStudy& prior) {
         QTemporaryDir store;
         PacsConfig config;
         config.storeFolder = store.path();
@@ -102,13 +113,18 @@ private:
         window.show();
         QSignalSpy hung(window.hanging(), &StudyHanging::hung);
         QElapsedTimer clock;
+        Hung times;
+        connect(window.hanging()->priors(), &PriorsForStudy::studiesFound, this,
+                [&] { times.listed = clock.elapsed(); });
+        connect(window.hanging()->priors(), &PriorsForStudy::priorReady, this,
+                [&] { times.stored = clock.elapsed(); });
         clock.start();
         window.openStudy(QString::fromStdString((test::kRealData / kCt).string()));
         if (!hung.wait(120000)) {
-            return -1;
+            return {};
         }
-        const qint64 ms = clock.elapsed();
-        return StudyStore(store.path().toStdString()).isComplete(prior.seriesUid) ? ms : -1;
+        times.hung = clock.elapsed();
+        return StudyStore(store.path().toStdString()).isComplete(prior.seriesUid) ? times : Hung{};
     }
 
     QTemporaryDir home_;
