@@ -46,6 +46,11 @@ PriorsForStudy::~PriorsForStudy() {
 PriorsForStudy::Lookup PriorsForStudy::lookUp(const PacsConfig& config,
                                               const CurrentStudy& current) {
     Lookup out;
+    if (current.patientId.empty()) {
+        // An empty ID would match every patient on a PACS.
+        out.nodeErrors << tr("the study has no Patient ID: no other study can be its prior");
+        return out;
+    }
     try {
         if (!config.storeFolder.isEmpty() &&
             std::filesystem::exists(config.storeFolder.toStdString())) {

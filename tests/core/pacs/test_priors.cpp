@@ -195,6 +195,16 @@ private slots:
         QVERIFY2(none.first().at(1).toString().contains(QStringLiteral("nobody home")),
                  qPrintable(none.first().at(1).toString()));
         QVERIFY(!priors.fetch(QString::fromStdString(newer_.studyUid)));
+
+        // A study without a Patient ID has no priors (an empty ID would match anyone).
+        none.clear();
+        CurrentStudy anonymous = current_;
+        anonymous.patientId.clear();
+        priors.start(anonymous, {1});
+        QVERIFY(none.wait(60000));
+        QVERIFY2(none.first().at(1).toString().contains(QStringLiteral("no Patient ID")),
+                 qPrintable(none.first().at(1).toString()));
+        QVERIFY(priors.studies().empty());
     }
 
 private:
