@@ -5,9 +5,15 @@
 #include <QJsonObject>
 #include <QTextStream>
 
+#include <algorithm>
+#include <filesystem>
+#include <optional>
+#include <vector>
+
 #include "CliCommand.h"
 #include "TerminalProgress.h"
 #include "core/io/Catalog.h"
+#include "core/pet/SuvDicom.h"
 #include "core/stack/ImageStack.h"
 
 namespace lucent::cli {
@@ -21,6 +27,29 @@ QJsonArray vec(const glm::dvec3& v) {
 std::string stackLabel(const SeriesEntry& e) {
     return describeStack(static_cast<int>(e.slices.size()), e.pixels.photometric,
                          e.pixels.samplesPerPixel);
+}
+
+// A PET series' SUVbw factor, or why it has none (core/pet).
+struct SuvFactor {
+    std::optional<double> factor;
+    std::string refusal;
+};
+
+std::optional<SuvFactor> suvFactor(const SeriesEntry& e) {
+    if (e.format != SourceFormat::Dicom || e.modality != "PT") {
+        return std::nullopt;
+    }
+    std::vector<std::filesystem::path> files;
+    for (const SliceRef& s : e.slices) {
+        if (std::find(files.begin(), files.end(), s.file) == files.end()) {
+            files.emplace_back(s.file);
+        }
+    }
+    try {
+        return SuvFactor{suvBwFactor(readSuvParameters(files)), {}};
+    } catch (const std::exception& error) {
+        return SuvFactor{std::nullopt, error.what()};
+    }
 }
 
 QJsonObject toJson(const SeriesEntry& e) {
@@ -50,6 +79,13 @@ QJsonObject toJson(const SeriesEntry& e) {
     }
     if (e.kind == SeriesKind::Stack) {
         o["stack"] = QString::fromStdString(stackLabel(e));
+    }
+    if (const auto suv = suvFactor(e)) {
+        if (suv->factor) {
+            o["suv_bw_factor"] = *suv->factor;
+        } else {
+            o["suv_bw_refused"] = QString::fromStdString(suv->refusal);
+        }
     }
     return o;
 }
@@ -82,6 +118,12 @@ void printTable(const Catalog& catalog, QTextStream& out) {
         out << "     id: " << QString::fromStdString(e.id) << "\n";
         if (e.kind == SeriesKind::Stack) {
             out << "     " << QString::fromStdString(stackLabel(e)) << "\n";
+        }
+        if (const auto suv = suvFactor(e)) {
+            out << "     SUVbw: "
+                << (suv->factor ? QString("factor %1 (g/mL per Bq/mL)").arg(*suv->factor, 0, 'g', 6)
+                                : "not computed: " + QString::fromStdString(suv->refusal))
+                << "\n";
         }
         out << "     origin (LPS mm): " << fixed(g.origin.x, 2) << ", " << fixed(g.origin.y, 2)
             << ", " << fixed(g.origin.z, 2) << "\n";
