@@ -13,7 +13,7 @@
 #include "CliCommand.h"
 #include "TerminalProgress.h"
 #include "core/io/Catalog.h"
-#include "core/pet/SuvDicom.h"
+#include "core/dicom/PetSuvReader.h"
 #include "core/stack/ImageStack.h"
 
 namespace lucent::cli {

@@ -1,7 +1,7 @@
 #pragma once
 // SUV body weight (SUVbw) from a PET series' header: what the factor needs and the
 // factor itself, with the conditions QIBA's pseudo-code and cornerstonejs/calculate-suv
-// apply. Plain C++ (lucent_core); readSuvParameters (core/pet/SuvDicom.h) fills it.
+// apply. Plain C++ (lucent_core); readSuvParameters (core/dicom/PetSuvReader.h) fills it.
 
 #include <optional>
 #include <stdexcept>

@@ -9,26 +9,11 @@
 #include <dcmtk/dcmdata/dcitem.h>
 #include <dcmtk/dcmdata/dcuid.h>
 
+#include "tests/support/DicomCopy.h"
+
 namespace lucent::test {
 
 namespace {
-
-std::string newUid(const char* root) {
-    char uid[100];
-    return dcmGenerateUniqueIdentifier(uid, root);
-}
-
-// Sets the element, or removes it when value is empty.
-void put(DcmItem& item, const DcmTagKey& tag, const std::string& value,
-         const std::filesystem::path& file) {
-    if (value.empty()) {
-        delete item.remove(tag);
-        return;
-    }
-    if (item.putAndInsertString(tag, value.c_str()).bad()) {
-        throw std::runtime_error(file.string() + ": cannot set " + DcmTag(tag).getTagName());
-    }
-}
 
 std::string tm(double secondsOfDay) {
     const int s = static_cast<int>(secondsOfDay);
@@ -49,27 +34,27 @@ void putRadiopharmaceutical(DcmDataset& ds, const PetHeader& h, const std::files
     if (ds.findOrCreateSequenceItem(DCM_RadiopharmaceuticalInformationSequence, item).bad()) {
         throw std::runtime_error(f.string() + ": cannot add the radiopharmaceutical item");
     }
-    put(*item, DCM_Radiopharmaceutical, "Fluorodeoxyglucose", f);
-    put(*item, DCM_RadionuclideTotalDose, h.totalDose, f);
-    put(*item, DCM_RadionuclideHalfLife, h.halfLife, f);
-    put(*item, DCM_RadiopharmaceuticalStartTime, h.startTime, f);
-    put(*item, DCM_RadiopharmaceuticalStartDateTime, h.startDateTime, f);
+    putElement(*item, DCM_Radiopharmaceutical, "Fluorodeoxyglucose", f);
+    putElement(*item, DCM_RadionuclideTotalDose, h.totalDose, f);
+    putElement(*item, DCM_RadionuclideHalfLife, h.halfLife, f);
+    putElement(*item, DCM_RadiopharmaceuticalStartTime, h.startTime, f);
+    putElement(*item, DCM_RadiopharmaceuticalStartDateTime, h.startDateTime, f);
 }
 
 void putPet(DcmDataset& d, const PetHeader& h, int n, const std::filesystem::path& f) {
-    put(d, DCM_Modality, "PT", f);
-    put(d, DCM_SOPClassUID, UID_PositronEmissionTomographyImageStorage, f);
-    put(d, DCM_Units, h.units, f);
-    put(d, DCM_CorrectedImage, h.correctedImage, f);
-    put(d, DCM_DecayCorrection, h.decayCorrection, f);
-    put(d, DCM_PatientWeight, h.patientWeight, f);
-    put(d, DCM_SeriesDate, h.seriesDate, f);
-    put(d, DCM_SeriesTime, h.seriesTime, f);
-    put(d, DCM_AcquisitionDate, h.acquisitionDate, f);
-    put(d, DCM_AcquisitionTime, tm(h.acquisitionStart + n * h.acquisitionStep), f);
+    putElement(d, DCM_Modality, "PT", f);
+    putElement(d, DCM_SOPClassUID, UID_PositronEmissionTomographyImageStorage, f);
+    putElement(d, DCM_Units, h.units, f);
+    putElement(d, DCM_CorrectedImage, h.correctedImage, f);
+    putElement(d, DCM_DecayCorrection, h.decayCorrection, f);
+    putElement(d, DCM_PatientWeight, h.patientWeight, f);
+    putElement(d, DCM_SeriesDate, h.seriesDate, f);
+    putElement(d, DCM_SeriesTime, h.seriesTime, f);
+    putElement(d, DCM_AcquisitionDate, h.acquisitionDate, f);
+    putElement(d, DCM_AcquisitionTime, tm(h.acquisitionStart + n * h.acquisitionStep), f);
     delete d.remove(DCM_AcquisitionDateTime);
-    put(d, DCM_RescaleSlope, ds(h.slope + n * h.slopeStep), f);
-    put(d, DCM_RescaleIntercept, "0", f);
+    putElement(d, DCM_RescaleSlope, ds(h.slope + n * h.slopeStep), f);
+    putElement(d, DCM_RescaleIntercept, "0", f);
     putRadiopharmaceutical(d, h, f);
 }
 
@@ -80,14 +65,7 @@ PetSeries writePetFromCt(const std::filesystem::path& ctFolder, const std::files
     PetSeries pet;
     pet.seriesUid = newUid(SITE_SERIES_UID_ROOT);
     std::filesystem::create_directories(target);
-    std::vector<std::filesystem::path> files;
-    for (const auto& entry : std::filesystem::directory_iterator(ctFolder)) {
-        if (entry.is_regular_file()) {
-            files.push_back(entry.path());
-        }
-    }
-    std::sort(files.begin(), files.end());
-    for (const std::filesystem::path& file : files) {
+    for (const std::filesystem::path& file : filesIn(ctFolder)) {
         DcmFileFormat dicom;
         if (dicom.loadFile(file.c_str()).bad()) {
             continue; // not DICOM
@@ -95,9 +73,9 @@ PetSeries writePetFromCt(const std::filesystem::path& ctFolder, const std::files
         DcmDataset& ds = *dicom.getDataset();
         const int n = static_cast<int>(pet.files.size());
         putPet(ds, header, n, file);
-        put(ds, DCM_SeriesInstanceUID, pet.seriesUid, file);
+        putElement(ds, DCM_SeriesInstanceUID, pet.seriesUid, file);
         const std::string sop = newUid(SITE_INSTANCE_UID_ROOT);
-        put(ds, DCM_SOPInstanceUID, sop, file);
+        putElement(ds, DCM_SOPInstanceUID, sop, file);
         const std::filesystem::path out = target / (sop + ".dcm");
         if (dicom
                 .saveFile(out.c_str(), EXS_Unknown, EET_UndefinedLength, EGL_recalcGL, EPD_noChange,

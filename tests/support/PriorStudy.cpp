@@ -8,21 +8,11 @@
 #include <dcmtk/dcmdata/dcfilefo.h>
 #include <dcmtk/dcmdata/dcuid.h>
 
+#include "tests/support/DicomCopy.h"
+
 namespace lucent::test {
 
 namespace {
-
-std::string newUid(const char* root) {
-    char uid[100];
-    return dcmGenerateUniqueIdentifier(uid, root);
-}
-
-void put(DcmDataset& ds, const DcmTagKey& tag, const std::string& value,
-         const std::filesystem::path& file) {
-    if (ds.putAndInsertString(tag, value.c_str()).bad()) {
-        throw std::runtime_error(file.string() + ": cannot set " + DcmTag(tag).getTagName());
-    }
-}
 
 void shiftPosition(DcmDataset& ds, const glm::dvec3& shift, const std::filesystem::path& file) {
     glm::dvec3 p;
@@ -36,7 +26,7 @@ void shiftPosition(DcmDataset& ds, const glm::dvec3& shift, const std::filesyste
     }
     char text[128];
     std::snprintf(text, sizeof text, "%.4f\\%.4f\\%.4f", p.x, p.y, p.z);
-    put(ds, DCM_ImagePositionPatient, text, file);
+    putElement(ds, DCM_ImagePositionPatient, text, file);
 }
 
 } // namespace
@@ -49,26 +39,19 @@ PriorStudy writePriorStudy(const std::filesystem::path& source, const std::files
     const bool moved = shift != glm::dvec3(0.0);
     prior.frameOfReferenceUid = moved ? newUid(SITE_INSTANCE_UID_ROOT) : std::string();
     std::filesystem::create_directories(target);
-    std::vector<std::filesystem::path> files;
-    for (const auto& entry : std::filesystem::directory_iterator(source)) {
-        if (entry.is_regular_file()) {
-            files.push_back(entry.path());
-        }
-    }
-    std::sort(files.begin(), files.end());
-    for (const std::filesystem::path& file : files) {
+    for (const std::filesystem::path& file : filesIn(source)) {
         DcmFileFormat dicom;
         if (dicom.loadFile(file.c_str()).bad()) {
             continue; // not DICOM
         }
         DcmDataset& ds = *dicom.getDataset();
-        put(ds, DCM_StudyInstanceUID, prior.studyUid, file);
-        put(ds, DCM_SeriesInstanceUID, prior.seriesUid, file);
+        putElement(ds, DCM_StudyInstanceUID, prior.studyUid, file);
+        putElement(ds, DCM_SeriesInstanceUID, prior.seriesUid, file);
         const std::string sop = newUid(SITE_INSTANCE_UID_ROOT);
-        put(ds, DCM_SOPInstanceUID, sop, file);
-        put(ds, DCM_StudyDate, studyDate, file);
+        putElement(ds, DCM_SOPInstanceUID, sop, file);
+        putElement(ds, DCM_StudyDate, studyDate, file);
         if (moved) {
-            put(ds, DCM_FrameOfReferenceUID, prior.frameOfReferenceUid, file);
+            putElement(ds, DCM_FrameOfReferenceUID, prior.frameOfReferenceUid, file);
             shiftPosition(ds, shift, file);
         } else if (OFString frame; ds.findAndGetOFString(DCM_FrameOfReferenceUID, frame).good()) {
             prior.frameOfReferenceUid = frame.c_str();

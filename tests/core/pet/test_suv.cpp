@@ -13,7 +13,7 @@
 #include <dcmtk/dcmdata/dcfilefo.h>
 
 #include "core/io/Catalog.h"
-#include "core/pet/SuvDicom.h"
+#include "core/dicom/PetSuvReader.h"
 #include "core/pet/SuvStatistics.h"
 #include "tests/support/PetFromCt.h"
 #include "tests/support/RealData.h"

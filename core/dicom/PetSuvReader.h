@@ -1,6 +1,6 @@
 #pragma once
 // Reading the SUV parameters of a PET series from its DICOM headers (GDCM, private to
-// lucent_io).
+// lucent_io); core/pet computes with them.
 
 #include <filesystem>
 #include <span>
