@@ -38,6 +38,8 @@ packages=(
   libqrencode-dev libavcodec-dev libavformat-dev libavutil-dev libswscale-dev ffmpeg
   # the invite test reads the QR codes back with a real decoder (zbarimg)
   zbar-tools
+  # rigid registration of two series (core/registration): ITK 5.2
+  libinsighttoolkit5-dev
 )
 
 missing=()

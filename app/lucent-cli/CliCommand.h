@@ -58,5 +58,6 @@ int runSurface(const QStringList& args);      // isosurface meshes and the metho
 int runMeasurements(const QStringList& args); // a series' or an SR's measurements
 int runMovie(const QStringList& args);        // turntable or cine movies (MP4, WebM, GIF)
 int runHang(const QStringList& args);         // hanging protocols: which series goes where
+int runRegister(const QStringList& args);     // rigid registration of two series (ITK)
 
 } // namespace lucent::cli

@@ -39,6 +39,8 @@ const char* kUsageText =
     "  hang PATH... [--protocol NAME] [--protocols DIR] [--json]\n"
     "                                       the hanging protocol that wins, which series goes "
     "where\n"
+    "  register FIXED MOVING -o transform.json [--series UID] [--moving-series UID]\n"
+    "           [--metric mi|ms] [--stats]  rigid registration: fixed LPS mm -> moving LPS mm\n"
     "Exit status: 0 ok, 2 usage, 3 nothing loadable or bad input, 4 PACS or network failure.\n";
 
 } // namespace
@@ -98,6 +100,9 @@ int main(int argc, char** argv) {
     }
     if (command == "movie") {
         return lucent::cli::runMovie(args);
+    }
+    if (command == "register") {
+        return lucent::cli::runRegister(args);
     }
     if (command == "hang") {
         return lucent::cli::runHang(args);

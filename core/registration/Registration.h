@@ -16,7 +16,8 @@ namespace lucent {
 struct RegistrationOptions {
     enum class Metric {
         MutualInformation, // Mattes MI: any two modalities (CT/MR, CT/PET, ...)
-        MeanSquares        // the same modality with the same intensities (CT/CT)
+        MeanSquares        // the same modality with the same intensities (CT/CT); its check for
+                           // unrelated volumes is coarse (noise is not caught)
     };
     Metric metric = Metric::MutualInformation;
     // Rigid only. The affine stage after rigid is not implemented yet: true is refused
@@ -25,11 +26,11 @@ struct RegistrationOptions {
     // Resolution levels: shrink 4/2/1 in-plane (never below the slice spacing),
     // smoothing 2/1/0 mm; fewer levels drop the coarsest first.
     int levels = 3;
-    int histogramBins = 50;     // Mattes MI
+    int histogramBins = 50;      // Mattes MI
     int samplesPerLevel = 30000; // random fixed-image samples (inside the mask) per level
-    int maxIterations = 200;    // per level
-    unsigned seed = 2026;       // the random sampling; the same seed gives the same result
-    std::stop_token stop;       // a request ends registerRigid with RegistrationCancelled
+    int maxIterations = 200;     // per level
+    unsigned seed = 2026;        // the random sampling; the same seed gives the same result
+    std::stop_token stop;        // a request ends registerRigid with RegistrationCancelled
     // Called after every optimizer iteration: fraction done (0..1) and the metric.
     std::function<void(double fraction, double metric)> onProgress;
 };

@@ -28,13 +28,13 @@ const QHash<QString, QStringList>& allowedLayers() {
 }
 
 // Third-party libraries whose headers stay in .cpp files (rule 4): GDCM, DCMTK, libjpeg-turbo,
-// CharLS, OpenJPEG, EGL and the GL headers (epoxy, Khronos), MPI, IceT, FFmpeg, libarchive and
-// libplist.
+// CharLS, OpenJPEG, EGL and the GL headers (epoxy, Khronos), MPI, IceT, FFmpeg, libarchive,
+// libplist and ITK (core/registration).
 bool isThirdPartyHeader(const QString& include) {
     static const QStringList prefixes = {
         "gdcm",  "dcmtk/", "EGL/",      "epoxy/",          "GL/",         "GLES2/", "GLES3/",
         "KHR/",  "charls", "openjpeg",  "jpeglib.h",       "turbojpeg.h", "mpi.h",  "IceT",
-        "libav", "libsw",  "archive.h", "archive_entry.h", "plist/"};
+        "libav", "libsw",  "archive.h", "archive_entry.h", "plist/",      "itk"};
     return std::any_of(prefixes.begin(), prefixes.end(),
                        [&](const QString& p) { return include.startsWith(p); });
 }

@@ -1,0 +1,112 @@
+// lucent-cli register on the real CT: against itself (identity within 0.1 mm), against a
+// copy whose ImagePositionPatient moved by a known shift in a new Frame of Reference
+// (writePriorStudy: the same anatomy `shift` away, so fixed -> moving is x + shift), and
+// the usage errors.
+#include <QFile>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QTemporaryDir>
+#include <QTest>
+
+#include <cmath>
+
+#include "tests/support/CliRunner.h"
+#include "tests/support/PriorStudy.h"
+#include "tests/support/RealData.h"
+
+using namespace lucent;
+
+namespace {
+
+constexpr const char* kCt = "dcm_qa_ct/Philips_S21570/S2010";
+
+// The matrix of transform.json: 4 rows of 4.
+QList<QList<double>> matrixOf(const QString& file) {
+    QFile f(file);
+    if (!f.open(QIODevice::ReadOnly)) {
+        return {};
+    }
+    QList<QList<double>> m;
+    for (const QJsonValue& row : QJsonDocument::fromJson(f.readAll())["matrix"].toArray()) {
+        QList<double> values;
+        for (const QJsonValue& v : row.toArray()) {
+            values << v.toDouble();
+        }
+        m << values;
+    }
+    return m;
+}
+
+// The largest distance between where the matrix and x + shift put the corners of a
+// 200 mm box around the volume's centre.
+double worstCornerError(const QList<QList<double>>& m, const glm::dvec3& centre,
+                        const glm::dvec3& shift) {
+    double worst = 0.0;
+    for (int n = 0; n < 8; ++n) {
+        const glm::dvec3 p =
+            centre + 100.0 * glm::dvec3(n & 1 ? 1 : -1, n & 2 ? 1 : -1, n & 4 ? 1 : -1);
+        glm::dvec3 q;
+        for (int r = 0; r < 3; ++r) {
+            q[r] = m[r][0] * p.x + m[r][1] * p.y + m[r][2] * p.z + m[r][3];
+        }
+        worst = std::max(worst, glm::length(q - (p + shift)));
+    }
+    return worst;
+}
+
+} // namespace
+
+class TestRegisterCli : public QObject {
+    Q_OBJECT
+    QTemporaryDir dir_;
+    QString ct_;
+
+    void check(const QString& moving, const glm::dvec3& shift) {
+        const QString out = dir_.filePath("transform.json");
+        QFile::remove(out);
+        const test::CliRun run = test::runCli({"register", ct_, moving, "-o", out, "--stats"});
+        QVERIFY2(run.exitCode == 0, qPrintable(run.err));
+        qInfo("%s", qPrintable(run.out.trimmed()));
+        QVERIFY(run.out.contains("fixed -> moving"));
+        QVERIFY(test::statOf(run.out, "iterations") > 0);
+        QVERIFY(test::statOf(run.out, "seconds") > 0);
+        const QList<QList<double>> m = matrixOf(out);
+        QCOMPARE(m.size(), 4);
+        QCOMPARE(m[3], (QList<double>{0, 0, 0, 1}));
+        // The CT's centre (info: origin -115.5, -1.85, 696.2; 512 x 0.45 mm, 28 x 5 mm).
+        const glm::dvec3 centre(-115.5 + 115.3, -1.85 + 115.3, 696.2 - 67.5);
+        const double error = worstCornerError(m, centre, shift);
+        qInfo("worst corner error %.4f mm", error);
+        QVERIFY2(error < 0.1, qPrintable(QString("%1 mm").arg(error)));
+    }
+
+private slots:
+    void initTestCase() {
+        REQUIRE_DATA(kCt);
+        ct_ = QString::fromStdString((test::kRealData / kCt).string());
+    }
+
+    void itself() { check(ct_, glm::dvec3(0.0)); }
+
+    void shiftedCopy() {
+        const glm::dvec3 shift(12.5, -20.0, 7.5);
+        const QString moved = dir_.filePath("moved");
+        test::writePriorStudy(test::kRealData / kCt, moved.toStdString(), "20200101", shift);
+        check(moved, shift);
+    }
+
+    void usage() {
+        QCOMPARE(test::runCli({"register", ct_, ct_}).exitCode, 2); // no -o
+        QCOMPARE(
+            test::runCli({"register", ct_, ct_, "-o", dir_.filePath("t.json"), "--metric", "cc"})
+                .exitCode,
+            2);
+        const test::CliRun missing =
+            test::runCli({"register", ct_, dir_.filePath("none"), "-o", dir_.filePath("t.json")});
+        QCOMPARE(missing.exitCode, 3);
+    }
+};
+
+QTEST_GUILESS_MAIN(TestRegisterCli)
+#include "test_register_cli.moc"
