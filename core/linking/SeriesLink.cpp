@@ -10,23 +10,44 @@ namespace lucent {
 SeriesLink SeriesLink::reversed() const {
     SeriesLink back = *this;
     back.offset = -offset;
+    back.transform = glm::inverse(transform);
     return back;
 }
 
+glm::dvec3 SeriesLink::map(const glm::dvec3& pointA) const {
+    switch (kind) {
+    case Kind::Registered:
+        return glm::dvec3(transform * glm::dvec4(pointA, 1.0));
+    case Kind::Offset:
+        return pointA + offset;
+    default:
+        return pointA;
+    }
+}
+
+glm::dvec3 SeriesLink::mapDirection(const glm::dvec3& directionA) const {
+    return kind == Kind::Registered ? glm::dvec3(transform * glm::dvec4(directionA, 0.0))
+                                    : directionA;
+}
+
 SeriesLink linkSeries(const SeriesInfo& a, const SeriesInfo& b,
-                      const std::optional<glm::dvec3>& knownOffset) {
+                      const std::optional<glm::dvec3>& knownOffset,
+                      const std::optional<glm::dmat4>& knownTransform) {
     SeriesLink link;
     const bool sameSeries = !a.seriesUid.empty() && a.seriesUid == b.seriesUid;
     const bool sameFrame =
         !a.frameOfReferenceUid.empty() && a.frameOfReferenceUid == b.frameOfReferenceUid;
     if (sameSeries || sameFrame) {
         link.kind = SeriesLink::Kind::SamePosition;
+    } else if (knownTransform) {
+        link.kind = SeriesLink::Kind::Registered;
+        link.transform = *knownTransform;
     } else if (knownOffset) {
         link.kind = SeriesLink::Kind::Offset;
         link.offset = *knownOffset;
     } else {
-        link.reason = "different Frames of Reference and no offset set: click the same anatomy "
-                      "in both and choose Link Here";
+        link.reason = "different Frames of Reference, not registered and no offset set: choose "
+                      "Register, or click the same anatomy in both and choose Link Here";
     }
     return link;
 }
@@ -77,8 +98,7 @@ glm::dvec3 linkedPoint(const SeriesLink& link, const VolumeGeometry& b, const gl
     if (!link.linked()) {
         throw std::logic_error("linkedPoint: the series are not linked");
     }
-    const glm::dvec3 inB = link.kind == SeriesLink::Kind::Offset ? pointA + link.offset : pointA;
-    return nearestSlicePoint(b, inB, normal);
+    return nearestSlicePoint(b, link.map(pointA), normal);
 }
 
 } // namespace lucent

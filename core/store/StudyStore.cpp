@@ -153,6 +153,9 @@ StudyStore::StudyStore(const fs::path& root) : root_(root) {
         "path TEXT NOT NULL)");
     exec("CREATE TABLE IF NOT EXISTS series_offsets (series_a TEXT NOT NULL, series_b TEXT NOT "
          "NULL, dx REAL, dy REAL, dz REAL, PRIMARY KEY (series_a, series_b))");
+    // A registration's rigid transform a -> b (16 numbers, row-major) per series pair.
+    exec("CREATE TABLE IF NOT EXISTS series_transforms (series_a TEXT NOT NULL, series_b TEXT "
+         "NOT NULL, matrix TEXT NOT NULL, PRIMARY KEY (series_a, series_b))");
     exec("CREATE INDEX IF NOT EXISTS instances_by_series ON instances(series_uid)");
     // Stores from before the patients and studies tables (schema version 0):
     // fill them from the series, once. Opening a current store writes nothing.

@@ -118,6 +118,12 @@ public:
                          const glm::dvec3& offset);
     std::optional<glm::dvec3> seriesOffset(const std::string& seriesA,
                                            const std::string& seriesB) const;
+    // A registration's transform between two series (a point of a, LPS mm, to the same
+    // anatomy in b). One per pair; asked in the other order, the inverse comes back.
+    void setSeriesTransform(const std::string& seriesA, const std::string& seriesB,
+                            const glm::dmat4& aToB);
+    std::optional<glm::dmat4> seriesTransform(const std::string& seriesA,
+                                              const std::string& seriesB) const;
 
     // Groups the index writes of a retrieval into one transaction (one commit
     // instead of one per instance). Commits when destroyed, also on an

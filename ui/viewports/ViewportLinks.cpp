@@ -57,8 +57,38 @@ std::optional<glm::dvec3> ViewportLinks::offset(const std::string& a, const std:
     return std::nullopt;
 }
 
+std::optional<glm::dmat4> ViewportLinks::transform(const std::string& a,
+                                                   const std::string& b) const {
+    if (const auto it = sessionTransforms_.find({a, b}); it != sessionTransforms_.end()) {
+        return it->second;
+    }
+    if (store_) {
+        try {
+            return store_->seriesTransform(a, b);
+        } catch (const StoreError&) {
+            // Not registered, as far as this session knows.
+        }
+    }
+    return std::nullopt;
+}
+
+void ViewportLinks::setTransform(const std::string& a, const std::string& b,
+                                 const glm::dmat4& aToB) {
+    sessionTransforms_[{a, b}] = aToB;
+    sessionTransforms_[{b, a}] = glm::inverse(aToB);
+    if (store_) {
+        try {
+            store_->setSeriesTransform(a, b, aToB);
+        } catch (const StoreError& e) {
+            say(tr("The registration is kept for this session only: %1").arg(e.what()));
+        }
+    }
+    updateReferenceLines();
+}
+
 SeriesLink ViewportLinks::linkBetween(const SeriesSession& a, const SeriesSession& b) const {
-    return linkSeries(*a.volume(), *b.volume(), offset(uidOf(a), uidOf(b)));
+    return linkSeries(*a.volume(), *b.volume(), offset(uidOf(a), uidOf(b)),
+                      transform(uidOf(a), uidOf(b)));
 }
 
 void ViewportLinks::say(const QString& text) {
@@ -146,10 +176,12 @@ void ViewportLinks::pointMoved(SeriesSession* source) {
                 continue;
             }
             const glm::dvec3 targetNormal = to->sliceView()->plane().normal();
-            if (!planesParallel(normal, targetNormal)) {
+            // A registered prior may lie rotated: its plane is compared in its own frame.
+            const glm::dvec3 mapped = link.mapDirection(normal);
+            if (!planesParallel(mapped, targetNormal)) {
                 say(tr("%1 does not scroll with %2: their planes are %3° apart (more than %4°)")
                         .arg(describe(*to), describe(*from))
-                        .arg(planeAngleDegrees(normal, targetNormal), 0, 'f', 1)
+                        .arg(planeAngleDegrees(mapped, targetNormal), 0, 'f', 1)
                         .arg(kParallelToleranceDegrees));
                 continue;
             }
@@ -231,10 +263,8 @@ void ViewportLinks::updateReferenceLines() {
                 continue;
             }
             const SlicePlane p = other->sliceView()->plane();
-            const glm::dvec3 centre =
-                link.kind == SeriesLink::Kind::Offset ? p.centre + link.offset : p.centre;
-            planes.push_back(
-                {centre, p.normal(), QColor(230, 190, 60), QString::number(other->number())});
+            planes.push_back({link.map(p.centre), link.mapDirection(p.normal()),
+                              QColor(230, 190, 60), QString::number(other->number())});
         }
         view->setReferencePlanes(std::move(planes));
     }

@@ -23,8 +23,9 @@ class ViewportGrid;
 
 // Links the viewports of a grid that share a link group (Viewport::linkGroup):
 // moving the crosshair or scrolling in one moves the others of other series to the
-// same anatomy (SeriesLink: the same position within a Frame of Reference, else the
-// "link here" offset kept in the study store), onto their nearest slice; window and
+// same anatomy (SeriesLink: the same position within a Frame of Reference, else a
+// registration's transform or the "link here" offset kept in the study store), onto
+// their nearest slice; window and
 // level follow between series of one modality that showed the same window; zoom and
 // pan between parallel MPR views. Planes more than kParallelToleranceDegrees apart do not scroll
 // together, and a series pair with no known relation does not move: both say why in notice(). Every
@@ -46,6 +47,11 @@ public:
     // of Reference gets the offset between the two crosshairs, kept per pair. Returns
     // how many pairs were linked; `message` says what was done (or why nothing).
     int linkHere(Viewport* viewport, QString* message = nullptr);
+
+    // A registration's transform from series a to series b (LPS mm): kept in the
+    // store (or for the session without one); links the pair from now on.
+    void setTransform(const std::string& a, const std::string& b, const glm::dmat4& aToB);
+    std::optional<glm::dmat4> transform(const std::string& a, const std::string& b) const;
 
     // The link between the series of two viewports, as it is now.
     SeriesLink linkBetween(const SeriesSession& a, const SeriesSession& b) const;
@@ -71,7 +77,8 @@ private:
     ViewportGrid* grid_;
     std::unique_ptr<StudyStore> store_;
     std::map<std::pair<std::string, std::string>, glm::dvec3> sessionOffsets_; // without a store
-    std::map<const SeriesSession*, std::pair<double, double>> windows_;        // last seen
+    std::map<std::pair<std::string, std::string>, glm::dmat4> sessionTransforms_;
+    std::map<const SeriesSession*, std::pair<double, double>> windows_; // last seen
     std::set<QString> said_; // notices given already (each once per session)
     QString lastNotice_;
     bool propagating_ = false;

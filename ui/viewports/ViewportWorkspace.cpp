@@ -14,12 +14,14 @@
 #include "ui/viewports/Viewport.h"
 #include "ui/viewports/ViewportGrid.h"
 #include "ui/viewports/ViewportLinks.h"
+#include "ui/viewports/ViewportRegistration.h"
 
 namespace lucent {
 
 ViewportWorkspace::ViewportWorkspace(QWidget* parent)
     : QWidget(parent), grid_(new ViewportGrid(this)), library_(new SeriesLibrary(this)),
-      links_(new ViewportLinks(grid_, this)), caption_(new QLabel(this)) {
+      links_(new ViewportLinks(grid_, this)),
+      registration_(new ViewportRegistration(grid_, links_, this)), caption_(new QLabel(this)) {
     auto* column = new QVBoxLayout(this);
     column->setContentsMargins(0, 0, 0, 0);
     column->setSpacing(0);
@@ -38,6 +40,10 @@ ViewportWorkspace::ViewportWorkspace(QWidget* parent)
             });
     connect(links_, &ViewportLinks::notice, this,
             [this](const QString& text) { emit message(text, 8000); });
+    connect(registration_, &ViewportRegistration::progress, this,
+            [this](const QString& text) { emit message(text, 0); });
+    connect(registration_, &ViewportRegistration::finished, this,
+            [this](bool, const QString& text) { emit message(text, 10000); });
     connect(library_, &SeriesLibrary::failed, this,
             [this](const QString& path, const QString&, const QString& error) {
                 emit message(tr("Could not load %1: %2").arg(path, error), 10000);
@@ -168,6 +174,9 @@ void ViewportWorkspace::fillMenu(QMenu* menu) {
     menu->addAction(tr("Link &Here (same anatomy under each crosshair)"),
                     QKeySequence(tr("Ctrl+Alt+L")), this,
                     [this] { links_->linkHere(grid_->activeViewport()); });
+    menu->addAction(tr("&Register Linked Viewports to Active"), QKeySequence(tr("Ctrl+Alt+R")),
+                    this, [this] { registration_->registerWith(grid_->activeViewport()); });
+    menu->addAction(tr("Cancel Registration"), this, [this] { registration_->cancel(); });
 }
 
 } // namespace lucent

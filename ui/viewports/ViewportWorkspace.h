@@ -21,6 +21,7 @@ class SeriesSession;
 class Viewport;
 class ViewportGrid;
 class ViewportLinks;
+class ViewportRegistration;
 
 // The multi-series reading area: a ViewportGrid whose viewports show any loaded
 // series (SeriesLibrary) and move together through ViewportLinks, with a line
@@ -35,6 +36,7 @@ public:
     ViewportGrid* grid() const { return grid_; }
     SeriesLibrary* library() const { return library_; }
     ViewportLinks* links() const { return links_; }
+    ViewportRegistration* registration() const { return registration_; }
 
     // Loads path's series (in the background unless loaded) and shows it in
     // `viewport` as `view`; a failure goes to message().
@@ -74,6 +76,7 @@ private:
     ViewportGrid* grid_;
     SeriesLibrary* library_;
     ViewportLinks* links_;
+    ViewportRegistration* registration_;
     QLabel* caption_;
     std::size_t budget_ = std::size_t{4} << 30;
 };

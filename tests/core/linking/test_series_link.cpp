@@ -8,6 +8,7 @@
 #include "core/io/Catalog.h"
 #include "core/linking/SeriesLink.h"
 #include "core/mpr/PlaneSampler.h"
+#include "core/registration/Registration.h"
 #include "core/store/StudyStore.h"
 #include "tests/support/RealData.h"
 
@@ -132,6 +133,67 @@ private slots:
         const glm::dvec3 back = linkedPoint(link.reversed(), current.geometry(),
                                             prior.geometry().toPatient({10.0, 20.0, 30.0}), axial);
         QVERIFY(std::abs(back.z - current.geometry().toPatient({10.0, 20.0, 30.0}).z) < 1e-6);
+    }
+
+    // "Register" instead of "link here": the transform found by registration links the
+    // pair (before any offset), is kept in the store (inverse in the other order), and
+    // every slice lands within half a slice of the truth.
+    void registrationLinksThroughItsTransform() {
+        REQUIRE_DATA(kCtThick);
+        const Volume current = loadPath(test::kRealData / kCtThick);
+        const glm::dvec3 shift(12.3, -7.9, 11.45);
+        const Volume prior = shiftedCopy(current, shift);
+        const RegistrationResult r = registerRigid(current, prior, {});
+        QTemporaryDir dir;
+        {
+            StudyStore store(dir.path().toStdString());
+            store.setSeriesTransform(current.seriesUid, prior.seriesUid, r.fixedToMoving);
+        }
+        const StudyStore store(dir.path().toStdString());
+        const auto kept = store.seriesTransform(current.seriesUid, prior.seriesUid);
+        QVERIFY(kept.has_value());
+        const auto back = store.seriesTransform(prior.seriesUid, current.seriesUid);
+        QVERIFY(back.has_value());
+        QVERIFY(!store.seriesTransform(current.seriesUid, "1.2.3").has_value());
+
+        const SeriesLink link = linkSeries(current, prior, glm::dvec3(100.0), kept);
+        QVERIFY(link.kind == SeriesLink::Kind::Registered); // before a stale offset
+        const glm::dvec3 axial(0.0, 0.0, 1.0);
+        QVERIFY(planesParallel(link.mapDirection(axial), axial));
+        const double half = prior.geometry().spacing.z / 2.0 + 1e-6;
+        for (int k = 2; k < current.dims().z - 2; ++k) {
+            const glm::dvec3 p = current.geometry().toPatient({250.0, 260.0, k});
+            const glm::dvec3 landed = linkedPoint(link, prior.geometry(), p, axial);
+            QVERIFY2(std::abs(landed.z - (p.z + shift.z)) <= half,
+                     qPrintable(QString("slice %1 lands at %2, truth %3")
+                                    .arg(k)
+                                    .arg(landed.z)
+                                    .arg(p.z + shift.z)));
+            QVERIFY(std::abs(landed.x - (p.x + shift.x)) < 0.5);
+            QVERIFY(std::abs(landed.y - (p.y + shift.y)) < 0.5);
+        }
+        const glm::dvec3 p = current.geometry().toPatient({250.0, 260.0, 14.0});
+        QVERIFY(glm::length(glm::dvec3(*back * glm::dvec4(link.map(p), 1.0)) - p) < 1e-6);
+    }
+
+    void aRotatedRegistrationMapsPointsAndPlanes() {
+        // 30 degrees about z and a shift: an axial plane stays axial, a coronal one turns.
+        const double r = 30.0 * 3.14159265358979323846 / 180.0;
+        glm::dmat4 m(1.0);
+        m[0] = {std::cos(r), std::sin(r), 0.0, 0.0};
+        m[1] = {-std::sin(r), std::cos(r), 0.0, 0.0};
+        m[3] = {5.0, -3.0, 2.0, 1.0};
+        const SeriesLink link =
+            linkSeries(SeriesInfo{"a", "", "CT", "", "", "", "", "f1"},
+                       SeriesInfo{"b", "", "CT", "", "", "", "", "f2"}, std::nullopt, m);
+        QVERIFY(link.kind == SeriesLink::Kind::Registered);
+        const glm::dvec3 moved = link.map({10.0, 0.0, 0.0});
+        QVERIFY(glm::length(moved - glm::dvec3(10.0 * std::cos(r) + 5.0, 10.0 * std::sin(r) - 3.0,
+                                               2.0)) < 1e-9);
+        QVERIFY(glm::length(link.reversed().map(moved) - glm::dvec3(10.0, 0.0, 0.0)) < 1e-9);
+        QVERIFY(planesParallel(link.mapDirection({0.0, 0.0, 1.0}), {0.0, 0.0, 1.0}));
+        QVERIFY(std::abs(planeAngleDegrees(link.mapDirection({0.0, 1.0, 0.0}), {0.0, 1.0, 0.0}) -
+                         30.0) < 1e-9);
     }
 
     void nonParallelPlanesDoNotLink() {

@@ -30,6 +30,7 @@
 #include "ui/viewports/Viewport.h"
 #include "ui/viewports/ViewportGrid.h"
 #include "ui/viewports/ViewportLinks.h"
+#include "ui/viewports/ViewportRegistration.h"
 #include "ui/viewports/ViewportWorkspace.h"
 
 using namespace lucent;
@@ -216,6 +217,37 @@ private slots:
         reference.setVolume(right->session()->volume());
         reference.setZoomAndPan(b->zoom(), b->pan());
         QCOMPARE(differingPixels(reference.image(), after), 0);
+
+        // "Register" (Ctrl+Alt+R) aligns the pair by itself: its transform (the shift,
+        // found from the images) is kept in the store, links the pair before the offset,
+        // and every scroll still lands within half a prior slice (plus the 0.5 mm the
+        // registration may be off by: the nearest slice may then be the other one).
+        QSignalSpy registered(workspace->registration(), &ViewportRegistration::finished);
+        QCOMPARE(workspace->registration()->registerWith(left), 1);
+        QVERIFY(registered.wait(180000));
+        QVERIFY2(registered.first().at(0).toBool(),
+                 qPrintable(registered.first().at(1).toString()));
+        {
+            StudyStore store(storeDir.path().toStdString());
+            const auto m =
+                store.seriesTransform(left->session()->volume()->seriesUid, prior.seriesUid);
+            QVERIFY(m.has_value());
+            const glm::dvec3 landed = glm::dvec3(*m * glm::dvec4(anatomy, 1.0));
+            QVERIFY2(glm::length(landed - (anatomy + kShift)) < 0.5,
+                     qPrintable(QString("registered %1 mm from the truth")
+                                    .arg(glm::length(landed - (anatomy + kShift)))));
+        }
+        QVERIFY(workspace->links()->linkBetween(*left->session(), *right->session()).kind ==
+                SeriesLink::Kind::Registered);
+        for (int step = 0; step < 6; ++step) {
+            scroll(a, step % 2 == 0 ? -5 : -2);
+            const double truth = left->session()->cursor()->point().z + kShift.z;
+            const double landed = right->session()->cursor()->point().z;
+            QVERIFY2(
+                std::abs(landed - truth) <= half + 0.5,
+                qPrintable(
+                    QString("registered, step %1: %2 vs %3").arg(step).arg(landed).arg(truth)));
+        }
 
         // Planes that are not parallel do not scroll together, and say why.
         right->show(right->session(), ViewportView::Coronal);
