@@ -19,6 +19,7 @@
 #include "ui/viewports/SeriesSession.h"
 #include "ui/viewports/Viewport.h"
 #include "ui/viewports/ViewportGrid.h"
+#include "ui/viewports/ViewportRegistration.h"
 #include "ui/viewports/ViewportWorkspace.h"
 
 namespace lucent {
@@ -359,6 +360,21 @@ void StudyHanging::viewportShown() {
     }
     reported_ = true;
     emit hung(QString::fromStdString(now->protocol->name), clock_.elapsed());
+    registerPriors(*now);
+}
+
+void StudyHanging::registerPriors(const HangingResult& result) {
+    // A prior from another scanner (another Frame of Reference) is aligned with the
+    // current study by itself, from the first viewport of the current study.
+    const auto& viewports = workspace_->grid()->viewports();
+    for (std::size_t n = 0; n < result.viewports.size() && n < viewports.size(); ++n) {
+        const ViewportAssignment& v = result.viewports[n];
+        if (v.series != nullptr && v.series->studyOrder == 0 && viewports[n]->linkGroup() != 0 &&
+            viewports[n]->session() != nullptr && viewports[n]->session()->volume()) {
+            workspace_->registration()->registerWith(viewports[n], nullptr, false);
+            return;
+        }
+    }
 }
 
 void StudyHanging::priorGone(int order) {

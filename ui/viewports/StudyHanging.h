@@ -24,8 +24,9 @@ class ViewportWorkspace;
 // best is applied to the viewport grid (its name in the grid's caption). When the
 // protocol asks for priors that are not here, PriorsForStudy finds the comparable
 // one on every PACS node and fetches it; when it arrives the protocol is applied
-// again with it. The "MPR 2x2" set of one series is the MPR layout of the main
-// window (mprRequested). Keys step through protocols and their viewport sets.
+// again with it; a prior in another Frame of Reference is then registered with the
+// current study by itself (ViewportRegistration). The "MPR 2x2" set of one series is the MPR layout
+// of the main window (mprRequested). Keys step through protocols and their viewport sets.
 class StudyHanging : public QObject {
     Q_OBJECT
 
@@ -78,6 +79,7 @@ private:
     int setShowingPriors(int rank, int set) const;
     void show(const HangingResult& result);
     void viewportShown();
+    void registerPriors(const HangingResult& result);
     void priorReady(int order, const QString& folder);
     // A prior asked for is not coming (none, or its fetch failed).
     void priorGone(int order);

@@ -20,7 +20,8 @@ struct Pair {
     QString label;
 };
 
-std::vector<Pair> pairsFor(const ViewportGrid& grid, const Viewport& viewport) {
+std::vector<Pair> pairsFor(const ViewportGrid& grid, const ViewportLinks& links,
+                           const Viewport& viewport, bool again) {
     std::vector<Pair> pairs;
     const SeriesSession* here = viewport.session();
     if (here == nullptr || !here->volume() || viewport.linkGroup() == 0) {
@@ -39,7 +40,9 @@ std::vector<Pair> pairsFor(const ViewportGrid& grid, const Viewport& viewport) {
         const bool known = std::any_of(pairs.begin(), pairs.end(), [&](const Pair& p) {
             return p.movingUid == there->info().seriesUid;
         });
-        if (!known) {
+        const bool registered =
+            links.transform(here->info().seriesUid, there->info().seriesUid).has_value();
+        if (!known && (again || !registered)) {
             pairs.push_back({here->volume(), there->volume(), here->info().seriesUid,
                              there->info().seriesUid,
                              ViewportRegistration::tr("viewport %1 to viewport %2")
@@ -66,9 +69,12 @@ void ViewportRegistration::cancel() {
     }
 }
 
-int ViewportRegistration::registerWith(Viewport* viewport, QString* message) {
+int ViewportRegistration::registerWith(Viewport* viewport, QString* message, bool again) {
     const std::vector<Pair> pairs =
-        viewport != nullptr ? pairsFor(*grid_, *viewport) : std::vector<Pair>{};
+        viewport != nullptr ? pairsFor(*grid_, *links_, *viewport, again) : std::vector<Pair>{};
+    if (pairs.empty() && !again) {
+        return 0; // nothing new to align: no word about it
+    }
     QStringList labels;
     for (const Pair& p : pairs) {
         labels << p.label;

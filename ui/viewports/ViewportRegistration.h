@@ -28,7 +28,8 @@ public:
 
     // Starts registering `viewport`'s series (fixed) with every other linked series of
     // another Frame of Reference (moving); returns how many pairs, `message` says which.
-    int registerWith(Viewport* viewport, QString* message = nullptr);
+    // With `again` false, pairs that have a transform already are left as they are.
+    int registerWith(Viewport* viewport, QString* message = nullptr, bool again = true);
     void cancel();
     int running() const { return running_; }
 

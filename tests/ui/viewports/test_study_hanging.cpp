@@ -27,6 +27,8 @@
 #include "ui/viewports/StudyHanging.h"
 #include "ui/viewports/Viewport.h"
 #include "ui/viewports/ViewportGrid.h"
+#include "ui/viewports/ViewportLinks.h"
+#include "ui/viewports/ViewportRegistration.h"
 #include "ui/viewports/ViewportWorkspace.h"
 
 using namespace lucent;
@@ -144,6 +146,63 @@ private slots:
                     static_cast<long long>(clock.elapsed()));
         QCOMPARE(retrievals.count(), 0);
         QCOMPARE(studiesShown(*window.workspace()).size(), std::size_t{2});
+    }
+
+    // A prior from another scanner (its own Frame of Reference, the anatomy 9 mm away):
+    // hung beside the current study, then registered by itself; scrolling lands on the
+    // same anatomy through the registration.
+    void priorOfAnotherScannerRegisteredByItself() {
+        REQUIRE_DATA(kCurrent);
+        const int scpPort = test::OrthancServer::freePort();
+        test::OrthancServer orthanc(scpPort);
+        QVERIFY2(orthanc.isRunning(), qPrintable("Orthanc is needed: " + orthanc.error()));
+        QTemporaryDir made;
+        const glm::dvec3 shift(6.0, -4.5, 9.0);
+        const test::PriorStudy prior = test::writePriorStudy(
+            test::kRealData / kPriorSource, made.path().toStdString(), "20100101", shift);
+        QStringList files;
+        for (const auto& f : prior.files) {
+            files << QString::fromStdString(f.string());
+        }
+        QVERIFY2(orthanc.store(files), qPrintable(orthanc.error()));
+        QTemporaryDir store;
+        PacsConfig config;
+        config.storeFolder = store.path();
+        config.storagePort = scpPort;
+        config.timeoutSeconds = 10;
+        config.nodes << PacsNodeConfig{QStringLiteral("Orthanc"),   QStringLiteral("ORTHANC"),
+                                       QStringLiteral("127.0.0.1"), orthanc.dicomPort(),
+                                       RetrievalMethod::CGet,       {}};
+        {
+            QSettings settings(QStringLiteral("lucent"), QStringLiteral("lucent"));
+            config.save(settings);
+        }
+        MainWindow window;
+        window.resize(1400, 900);
+        window.show();
+        QSignalSpy registered(window.workspace()->registration(), &ViewportRegistration::finished);
+        window.openStudy(QString::fromStdString((test::kRealData / kCurrent).string()));
+        QVERIFY(registered.wait(180000));
+        QVERIFY2(registered.first().at(0).toBool(),
+                 qPrintable(registered.first().at(1).toString()));
+
+        Viewport* currentView = nullptr;
+        Viewport* priorView = nullptr;
+        for (Viewport* v : window.workspace()->grid()->viewports()) {
+            if (v->session() != nullptr && v->sliceView() != nullptr && v->linkGroup() != 0) {
+                (v->session()->info().studyUid == prior.studyUid ? priorView : currentView) = v;
+            }
+        }
+        QVERIFY(currentView != nullptr && priorView != nullptr);
+        QVERIFY(window.workspace()
+                    ->links()
+                    ->linkBetween(*currentView->session(), *priorView->session())
+                    .kind == SeriesLink::Kind::Registered);
+        const glm::dvec3 moved = currentView->session()->cursor()->point() + glm::dvec3(0, 0, 15);
+        currentView->session()->cursor()->setPoint(moved);
+        // Within half a prior slice, plus the half millimetre registration may be off by.
+        QVERIFY(std::abs(priorView->session()->cursor()->point().z - (moved.z + shift.z)) <=
+                priorView->session()->volume()->geometry().spacing.z / 2 + 0.5);
     }
 
 private:
