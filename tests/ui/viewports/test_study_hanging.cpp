@@ -48,6 +48,28 @@ std::set<std::string> studiesShown(const ViewportWorkspace& workspace) {
     return studies;
 }
 
+QStringList filesOf(const test::PriorStudy& study) {
+    QStringList files;
+    for (const auto& f : study.files) {
+        files << QString::fromStdString(f.string());
+    }
+    return files;
+}
+
+// The settings MainWindow reads: the store and Orthanc as the one PACS node (C-GET).
+PacsConfig useOrthanc(const test::OrthancServer& orthanc, int scpPort, const QString& store) {
+    PacsConfig config;
+    config.storeFolder = store;
+    config.storagePort = scpPort;
+    config.timeoutSeconds = 10;
+    config.nodes << PacsNodeConfig{QStringLiteral("Orthanc"),   QStringLiteral("ORTHANC"),
+                                   QStringLiteral("127.0.0.1"), orthanc.dicomPort(),
+                                   RetrievalMethod::CGet,       {}};
+    QSettings settings(QStringLiteral("lucent"), QStringLiteral("lucent"));
+    config.save(settings);
+    return config;
+}
+
 } // namespace
 
 class TestStudyHanging : public QObject {
@@ -69,23 +91,9 @@ private slots:
         // Last year's CT of the same patient, on the PACS only (same Frame of Reference).
         const test::PriorStudy prior = test::writePriorStudy(
             test::kRealData / kPriorSource, priorDir_.path().toStdString(), "20100101");
-        QStringList files;
-        for (const auto& f : prior.files) {
-            files << QString::fromStdString(f.string());
-        }
-        QVERIFY2(orthanc.store(files), qPrintable(orthanc.error()));
-
-        PacsConfig config;
-        config.storeFolder = home_.filePath(QStringLiteral("store"));
-        config.storagePort = scpPort;
-        config.timeoutSeconds = 10;
-        config.nodes << PacsNodeConfig{QStringLiteral("Orthanc"),   QStringLiteral("ORTHANC"),
-                                       QStringLiteral("127.0.0.1"), orthanc.dicomPort(),
-                                       RetrievalMethod::CGet,       {}};
-        {
-            QSettings settings(QStringLiteral("lucent"), QStringLiteral("lucent"));
-            config.save(settings);
-        }
+        QVERIFY2(orthanc.store(filesOf(prior)), qPrintable(orthanc.error()));
+        const PacsConfig config =
+            useOrthanc(orthanc, scpPort, home_.filePath(QStringLiteral("store")));
 
         MainWindow window;
         window.resize(1400, 900);
@@ -160,23 +168,9 @@ private slots:
         const glm::dvec3 shift(6.0, -4.5, 9.0);
         const test::PriorStudy prior = test::writePriorStudy(
             test::kRealData / kPriorSource, made.path().toStdString(), "20100101", shift);
-        QStringList files;
-        for (const auto& f : prior.files) {
-            files << QString::fromStdString(f.string());
-        }
-        QVERIFY2(orthanc.store(files), qPrintable(orthanc.error()));
+        QVERIFY2(orthanc.store(filesOf(prior)), qPrintable(orthanc.error()));
         QTemporaryDir store;
-        PacsConfig config;
-        config.storeFolder = store.path();
-        config.storagePort = scpPort;
-        config.timeoutSeconds = 10;
-        config.nodes << PacsNodeConfig{QStringLiteral("Orthanc"),   QStringLiteral("ORTHANC"),
-                                       QStringLiteral("127.0.0.1"), orthanc.dicomPort(),
-                                       RetrievalMethod::CGet,       {}};
-        {
-            QSettings settings(QStringLiteral("lucent"), QStringLiteral("lucent"));
-            config.save(settings);
-        }
+        useOrthanc(orthanc, scpPort, store.path());
         MainWindow window;
         window.resize(1400, 900);
         window.show();
