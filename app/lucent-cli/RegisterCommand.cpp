@@ -1,7 +1,9 @@
 // lucent-cli register FIXED MOVING [--series UID] [--moving-series UID] [--affine]
-//                     [--metric mi|ms] -o transform.json [--stats]
+//                     [--metric mi|ms] -o transform.json [--stats] [--sro reg.dcm]
 // Rigid registration of two series (core/registration): the 4x4 matrix that maps a point
 // in the fixed series' LPS mm to the same anatomy in the moving series' LPS mm.
+// --sro also writes it as a DICOM Spatial Registration object (core/exchange) in the
+// fixed series' study and Frame of Reference.
 #include <QCommandLineParser>
 #include <QFile>
 #include <QJsonArray>
@@ -9,11 +11,44 @@
 #include <QJsonObject>
 #include <QTextStream>
 
+#include <set>
+#include <stdexcept>
+
 #include "CliCommand.h"
+#include "core/exchange/InstanceFiles.h"
+#include "core/exchange/SpatialRegistrationWriter.h"
 #include "core/io/Catalog.h"
 #include "core/registration/Registration.h"
 
 namespace lucent::cli {
+namespace {
+
+// The DICOM series of an entry with its instances' SOP UIDs (read from its files).
+RegisteredSeries registeredSeries(const SeriesEntry& entry) {
+    if (entry.format != SourceFormat::Dicom) {
+        throw std::runtime_error(entry.seriesUid + ": not DICOM, so no Spatial Registration");
+    }
+    RegisteredSeries s{entry.studyUid, entry.seriesUid, entry.frameOfReferenceUid, {}};
+    std::set<std::string> files;
+    for (const SliceRef& slice : entry.slices) {
+        if (files.insert(slice.file).second) {
+            const InstanceHeader h = readInstanceHeader(slice.file);
+            s.instances.push_back({h.sopClassUid, h.sopInstanceUid});
+        }
+    }
+    return s;
+}
+
+const SeriesEntry& entryOf(const Catalog& catalog, const std::string& idOrUid,
+                           const QString& path) {
+    const SeriesEntry* e = idOrUid.empty() ? catalog.defaultEntry() : catalog.find(idOrUid);
+    if (e == nullptr) {
+        throw std::runtime_error(path.toStdString() + ": no such series");
+    }
+    return *e;
+}
+
+} // namespace
 
 int runRegister(const QStringList& args) {
     QCommandLineParser parser;
@@ -31,6 +66,10 @@ int runRegister(const QStringList& args) {
         {"metric", "mi (Mattes mutual information, default) or ms (mean squares).", "mi|ms", "mi"});
     parser.addOption({{"o", "output"}, "The transform as JSON.", "transform.json"});
     parser.addOption({"stats", "Print metric=, iterations=, seconds= on one line."});
+    parser.addOption({"sro",
+                      "Also write the registration as a DICOM Spatial Registration object "
+                      "(both series DICOM).",
+                      "reg.dcm"});
     parser.addHelpOption();
     QTextStream err(stderr);
     if (!parser.parse(args)) {
@@ -60,10 +99,25 @@ int runRegister(const QStringList& args) {
         return kUsage;
     }
     RegistrationResult r;
+    SpatialRegistrationInput sro;
     try {
-        const Volume fixed = loadPath(paths[0].toStdString(), parser.value("series").toStdString());
-        const Volume moving =
-            loadPath(paths[1].toStdString(), parser.value("moving-series").toStdString());
+        const Catalog fixedCatalog = scanPath(paths[0].toStdString());
+        const Catalog movingCatalog = scanPath(paths[1].toStdString());
+        const SeriesEntry& fixedEntry =
+            entryOf(fixedCatalog, parser.value("series").toStdString(), paths[0]);
+        const SeriesEntry& movingEntry =
+            entryOf(movingCatalog, parser.value("moving-series").toStdString(), paths[1]);
+        if (parser.isSet("sro")) {
+            sro.fixed = registeredSeries(fixedEntry);
+            sro.moving = registeredSeries(movingEntry);
+            sro.patientName = fixedEntry.patientName;
+            sro.patientId = fixedEntry.patientId;
+            sro.studyUid = fixedEntry.studyUid;
+            sro.studyDate = fixedEntry.studyDate;
+            sro.studyTime = fixedEntry.studyTime;
+        }
+        const Volume fixed = loadSeries(fixedEntry);
+        const Volume moving = loadSeries(movingEntry);
         r = registerRigid(fixed, moving, options);
     } catch (const std::exception& e) {
         err << "lucent-cli register: " << e.what() << "\n";
@@ -103,6 +157,20 @@ int runRegister(const QStringList& args) {
         file.write(QJsonDocument(root).toJson(QJsonDocument::Indented)) < 0) {
         err << "lucent-cli register: cannot write " << parser.value("output") << "\n";
         return kBadInput;
+    }
+    if (parser.isSet("sro")) {
+        sro.fixedToMoving = r.fixedToMoving;
+        sro.contentDescription = QString("Rigid registration, metric %1 %2, %3 iterations")
+                                     .arg(metricName(options.metric))
+                                     .arg(r.metric)
+                                     .arg(r.iterations)
+                                     .toStdString();
+        try {
+            writeSpatialRegistration(parser.value("sro").toStdString(), sro);
+        } catch (const std::exception& e) {
+            err << "lucent-cli register: " << e.what() << "\n";
+            return kBadInput;
+        }
     }
     return kOk;
 }

@@ -1,15 +1,21 @@
 // lucent-cli register on the real CT: against itself (identity within 0.1 mm), against a
 // copy whose ImagePositionPatient moved by a known shift in a new Frame of Reference
 // (writePriorStudy: the same anatomy `shift` away, so fixed -> moving is x + shift), and
-// the usage errors.
+// the usage errors; --sro writes the shifted copy's registration as a DICOM Spatial
+// Registration object that dciodvfy finds no error in, whose moving item maps back by -shift.
 #include <QFile>
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
+#include <QProcess>
 #include <QTemporaryDir>
 #include <QTest>
 
 #include <cmath>
+
+#include <dcmtk/config/osconfig.h>
+#include <dcmtk/dcmdata/dcdeftag.h>
+#include <dcmtk/dcmdata/dcfilefo.h>
 
 #include "tests/support/CliRunner.h"
 #include "tests/support/PriorStudy.h"
@@ -94,6 +100,48 @@ private slots:
         const QString moved = dir_.filePath("moved");
         test::writePriorStudy(test::kRealData / kCt, moved.toStdString(), "20200101", shift);
         check(moved, shift);
+    }
+
+    void spatialRegistrationObject() {
+        const glm::dvec3 shift(6.0, 4.0, -5.0);
+        const QString moved = dir_.filePath("moved-sro");
+        test::writePriorStudy(test::kRealData / kCt, moved.toStdString(), "20200101", shift);
+        const QString sro = dir_.filePath("reg.dcm");
+        const test::CliRun run =
+            test::runCli({"register", ct_, moved, "-o", dir_.filePath("t.json"), "--sro", sro});
+        QVERIFY2(run.exitCode == 0, qPrintable(run.err));
+
+        QProcess dciodvfy;
+        dciodvfy.setProcessChannelMode(QProcess::MergedChannels);
+        dciodvfy.start("dciodvfy", {sro});
+        if (dciodvfy.waitForStarted()) {
+            QVERIFY(dciodvfy.waitForFinished(60000));
+            const QString output = QString::fromUtf8(dciodvfy.readAll());
+            for (const QString& line : output.split('\n')) {
+                QVERIFY2(!line.startsWith("Error"), qPrintable(output));
+            }
+        }
+        DcmFileFormat file;
+        QVERIFY(file.loadFile(sro.toStdString().c_str()).good());
+        DcmItem* item = nullptr;
+        QVERIFY(
+            file.getDataset()->findAndGetSequenceItem(DCM_RegistrationSequence, item, 1).good());
+        QVERIFY(item->findAndGetSequenceItem(DCM_MatrixRegistrationSequence, item, 0).good());
+        QVERIFY(item->findAndGetSequenceItem(DCM_MatrixSequence, item, 0).good());
+        for (int row = 0; row < 3; ++row) {
+            Float64 t = 0.0;
+            QVERIFY(
+                item->findAndGetFloat64(DCM_FrameOfReferenceTransformationMatrix, t, row * 4 + 3)
+                    .good());
+            // Moving -> fixed: the way back, -shift (the rotation is near identity).
+            QVERIFY2(std::abs(t + shift[row]) < 0.2,
+                     qPrintable(QString("row %1: %2").arg(row).arg(t)));
+        }
+        // The series against itself shares its Frame of Reference: no SRO, an error.
+        QCOMPARE(test::runCli({"register", ct_, ct_, "-o", dir_.filePath("t.json"), "--sro",
+                               dir_.filePath("self.dcm")})
+                     .exitCode,
+                 3);
     }
 
     void usage() {
