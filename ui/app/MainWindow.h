@@ -33,6 +33,8 @@ class ViewportWorkspace;
 class StudyHanging;
 class PriorsForStudy;
 class PriorTimeline;
+class FusionPanel;
+class ViewportFusion;
 class PacsService;
 class VolumeLoader;
 class VolumeView;
@@ -91,6 +93,9 @@ public:
     // The RECIST follow-up of the patient shown (a dock).
     FollowUpPanel* followUp() const { return followUp_; }
     PriorTimeline* priorTimeline() const { return priorTimeline_; }
+    // The Fusion dock and what it drives: a second series over the active viewport's.
+    FusionPanel* fusionPanel() const { return fusionPanel_; }
+    ViewportFusion* viewportFusion() const { return fusion_; }
     // Help > Keyboard Shortcuts: opens (or raises) the dialog and returns it.
     ShortcutsDialog* showShortcuts();
 
@@ -131,6 +136,7 @@ private:
     void addHangingMenu(QMenu* menu);
     void addFollowUpDock(const QString& storeFolder);
     void addPriorsDock(PriorsForStudy& priors);
+    void addFusionDock();
     void viewportContentChanged(Viewport* viewport);
     void goToLesion(const std::vector<LesionLocation>& where);
 
@@ -154,6 +160,8 @@ private:
     ShortcutsDialog* shortcuts_ = nullptr;
     FollowUpPanel* followUp_ = nullptr;
     PriorTimeline* priorTimeline_ = nullptr;
+    FusionPanel* fusionPanel_ = nullptr;
+    ViewportFusion* fusion_ = nullptr;
     StudyHanging* hanging_ = nullptr;
     QString storeFolder_;
 };

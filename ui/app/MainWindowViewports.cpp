@@ -1,6 +1,7 @@
 // MainWindow: what the viewport grid's viewports share with the MPR layout (the series'
 // measurements, curved MPR, the measurement list following the active viewport) and the
-// RECIST follow-up dock, whose lesions open in the grid, and the priors timeline.
+// RECIST follow-up dock, whose lesions open in the grid, the priors timeline and the Fusion
+// dock.
 #include "ui/app/MainWindow.h"
 
 #include <QDockWidget>
@@ -15,6 +16,8 @@
 #include "core/store/StudyStore.h"
 #include "ui/app/MeasurementControls.h"
 #include "ui/followup/FollowUpPanel.h"
+#include "ui/fusion/FusionPanel.h"
+#include "ui/fusion/ViewportFusion.h"
 #include "ui/mpr/MeasurementAutosave.h"
 #include "ui/mpr/MeasurementList.h"
 #include "ui/mpr/SeriesMeasurements.h"
@@ -107,6 +110,23 @@ void MainWindow::addPriorsDock(PriorsForStudy& priors) {
             });
 }
 
+void MainWindow::addFusionDock() {
+    fusion_ = new ViewportFusion(workspace_, this);
+    fusionPanel_ = new FusionPanel(workspace_, fusion_);
+    auto* dock = new QDockWidget(tr("Fusion"), this);
+    dock->setObjectName(QStringLiteral("fusionDock"));
+    dock->setWidget(fusionPanel_);
+    addDockWidget(Qt::RightDockWidgetArea, dock);
+    if (auto* followUp = findChild<QDockWidget*>(QStringLiteral("followUpDock"))) {
+        tabifyDockWidget(followUp, dock);
+    }
+    if (auto* volumeDock = findChild<QDockWidget*>(QStringLiteral("volumeDock"))) {
+        volumeDock->raise();
+    }
+    connect(fusionPanel_, &FusionPanel::message, this,
+            [this](const QString& text, int ms) { statusBar()->showMessage(text, ms); });
+}
+
 void MainWindow::goToLesion(const std::vector<LesionLocation>& where) {
     std::vector<ViewportWorkspace::SeriesPoint> points;
     try {
@@ -193,6 +213,7 @@ void MainWindow::wireViewports(PacsService* service) {
     if (hanging_->priors() != nullptr) {
         addPriorsDock(*hanging_->priors());
     }
+    addFusionDock();
     ViewportGrid* grid = workspace_->grid();
     connect(grid, &ViewportGrid::viewportContentChanged, this, &MainWindow::viewportContentChanged);
     // The measurement list, its tools and the follow-up show the active viewport's series.

@@ -13,6 +13,7 @@
 #include "core/mpr/CrosshairSlice.h"
 #include "ui/mpr/DevicePlane.h"
 #include "ui/mpr/MprCursor.h"
+#include "ui/mpr/SeriesMeasurements.h"
 #include "ui/mpr/SliceOverlay.h"
 
 namespace lucent {
@@ -221,6 +222,32 @@ double SliceView::valueAt(const QPointF& pos) {
     return samples_[static_cast<std::size_t>(y) * sampledPlane_.width + x];
 }
 
+void SliceView::setFusionLayer(std::optional<FusionLayer> layer) {
+    fusion_.setLayer(std::move(layer));
+    update();
+}
+
+void SliceView::setFusionStyle(const FusionStyle& style) {
+    fusion_.setStyle(style);
+    update();
+}
+
+QImage SliceView::fusedImage() {
+    const QImage grey = image();
+    if (!fusion_.active() || grey.isNull()) {
+        return grey;
+    }
+    return fusion_.apply(grey, sampledPlane_);
+}
+
+double SliceView::overlayValueAt(const QPointF& pos) {
+    if (fusedImage().isNull()) {
+        return std::nan("");
+    }
+    const QPoint device = devicePixelAt(pos, devicePixelRatioF());
+    return fusion_.valueAt(device.x(), device.y());
+}
+
 QString SliceView::sliceText() const {
     const glm::dvec3 n = positiveNormal();
     const char axis = "xyz"[dominantAxis(n)];
@@ -246,7 +273,7 @@ void SliceView::paintEvent(QPaintEvent*) {
         return;
     }
     const SlicePlane p = plane();
-    painter.drawImage(0, 0, image());
+    painter.drawImage(0, 0, fusedImage());
 
     SliceOverlay overlay;
     overlay.orientation = orientation_;
@@ -279,6 +306,12 @@ void SliceView::paintEvent(QPaintEvent*) {
     paintSliceOverlay(painter, rect(), overlay);
     paintReferenceLines(painter, rect(), p, references_);
     measure_.paint(painter, p, measurementTolerance());
+    if (fusion_.active()) {
+        static const std::vector<Measurement> kNone;
+        fusion_.paint(painter, rect(), p,
+                      measurements() != nullptr ? measurements()->measurements() : kNone,
+                      measurementTolerance());
+    }
     paintCurvedPath(painter, p, path_);
 }
 

@@ -9,6 +9,7 @@
 
 #include "core/mpr/PlaneSampler.h"
 #include "core/volume/Volume.h"
+#include "ui/fusion/SliceFusion.h"
 #include "ui/mpr/ReferenceLines.h"
 #include "ui/mpr/SliceMeasurements.h"
 #include "ui/mpr/SliceTools.h"
@@ -64,6 +65,15 @@ public:
     // The resliced value (HU for CT) of the device pixel at a widget position; NaN
     // outside the volume.
     double valueAt(const QPointF& pos);
+
+    // A second series fused over this one (ui/fusion); nullopt: none.
+    void setFusionLayer(std::optional<FusionLayer> layer);
+    void setFusionStyle(const FusionStyle& style);
+    const SliceFusion& fusion() const { return fusion_; }
+    // The image as painted: image() with the fused overlay, if any.
+    QImage fusedImage();
+    // The overlay's value at a widget position (NaN without one or outside it).
+    double overlayValueAt(const QPointF& pos);
 
     // Zoom: 1 fits the volume; each ctrl+wheel notch multiplies it by zoomStepFactor().
     double zoom() const { return zoom_; }
@@ -156,6 +166,7 @@ private:
     double imageCenter_ = 0.0;
     double imageWidth_ = 0.0;
     bool imageValid_ = false;
+    SliceFusion fusion_;
 
     double zoom_ = 1.0;
     glm::dvec2 pan_{0.0};

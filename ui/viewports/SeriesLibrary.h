@@ -5,6 +5,7 @@
 #include <memory>
 #include <set>
 #include <thread>
+#include <vector>
 
 #include <QObject>
 #include <QString>
@@ -44,6 +45,8 @@ public:
     // Bytes of voxels held by every session (a volume shared by siblings once).
     std::size_t bytes() const;
     int count() const { return static_cast<int>(sessions_.size()); }
+    // Every loaded session, oldest first.
+    std::vector<SeriesSession*> sessions() const { return {sessions_.begin(), sessions_.end()}; }
     // Drops sessions not in `shown`, least recently loaded first, while all hold
     // more than budgetBytes. Returns how many were dropped.
     int trim(const std::set<const SeriesSession*>& shown, std::size_t budgetBytes);

@@ -1,0 +1,182 @@
+// Fusion in the viewport grid on the real CT: a copy of it in a new Frame of Reference is
+// refused until registered, then fused through the registration's transform; the fused
+// pixels are the map of the resampled overlay blended over the view's grey image; a grey
+// checkerboard of the series over its registered copy is the series; the Fusion dock's
+// controls change the look; the overlay stays when the viewport turns to another plane.
+#include <QApplication>
+#include <QComboBox>
+#include <QSlider>
+#include <QTest>
+
+#include <cmath>
+#include <cstring>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/fusion/FusionCompositor.h"
+#include "core/fusion/OverlayResampler.h"
+#include "core/io/Catalog.h"
+#include "tests/support/OffscreenPlatform.h"
+#include "tests/support/RealData.h"
+#include "ui/fusion/FusionPanel.h"
+#include "ui/fusion/ViewportFusion.h"
+#include "ui/mpr/SliceView.h"
+#include "ui/viewports/GridShape.h"
+#include "ui/viewports/SeriesLibrary.h"
+#include "ui/viewports/SeriesSession.h"
+#include "ui/viewports/Viewport.h"
+#include "ui/viewports/ViewportGrid.h"
+#include "ui/viewports/ViewportLinks.h"
+#include "ui/viewports/ViewportWorkspace.h"
+
+using namespace lucent;
+
+namespace {
+
+constexpr const char* kCt = "dcm_qa_ct/Philips_S21570/S2010";
+
+// The CT's voxels on a grid moved by `move` (the copy's anatomy at move(p) is the CT's at
+// p), another series in another Frame of Reference.
+std::shared_ptr<Volume> movedCopy(const Volume& ct, const glm::dmat4& move) {
+    VolumeGeometry g = ct.geometry();
+    g.origin = glm::dvec3(move * glm::dvec4(g.origin, 1.0));
+    g.direction = glm::dmat3(move) * g.direction;
+    auto copy = std::make_shared<Volume>(g, ct.type());
+    std::memcpy(copy->bytes().data(), ct.bytes().data(), ct.byteCount());
+    static_cast<SeriesInfo&>(*copy) = static_cast<const SeriesInfo&>(ct);
+    copy->seriesUid = ct.seriesUid + ".2029";
+    copy->frameOfReferenceUid = "2.25.2029";
+    copy->description = "moved copy";
+    return copy;
+}
+
+int channel(QRgb c, int ch) {
+    return ch == 0 ? qRed(c) : (ch == 1 ? qGreen(c) : qBlue(c));
+}
+
+} // namespace
+
+class TestViewportFusion : public QObject {
+    Q_OBJECT
+
+    std::shared_ptr<Volume> ct_;
+    std::shared_ptr<Volume> moved_;
+    glm::dmat4 move_{1.0};
+
+private slots:
+    void initTestCase() {
+        REQUIRE_DATA(kCt);
+        ct_ = std::make_shared<Volume>(loadPath(test::kRealData / kCt));
+        glm::dmat4 r = glm::rotate(glm::dmat4(1.0), glm::radians(6.0), glm::dvec3(0, 0, 1));
+        const glm::dvec3 c = volumeCentre(ct_->geometry());
+        move_ = glm::translate(glm::dmat4(1.0), c + glm::dvec3(9.0, -14.0, 5.0)) * r *
+                glm::translate(glm::dmat4(1.0), -c);
+        moved_ = movedCopy(*ct_, move_);
+    }
+
+    void fusesThroughTheRegistration() {
+        REQUIRE_DATA(kCt);
+        ViewportWorkspace workspace;
+        workspace.resize(900, 500);
+        workspace.grid()->setShape(*gridShape(QStringLiteral("1x2")));
+        workspace.show();
+        ViewportFusion fusion(&workspace);
+        FusionPanel panel(&workspace, &fusion);
+        Viewport* left = workspace.grid()->viewports()[0];
+        Viewport* right = workspace.grid()->viewports()[1];
+        workspace.grid()->setActiveViewport(right);
+        workspace.showVolume(moved_, QStringLiteral("moved"), QString());
+        workspace.grid()->setActiveViewport(left);
+        workspace.showVolume(ct_, QStringLiteral("ct"), QString());
+        QVERIFY(QTest::qWaitForWindowExposed(&workspace));
+        SeriesSession* overlay = right->session();
+        QVERIFY(overlay != nullptr && left->session() != nullptr);
+        SliceView* view = left->sliceView();
+        QVERIFY(view != nullptr);
+
+        // Another Frame of Reference and nothing known: refused, saying what to do.
+        QString why;
+        QVERIFY(!fusion.fuse(left, overlay, &why));
+        QVERIFY2(why.contains(QStringLiteral("Register")), qPrintable(why));
+        QVERIFY(!view->fusion().active());
+        // The panel lists the copy (not the viewport's own series) and says the same.
+        QCOMPARE(panel.overlayChoice()->count(), 2);
+        panel.overlayChoice()->setCurrentIndex(1);
+        emit panel.overlayChoice()->activated(1);
+        QVERIFY(panel.lastMessage().contains(QStringLiteral("Register")));
+
+        workspace.links()->setTransform(ct_->seriesUid, moved_->seriesUid, move_);
+        QVERIFY2(fusion.fuse(left, overlay, &why), qPrintable(why));
+        QVERIFY(view->fusion().active());
+        // The same modality: a grey checkerboard in the base's window, which shows the series
+        // itself (float rounding may move a value by one grey level).
+        QCOMPARE(fusion.styleOf(left)->mode, FusionMode::Checkerboard);
+        const QImage grey = view->image().convertToFormat(QImage::Format_RGB32);
+        const QImage checker = view->fusedImage();
+        QCOMPARE(checker.size(), grey.size());
+        int worst = 0;
+        for (int y = 0; y < grey.height(); ++y) {
+            for (int x = 0; x < grey.width(); ++x) {
+                worst =
+                    std::max(worst, std::abs(qRed(grey.pixel(x, y)) - qRed(checker.pixel(x, y))));
+            }
+        }
+        QVERIFY2(worst <= 1, qPrintable(QString::number(worst)));
+
+        // Hot iron blended at 40 % through the panel: each pixel is the map of the overlay's
+        // value there (sampled by hand through the transform) over the grey.
+        panel.refresh();
+        panel.modeChoice()->setCurrentIndex(panel.modeChoice()->findData(int(FusionMode::Blend)));
+        panel.colourMapChoice()->setCurrentIndex(
+            panel.colourMapChoice()->findData(int(FusionColourMap::HotIron)));
+        panel.opacitySlider()->setValue(40);
+        const FusionStyle style = *fusion.styleOf(left);
+        QCOMPARE(style.colourMap, FusionColourMap::HotIron);
+        QCOMPARE(style.opacity, 0.4);
+        const QImage blended = view->fusedImage();
+        const SlicePlane plane = view->plane();
+        const glm::dmat4 toIndex = moved_->geometry().patientToIndex() * move_;
+        int checked = 0;
+        for (int y = 5; y < grey.height(); y += 37) {
+            for (int x = 3; x < grey.width(); x += 29) {
+                const double value =
+                    sampleAt(*moved_, glm::dvec3(toIndex * glm::dvec4(plane.pointAt(x, y), 1.0)));
+                if (std::isnan(value)) {
+                    QCOMPARE(blended.pixel(x, y), grey.pixel(x, y));
+                    continue;
+                }
+                QVERIFY(std::abs(view->overlayValueAt(QPointF(x, y)) - value) < 1e-2);
+                const auto c = mapColour(style.colourMap, value, style.center, style.width);
+                const int g = qRed(grey.pixel(x, y));
+                for (int ch = 0; ch < 3; ++ch) {
+                    const int expected = int(std::lround(g + (c[ch] - g) * 0.4));
+                    QVERIFY(std::abs(channel(blended.pixel(x, y), ch) - expected) <= 1);
+                }
+                ++checked;
+            }
+        }
+        QVERIFY(checked > 20);
+        // Opacity 0 shows the base alone.
+        panel.opacitySlider()->setValue(0);
+        QVERIFY(view->fusedImage() == grey);
+
+        // The viewport turns to coronal: the overlay stays.
+        left->show(left->session(), ViewportView::Coronal);
+        QVERIFY(left->sliceView()->fusion().active());
+        // None in the panel clears it.
+        panel.refresh();
+        panel.overlayChoice()->setCurrentIndex(0);
+        emit panel.overlayChoice()->activated(0);
+        QVERIFY(!left->sliceView()->fusion().active());
+        QVERIFY(!fusion.styleOf(left).has_value());
+    }
+};
+
+int main(int argc, char** argv) {
+    lucent::test::useOffscreenPlatform();
+    QApplication app(argc, argv);
+    TestViewportFusion test;
+    return QTest::qExec(&test, argc, argv);
+}
+
+#include "test_viewport_fusion.moc"

@@ -1,0 +1,68 @@
+#pragma once
+// Which viewport of the grid fuses which series over its own: the overlay found through
+// the link between the two series (the same Frame of Reference, a registration, or a
+// "link here" offset: ViewportLinks), a default look by modality, and the layer kept
+// across a viewport's view changes and refreshed when a registration lands.
+
+#include <map>
+#include <optional>
+
+#include <QObject>
+#include <QPointer>
+#include <QString>
+
+#include "core/fusion/FusionStyle.h"
+#include "core/linking/SeriesLink.h"
+
+namespace lucent {
+
+class SeriesSession;
+class Viewport;
+class ViewportWorkspace;
+struct FusionLayer;
+
+// The base -> overlay transform of a link (identity, the registration's, or the offset's
+// translation); nullopt when the link knows no relation.
+std::optional<glm::dmat4> fusionTransform(const SeriesLink& link);
+
+// The look an overlay starts with: PET in hot iron blended at 50 % with what is below
+// its window cleared; the same modality as the base (a registration check) as a grey
+// checkerboard in the base's window; anything else in hot iron blended at 40 %; the window
+// from defaultWindow().
+FusionStyle defaultFusionStyle(const Volume& base, const Volume& overlay);
+
+class ViewportFusion : public QObject {
+    Q_OBJECT
+
+public:
+    explicit ViewportFusion(ViewportWorkspace* workspace, QObject* parent = nullptr);
+
+    // Fuses `overlay` over the viewport's series (an MPR view of a volume). False, with
+    // the reason in `message`, when the viewport shows no volume or the two series have
+    // no known relation (Register or Link Here first).
+    bool fuse(Viewport* viewport, SeriesSession* overlay, QString* message = nullptr);
+    void clear(Viewport* viewport);
+    // The viewport's overlay and its look; nullptr / nullopt without one.
+    SeriesSession* overlayOf(const Viewport* viewport) const;
+    std::optional<FusionStyle> styleOf(const Viewport* viewport) const;
+    void setStyle(Viewport* viewport, const FusionStyle& style);
+
+signals:
+    // A viewport's overlay or look changed (the controls follow).
+    void fusionChanged(lucent::Viewport* viewport);
+
+private:
+    struct Fused {
+        QPointer<SeriesSession> base;
+        QPointer<SeriesSession> overlay;
+        FusionStyle style;
+    };
+    // Puts the layer on the viewport's slice view again (a new view, a new transform).
+    bool apply(Viewport* viewport, const Fused& fused, QString* message);
+    void reapplyAll();
+
+    ViewportWorkspace* workspace_;
+    std::map<Viewport*, Fused, std::less<>> fused_;
+};
+
+} // namespace lucent
