@@ -37,11 +37,15 @@ SeriesLink linkSeries(const SeriesInfo& a, const SeriesInfo& b,
     const bool sameSeries = !a.seriesUid.empty() && a.seriesUid == b.seriesUid;
     const bool sameFrame =
         !a.frameOfReferenceUid.empty() && a.frameOfReferenceUid == b.frameOfReferenceUid;
-    if (sameSeries || sameFrame) {
+    if (sameSeries) {
         link.kind = SeriesLink::Kind::SamePosition;
     } else if (knownTransform) {
+        // Registered or nudged by the reader: this beats a shared Frame of Reference (a PET
+        // and its CT that breathing put apart).
         link.kind = SeriesLink::Kind::Registered;
         link.transform = *knownTransform;
+    } else if (sameFrame) {
+        link.kind = SeriesLink::Kind::SamePosition;
     } else if (knownOffset) {
         link.kind = SeriesLink::Kind::Offset;
         link.offset = *knownOffset;

@@ -33,10 +33,10 @@ struct SeriesLink {
     glm::dvec3 mapDirection(const glm::dvec3& directionA) const;
 };
 
-// The link between two series: SamePosition when both have the same non-empty
-// Frame of Reference UID (or are the same series), else Registered when a
-// registration's transform a -> b is known, else Offset when an offset is known
-// (b - a), else None with the reason.
+// The link between two series: SamePosition for the same series; else Registered when a
+// transform a -> b is known (a registration, or a nudge of a fused overlay: it wins over a
+// shared Frame of Reference); else SamePosition when both have the same non-empty Frame of
+// Reference UID; else Offset when an offset is known (b - a); else None with the reason.
 SeriesLink linkSeries(const SeriesInfo& a, const SeriesInfo& b,
                       const std::optional<glm::dvec3>& knownOffset,
                       const std::optional<glm::dmat4>& knownTransform = std::nullopt);

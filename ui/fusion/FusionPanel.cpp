@@ -40,7 +40,11 @@ FusionPanel::FusionPanel(ViewportWorkspace* workspace, ViewportFusion* fusion, Q
     : QWidget(parent), workspace_(workspace), fusion_(fusion), overlay_(new QComboBox),
       colourMap_(new QComboBox), mode_(new QComboBox), opacity_(percentSlider(50)),
       checker_(new QSpinBox), swipe_(percentSlider(50)), center_(windowBox()), width_(windowBox()),
-      clearBelow_(new QCheckBox(tr("Base shows below the window"))), status_(new QLabel) {
+      clearBelow_(new QCheckBox(tr("Base shows below the window"))),
+      nudge_(new QCheckBox(tr("Nudge the overlay by hand"))), status_(new QLabel) {
+    nudge_->setToolTip(tr("Drag moves the overlay, Shift+drag turns it about the crosshair, "
+                          "arrows move it 1 mm, Ctrl+Left/Right turn it 1 degree; each nudge "
+                          "is kept as the pair's registration."));
     for (const FusionColourMap map : kFusionColourMaps) {
         colourMap_->addItem(tr(colourMapTitle(map)), static_cast<int>(map));
     }
@@ -62,6 +66,7 @@ FusionPanel::FusionPanel(ViewportWorkspace* workspace, ViewportFusion* fusion, Q
     form->addRow(tr("Window centre"), center_);
     form->addRow(tr("Window width"), width_);
     form->addRow(clearBelow_);
+    form->addRow(nudge_);
     form->addRow(status_);
 
     connect(overlay_, &QComboBox::activated, this, &FusionPanel::overlayChosen);
@@ -76,6 +81,7 @@ FusionPanel::FusionPanel(ViewportWorkspace* workspace, ViewportFusion* fusion, Q
         connect(box, &QDoubleSpinBox::valueChanged, this, &FusionPanel::styleEdited);
     }
     connect(clearBelow_, &QCheckBox::toggled, this, &FusionPanel::styleEdited);
+    connect(nudge_, &QCheckBox::toggled, fusion, &ViewportFusion::setNudging);
     connect(workspace->grid(), &ViewportGrid::activeViewportChanged, this, &FusionPanel::refresh);
     connect(workspace->grid(), &ViewportGrid::viewportContentChanged, this, &FusionPanel::refresh);
     connect(workspace->library(), &SeriesLibrary::ready, this, &FusionPanel::refresh);

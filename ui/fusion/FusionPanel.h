@@ -37,6 +37,7 @@ public:
     QSlider* swipeSlider() const { return swipe_; }
     QDoubleSpinBox* windowCenter() const { return center_; }
     QDoubleSpinBox* windowWidth() const { return width_; }
+    QCheckBox* nudgeSwitch() const { return nudge_; }
     const QString& lastMessage() const { return message_; }
 
 signals:
@@ -59,6 +60,7 @@ private:
     QDoubleSpinBox* center_;
     QDoubleSpinBox* width_;
     QCheckBox* clearBelow_;
+    QCheckBox* nudge_;
     QLabel* status_;
     QString message_;
     bool updating_ = false;

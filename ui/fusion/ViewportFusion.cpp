@@ -3,6 +3,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/mpr/PlaneSampler.h"
+#include "ui/fusion/FusionNudge.h"
 #include "ui/fusion/SliceFusion.h"
 #include "ui/mpr/MprCursor.h"
 #include "ui/mpr/SliceView.h"
@@ -51,7 +52,7 @@ FusionStyle defaultFusionStyle(const Volume& base, const Volume& overlay) {
 }
 
 ViewportFusion::ViewportFusion(ViewportWorkspace* workspace, QObject* parent)
-    : QObject(parent), workspace_(workspace) {
+    : QObject(parent), workspace_(workspace), nudge_(new FusionNudge(this)) {
     ViewportGrid* grid = workspace->grid();
     // A viewport that shows something else keeps its overlay while its series is the same.
     connect(grid, &ViewportGrid::viewportContentChanged, this, [this](Viewport* viewport) {
@@ -130,6 +131,7 @@ bool ViewportFusion::apply(Viewport* viewport, const Fused& fused, QString* mess
     layer.title = fused.overlay->title();
     layer.unit = layer.overlay->modality == "CT" ? QStringLiteral("HU") : QString();
     view->setFusionLayer(std::move(layer));
+    nudge_->watch(view);
     return true;
 }
 
@@ -137,6 +139,43 @@ void ViewportFusion::reapplyAll() {
     for (auto& [viewport, fused] : fused_) {
         apply(viewport, fused, nullptr);
     }
+}
+
+void ViewportFusion::setNudging(bool on) {
+    nudging_ = on;
+    for (auto& [viewport, fused] : fused_) {
+        if (viewport->sliceView() != nullptr) {
+            viewport->sliceView()->setCursor(on ? Qt::SizeAllCursor : Qt::ArrowCursor);
+        }
+    }
+}
+
+std::optional<glm::dmat4> ViewportFusion::transformOf(const Viewport* viewport) const {
+    const auto it = fused_.find(viewport);
+    if (it == fused_.end() || viewport->sliceView() == nullptr ||
+        !viewport->sliceView()->fusion().active()) {
+        return std::nullopt;
+    }
+    return viewport->sliceView()->fusion().layer()->baseToOverlay;
+}
+
+void ViewportFusion::previewTransform(Viewport* viewport, const glm::dmat4& transform) {
+    if (viewport->sliceView() == nullptr || !viewport->sliceView()->fusion().active()) {
+        return;
+    }
+    FusionLayer layer = *viewport->sliceView()->fusion().layer();
+    layer.baseToOverlay = transform;
+    viewport->sliceView()->setFusionLayer(std::move(layer));
+}
+
+void ViewportFusion::keepTransform(Viewport* viewport, const glm::dmat4& transform) {
+    const auto it = fused_.find(viewport);
+    if (it == fused_.end() || it->second.base == nullptr || it->second.overlay == nullptr) {
+        return;
+    }
+    workspace_->links()->setTransform(it->second.base->info().seriesUid,
+                                      it->second.overlay->info().seriesUid, transform);
+    reapplyAll();
 }
 
 void ViewportFusion::clear(Viewport* viewport) {

@@ -19,6 +19,7 @@ namespace lucent {
 class SeriesSession;
 class Viewport;
 class ViewportWorkspace;
+class FusionNudge;
 struct FusionLayer;
 
 // The base -> overlay transform of a link (identity, the registration's, or the offset's
@@ -47,6 +48,17 @@ public:
     std::optional<FusionStyle> styleOf(const Viewport* viewport) const;
     void setStyle(Viewport* viewport, const FusionStyle& style);
 
+    // Nudging by hand (FusionNudge on every fused MPR view while on).
+    bool nudging() const { return nudging_; }
+    void setNudging(bool on);
+    // The base -> overlay transform the viewport's overlay is drawn through now.
+    std::optional<glm::dmat4> transformOf(const Viewport* viewport) const;
+    // Draws the overlay through `transform` for now (a nudge being dragged).
+    void previewTransform(Viewport* viewport, const glm::dmat4& transform);
+    // Keeps `transform` as the pair's (ViewportLinks: the study store, the linked views) and
+    // draws every viewport that fuses the pair through it.
+    void keepTransform(Viewport* viewport, const glm::dmat4& transform);
+
 signals:
     // A viewport's overlay or look changed (the controls follow).
     void fusionChanged(lucent::Viewport* viewport);
@@ -63,6 +75,8 @@ private:
 
     ViewportWorkspace* workspace_;
     std::map<Viewport*, Fused, std::less<>> fused_;
+    FusionNudge* nudge_; // a child
+    bool nudging_ = false;
 };
 
 } // namespace lucent

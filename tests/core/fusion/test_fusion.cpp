@@ -12,6 +12,7 @@
 
 #include "core/fusion/FusionColourMap.h"
 #include "core/fusion/FusionCompositor.h"
+#include "core/fusion/OverlayNudge.h"
 #include "core/fusion/OverlayResampler.h"
 #include "core/io/Catalog.h"
 #include "core/mpr/CrosshairSlice.h"
@@ -268,6 +269,39 @@ private slots:
         // Without the transform it measures other anatomy.
         const RoiStatistics elsewhere = ellipseStatistics(moved_, plane, roi);
         QVERIFY(elsewhere.samples == 0 || std::abs(elsewhere.mean - base.mean) > 1.0);
+    }
+
+    void nudgeMovesTheOverlaysContent() {
+        SlicePlane plane = planeThrough(ct_, Orientation::Axial, {0.0, 0.0, 0.0});
+        const std::vector<float> before = sampleOverlay(moved_, plane, move_);
+        // Seven pixels to the right: what was at pixel x is now at x + 7.
+        const glm::dmat4 shifted = nudgedTransform(move_, plane.u * (7.0 * plane.pixelSize));
+        const std::vector<float> after = sampleOverlay(moved_, plane, shifted);
+        int compared = 0;
+        for (int y = 0; y < plane.height; y += 3) {
+            for (int x = 0; x + 7 < plane.width; ++x) {
+                const float a = before[std::size_t(y) * plane.width + x];
+                const float b = after[std::size_t(y) * plane.width + x + 7];
+                if (!std::isnan(a) && !std::isnan(b)) {
+                    QVERIFY(std::abs(a - b) < 1e-2);
+                    ++compared;
+                }
+            }
+        }
+        QVERIFY(compared > 5000);
+        // A turn about a point: what was drawn at p is drawn at the turned p.
+        const glm::dvec3 pivot = volumeCentre(ct_.geometry());
+        const double angle = glm::radians(5.0);
+        const glm::dmat4 turned =
+            nudgedTransform(move_, glm::dvec3(0.0), angle, plane.normal(), pivot);
+        const glm::dmat4 turn = glm::translate(glm::dmat4(1.0), pivot) *
+                                glm::rotate(glm::dmat4(1.0), angle, plane.normal()) *
+                                glm::translate(glm::dmat4(1.0), -pivot);
+        for (const glm::dvec3 p : {pivot + glm::dvec3(30, 10, 0), pivot + glm::dvec3(-40, 25, 0)}) {
+            const glm::dvec3 a(move_ * glm::dvec4(p, 1.0));
+            const glm::dvec3 b(turned * glm::dvec4(glm::dvec3(turn * glm::dvec4(p, 1.0)), 1.0));
+            QVERIFY(glm::length(a - b) < 1e-9);
+        }
     }
 
     void resampledOverlayOnTheBaseGridIsTheBase() {

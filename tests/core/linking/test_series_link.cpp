@@ -196,6 +196,21 @@ private slots:
                          30.0) < 1e-9);
     }
 
+    void aNudgeWinsOverASharedFrameOfReference() {
+        // A PET and its CT share a Frame of Reference; breathing put them 4 mm apart and the
+        // reader nudged the PET: the kept transform is used, not the shared frame.
+        const SeriesInfo ct{"ct", "", "CT", "", "", "", "", "f1"};
+        const SeriesInfo pet{"pet", "", "PT", "", "", "", "", "f1"};
+        QVERIFY(linkSeries(ct, pet, std::nullopt).kind == SeriesLink::Kind::SamePosition);
+        glm::dmat4 nudge(1.0);
+        nudge[3] = {0.0, 0.0, 4.0, 1.0};
+        const SeriesLink link = linkSeries(ct, pet, std::nullopt, nudge);
+        QVERIFY(link.kind == SeriesLink::Kind::Registered);
+        QVERIFY(glm::length(link.map({1.0, 2.0, 3.0}) - glm::dvec3(1.0, 2.0, 7.0)) < 1e-12);
+        // The same series is always itself.
+        QVERIFY(linkSeries(ct, ct, std::nullopt, nudge).kind == SeriesLink::Kind::SamePosition);
+    }
+
     void nonParallelPlanesDoNotLink() {
         const glm::dvec3 axial(0.0, 0.0, 1.0);
         const auto tilted = [&](double degrees) {

@@ -4,8 +4,10 @@
 // checkerboard of the series over its registered copy is the series; the Fusion dock's
 // controls change the look; the overlay stays when the viewport turns to another plane.
 #include <QApplication>
+#include <QCheckBox>
 #include <QComboBox>
 #include <QSlider>
+#include <QTemporaryDir>
 #include <QTest>
 
 #include <cmath>
@@ -14,12 +16,15 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/fusion/FusionCompositor.h"
+#include "core/fusion/OverlayNudge.h"
 #include "core/fusion/OverlayResampler.h"
 #include "core/io/Catalog.h"
+#include "core/store/StudyStore.h"
 #include "tests/support/OffscreenPlatform.h"
 #include "tests/support/RealData.h"
 #include "ui/fusion/FusionPanel.h"
 #include "ui/fusion/ViewportFusion.h"
+#include "ui/mpr/MprCursor.h"
 #include "ui/mpr/SliceView.h"
 #include "ui/viewports/GridShape.h"
 #include "ui/viewports/SeriesLibrary.h"
@@ -62,6 +67,7 @@ class TestViewportFusion : public QObject {
     std::shared_ptr<Volume> ct_;
     std::shared_ptr<Volume> moved_;
     glm::dmat4 move_{1.0};
+    QTemporaryDir store_;
 
 private slots:
     void initTestCase() {
@@ -77,6 +83,7 @@ private slots:
     void fusesThroughTheRegistration() {
         REQUIRE_DATA(kCt);
         ViewportWorkspace workspace;
+        workspace.links()->setStoreFolder(store_.path());
         workspace.resize(900, 500);
         workspace.grid()->setShape(*gridShape(QStringLiteral("1x2")));
         workspace.show();
@@ -159,6 +166,45 @@ private slots:
         // Opacity 0 shows the base alone.
         panel.opacitySlider()->setValue(0);
         QVERIFY(view->fusedImage() == grey);
+
+        // Nudged by hand: a drag of 12 pixels to the right moves the overlay's content with
+        // it, and the nudge is kept as the pair's transform (in the study store).
+        panel.opacitySlider()->setValue(100);
+        panel.nudgeSwitch()->setChecked(true);
+        QVERIFY(fusion.nudging());
+        const glm::dvec3 crosshair = left->session()->cursor()->point();
+        const double x0 = 180.0, y0 = 200.0;
+        std::vector<double> before;
+        for (int dx = 0; dx < 60; dx += 6) {
+            before.push_back(view->overlayValueAt(QPointF(x0 + dx, y0)));
+        }
+        QTest::mousePress(view, Qt::LeftButton, Qt::NoModifier, QPoint(300, 300));
+        QTest::mouseMove(view, QPoint(306, 300));
+        QTest::mouseRelease(view, Qt::LeftButton, Qt::NoModifier, QPoint(312, 300));
+        QCOMPARE(left->session()->cursor()->point(), crosshair); // not a crosshair drag
+        const glm::dmat4 expected =
+            nudgedTransform(move_, view->plane().u * (12.0 * view->plane().pixelSize));
+        const auto kept = workspace.links()->transform(ct_->seriesUid, moved_->seriesUid);
+        QVERIFY(kept.has_value());
+        for (int c = 0; c < 4; ++c) {
+            QVERIFY(glm::length((*kept)[c] - expected[c]) < 1e-9);
+        }
+        for (int i = 0; i < int(before.size()); ++i) {
+            const double now = view->overlayValueAt(QPointF(x0 + 6 * i + 12, y0));
+            QVERIFY(std::isnan(before[i]) || std::abs(now - before[i]) < 1e-2);
+        }
+        {
+            const StudyStore store(store_.path().toStdString());
+            const auto stored = store.seriesTransform(ct_->seriesUid, moved_->seriesUid);
+            QVERIFY(stored.has_value());
+            QVERIFY(glm::length((*stored)[3] - expected[3]) < 1e-6);
+        }
+        // An arrow key moves it 1 mm more along the plane's v (down).
+        QTest::keyClick(view, Qt::Key_Down);
+        const glm::dmat4 down = nudgedTransform(expected, view->plane().v);
+        QVERIFY(glm::length((*workspace.links()->transform(ct_->seriesUid, moved_->seriesUid))[3] -
+                            down[3]) < 1e-9);
+        panel.nudgeSwitch()->setChecked(false);
 
         // The viewport turns to coronal: the overlay stays.
         left->show(left->session(), ViewportView::Coronal);
