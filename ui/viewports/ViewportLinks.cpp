@@ -30,6 +30,10 @@ ViewportLinks::ViewportLinks(ViewportGrid* grid, QObject* parent) : QObject(pare
 
 ViewportLinks::~ViewportLinks() = default;
 
+QString ViewportLinks::storeFolder() const {
+    return store_ ? QString::fromStdString(store_->root().string()) : QString();
+}
+
 void ViewportLinks::setStoreFolder(const QString& folder) {
     store_.reset();
     if (folder.isEmpty()) {

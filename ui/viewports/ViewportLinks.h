@@ -41,6 +41,8 @@ public:
     // The study store that keeps "link here" offsets; without one they last for the
     // session only.
     void setStoreFolder(const QString& folder);
+    // The study store's folder ("" without one).
+    QString storeFolder() const;
 
     // "Link here": the reader put the crosshair on the same anatomy in `viewport`
     // and in the other linked viewports; each of those whose series has another Frame

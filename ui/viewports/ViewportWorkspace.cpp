@@ -9,6 +9,7 @@
 #include <QVBoxLayout>
 
 #include "ui/mpr/MprCursor.h"
+#include "ui/viewports/RegistrationExport.h"
 #include "ui/viewports/SeriesLibrary.h"
 #include "ui/viewports/SeriesSession.h"
 #include "ui/viewports/Viewport.h"
@@ -177,6 +178,11 @@ void ViewportWorkspace::fillMenu(QMenu* menu) {
     menu->addAction(tr("&Register Linked Viewports to Active"), QKeySequence(tr("Ctrl+Alt+R")),
                     this, [this] { registration_->registerWith(grid_->activeViewport()); });
     menu->addAction(tr("Cancel Registration"), this, [this] { registration_->cancel(); });
+    menu->addAction(tr("Save Registrations to the Study Store (DICOM)"), this, [this] {
+        QString text;
+        saveRegistrations(*this, grid_->activeViewport(), &text);
+        emit message(text, 10000);
+    });
 }
 
 } // namespace lucent
