@@ -25,6 +25,9 @@ QString describe(const Viewport& v) {
 
 ViewportLinks::ViewportLinks(ViewportGrid* grid, QObject* parent) : QObject(parent), grid_(grid) {
     connect(grid_, &ViewportGrid::viewportsChanged, this, &ViewportLinks::rewire);
+    // A series shown may have come with a study that holds registrations.
+    connect(grid_, &ViewportGrid::viewportContentChanged, this,
+            &ViewportLinks::reloadStoredRegistrations);
     rewire();
 }
 
@@ -42,6 +45,7 @@ void ViewportLinks::setStoreFolder(const QString& folder) {
     try {
         QDir().mkpath(folder);
         store_ = std::make_unique<StudyStore>(folder.toStdString());
+        reloadStoredRegistrations();
     } catch (const StoreError& e) {
         say(tr("Link offsets are kept for this session only: %1").arg(e.what()));
     }
@@ -91,8 +95,27 @@ void ViewportLinks::setTransform(const std::string& a, const std::string& b,
 }
 
 SeriesLink ViewportLinks::linkBetween(const SeriesSession& a, const SeriesSession& b) const {
-    return linkSeries(*a.volume(), *b.volume(), offset(uidOf(a), uidOf(b)),
-                      transform(uidOf(a), uidOf(b)));
+    std::optional<glm::dmat4> known = transform(uidOf(a), uidOf(b));
+    if (!known) {
+        known = registrations_.between(a.info().frameOfReferenceUid, b.info().frameOfReferenceUid);
+    }
+    return linkSeries(*a.volume(), *b.volume(), offset(uidOf(a), uidOf(b)), known);
+}
+
+void ViewportLinks::reloadStoredRegistrations() {
+    registrations_.clear();
+    if (!store_) {
+        return;
+    }
+    try {
+        registrations_.load(*store_);
+    } catch (const StoreError& e) {
+        say(tr("The store's registrations cannot be read: %1").arg(e.what()));
+    }
+    for (const std::string& problem : registrations_.problems()) {
+        say(tr("A Spatial Registration in the store is not used: %1")
+                .arg(QString::fromStdString(problem)));
+    }
 }
 
 void ViewportLinks::say(const QString& text) {

@@ -13,6 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "core/linking/SeriesLink.h"
+#include "ui/viewports/StoredRegistrations.h"
 
 namespace lucent {
 
@@ -55,7 +56,12 @@ public:
     void setTransform(const std::string& a, const std::string& b, const glm::dmat4& aToB);
     std::optional<glm::dmat4> transform(const std::string& a, const std::string& b) const;
 
-    // The link between the series of two viewports, as it is now.
+    // Reads the store's Spatial Registration objects again (after a study came in).
+    void reloadStoredRegistrations();
+
+    // The link between the series of two viewports, as it is now: a transform kept for
+    // the pair, else one of the store's Spatial Registration objects relating their Frames
+    // of Reference, else SeriesLink's other kinds.
     SeriesLink linkBetween(const SeriesSession& a, const SeriesSession& b) const;
 
     // Sets every viewport's link group (0: all unlinked).
@@ -78,6 +84,7 @@ private:
 
     ViewportGrid* grid_;
     std::unique_ptr<StudyStore> store_;
+    StoredRegistrations registrations_;
     std::map<std::pair<std::string, std::string>, glm::dvec3> sessionOffsets_; // without a store
     std::map<std::pair<std::string, std::string>, glm::dmat4> sessionTransforms_;
     std::map<const SeriesSession*, std::pair<double, double>> windows_; // last seen

@@ -18,6 +18,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "core/exchange/SpatialRegistrationReader.h"
 #include "core/exchange/SpatialRegistrationWriter.h"
 #include "tests/support/PriorStudy.h"
 #include "tests/support/RealData.h"
@@ -212,6 +213,79 @@ private slots:
         QCOMPARE(text(*study, DCM_StudyInstanceUID), w.input.moving.studyUid);
         QVERIFY(study->findAndGetSequenceItem(DCM_ReferencedSeriesSequence, series, 0).good());
         QCOMPARE(text(*series, DCM_SeriesInstanceUID), w.input.moving.seriesUid);
+    }
+
+    void readerGivesTheWrittenTransform() {
+        REQUIRE_DATA(kCt);
+        QTemporaryDir dir;
+        const Written w = writeExample(dir);
+        const SpatialRegistration read = readSpatialRegistration(w.file);
+        QCOMPARE(read.sopInstanceUid, w.ids.sopInstanceUid);
+        QCOMPARE(read.frameOfReferenceUid, w.input.fixed.frameOfReferenceUid);
+        QCOMPARE(read.frames.size(), std::size_t{2});
+        const auto fixedToMoving = frameTransform(read, w.input.fixed.frameOfReferenceUid,
+                                                  w.input.moving.frameOfReferenceUid);
+        QVERIFY(fixedToMoving.has_value());
+        const auto back = frameTransform(read, w.input.moving.frameOfReferenceUid,
+                                         w.input.fixed.frameOfReferenceUid);
+        for (int c = 0; c < 4; ++c) {
+            QVERIFY(glm::length((*fixedToMoving)[c] - knownMatrix()[c]) < 1e-9);
+            QVERIFY(glm::length((*back)[c] - glm::inverse(knownMatrix())[c]) < 1e-9);
+        }
+        QVERIFY(!frameTransform(read, w.input.fixed.frameOfReferenceUid, "1.2.3").has_value());
+
+        // Another program may put neither frame at the identity: the pair's transform is
+        // still inverse(M_to) * M_from.
+        DcmFileFormat file;
+        QVERIFY(file.loadFile(w.file.c_str()).good());
+        DcmItem* reg = nullptr;
+        DcmItem* matrixRegistration = nullptr;
+        DcmItem* matrix = nullptr;
+        QVERIFY(file.getDataset()->findAndGetSequenceItem(DCM_RegistrationSequence, reg, 0).good());
+        QVERIFY(reg->findAndGetSequenceItem(DCM_MatrixRegistrationSequence, matrixRegistration, 0)
+                    .good());
+        QVERIFY(matrixRegistration->findAndGetSequenceItem(DCM_MatrixSequence, matrix, 0).good());
+        QVERIFY(matrix
+                    ->putAndInsertString(DCM_FrameOfReferenceTransformationMatrix,
+                                         "1\\0\\0\\10\\0\\1\\0\\20\\0\\0\\1\\30\\0\\0\\0\\1")
+                    .good());
+        const fs::path shifted = fs::path(dir.path().toStdString()) / "shifted.dcm";
+        QVERIFY(file.saveFile(shifted.c_str(), EXS_LittleEndianExplicit).good());
+        const auto viaShift =
+            frameTransform(readSpatialRegistration(shifted), w.input.fixed.frameOfReferenceUid,
+                           w.input.moving.frameOfReferenceUid);
+        const glm::dmat4 expected =
+            knownMatrix() * glm::translate(glm::dmat4(1.0), glm::dvec3(10.0, 20.0, 30.0));
+        for (int c = 0; c < 4; ++c) {
+            QVERIFY(glm::length((*viaShift)[c] - expected[c]) < 1e-9);
+        }
+
+        // What it cannot use is refused, naming the file and the element.
+        QVERIFY(matrix
+                    ->putAndInsertString(DCM_FrameOfReferenceTransformationMatrix,
+                                         "1\\0\\0\\0\\0\\0\\0\\0\\0\\0\\1\\0\\0\\0\\0\\1")
+                    .good());
+        const fs::path singular = fs::path(dir.path().toStdString()) / "singular.dcm";
+        QVERIFY(file.saveFile(singular.c_str(), EXS_LittleEndianExplicit).good());
+        const auto refuses = [](const fs::path& f, const char* element) {
+            try {
+                readSpatialRegistration(f);
+            } catch (const std::runtime_error& e) {
+                const std::string what = e.what();
+                return what.find(f.string()) != std::string::npos &&
+                       what.find(element) != std::string::npos;
+            }
+            return false;
+        };
+        QVERIFY(refuses(singular, "(3006,00C6) is singular"));
+        fs::path ctFile;
+        for (const auto& entry : fs::directory_iterator(test::kRealData / kCt)) {
+            if (entry.is_regular_file()) {
+                ctFile = entry.path();
+                break;
+            }
+        }
+        QVERIFY(refuses(ctFile, "SOPClassUID (0008,0016)"));
     }
 
     void failsNamingTheFile() {

@@ -122,6 +122,37 @@ private slots:
         QVERIFY(std::abs(m[7] + kShift.y) < 1e-9);
         QVERIFY(std::abs(m[11] + kShift.z) < 1e-9);
         QVERIFY(std::abs(m[0] - 1.0) < 1e-12 && std::abs(m[15] - 1.0) < 1e-12);
+
+        // Another store that holds the object but no transform of the pair (the study came
+        // from PACS with it): the two series link through it.
+        QTemporaryDir otherStore;
+        {
+            StudyStore other(otherStore.path().toStdString());
+            const std::filesystem::path copy = other.temporaryFile();
+            std::filesystem::copy_file(files[0].second, copy,
+                                       std::filesystem::copy_options::overwrite_existing);
+            InstanceRecord record;
+            record.series = reg->info;
+            record.sopInstanceUid = files[0].first;
+            QVERIFY(other.add(copy, record));
+            QVERIFY(!other.seriesTransform(ct, prior.seriesUid).has_value());
+        }
+        ViewportWorkspace second;
+        second.grid()->setShape(*gridShape(QStringLiteral("1x2")));
+        second.links()->setStoreFolder(otherStore.path());
+        QSignalSpy shownAgain(&second, &ViewportWorkspace::seriesShown);
+        second.showSeries(second.grid()->viewports()[0],
+                          QString::fromStdString((test::kRealData / kCt).string()), {},
+                          ViewportView::Axial);
+        second.showSeries(second.grid()->viewports()[1], priorDir.path(), {}, ViewportView::Axial);
+        while (shownAgain.count() < 2) {
+            QVERIFY(shownAgain.wait(60000));
+        }
+        const SeriesLink link = second.links()->linkBetween(
+            *second.grid()->viewports()[0]->session(), *second.grid()->viewports()[1]->session());
+        QVERIFY(link.kind == SeriesLink::Kind::Registered);
+        QVERIFY(glm::length(link.map(glm::dvec3(1.0, 2.0, 3.0)) -
+                            (glm::dvec3(1.0, 2.0, 3.0) + kShift)) < 1e-9);
     }
 };
 
