@@ -4,6 +4,7 @@
 
 #include "core/mpr/PlaneSampler.h"
 #include "ui/fusion/FusionNudge.h"
+#include "ui/fusion/OverlayWindowDrag.h"
 #include "ui/fusion/SliceFusion.h"
 #include "ui/mpr/MprCursor.h"
 #include "ui/mpr/SliceView.h"
@@ -52,7 +53,8 @@ FusionStyle defaultFusionStyle(const Volume& base, const Volume& overlay) {
 }
 
 ViewportFusion::ViewportFusion(ViewportWorkspace* workspace, QObject* parent)
-    : QObject(parent), workspace_(workspace), nudge_(new FusionNudge(this)) {
+    : QObject(parent), workspace_(workspace), nudge_(new FusionNudge(this)),
+      windowDrag_(new OverlayWindowDrag(this)) {
     ViewportGrid* grid = workspace->grid();
     // A viewport that shows something else keeps its overlay while its series is the same.
     connect(grid, &ViewportGrid::viewportContentChanged, this, [this](Viewport* viewport) {
@@ -132,6 +134,7 @@ bool ViewportFusion::apply(Viewport* viewport, const Fused& fused, QString* mess
     layer.unit = layer.overlay->modality == "CT" ? QStringLiteral("HU") : QString();
     view->setFusionLayer(std::move(layer));
     nudge_->watch(view);
+    windowDrag_->watch(view);
     return true;
 }
 

@@ -20,6 +20,7 @@ class SeriesSession;
 class Viewport;
 class ViewportWorkspace;
 class FusionNudge;
+class OverlayWindowDrag;
 struct FusionLayer;
 
 // The base -> overlay transform of a link (identity, the registration's, or the offset's
@@ -75,7 +76,8 @@ private:
 
     ViewportWorkspace* workspace_;
     std::map<Viewport*, Fused, std::less<>> fused_;
-    FusionNudge* nudge_; // a child
+    FusionNudge* nudge_;            // a child
+    OverlayWindowDrag* windowDrag_; // a child
     bool nudging_ = false;
 };
 

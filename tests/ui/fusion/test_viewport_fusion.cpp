@@ -6,6 +6,7 @@
 #include <QApplication>
 #include <QCheckBox>
 #include <QComboBox>
+#include <QDoubleSpinBox>
 #include <QSlider>
 #include <QTemporaryDir>
 #include <QTest>
@@ -163,6 +164,18 @@ private slots:
             }
         }
         QVERIFY(checked > 20);
+        // Alt+right-drag sets the overlay's window, not the base's: 40 pixels right widens it
+        // by a tenth, 20 down raises the level by a twentieth of the width.
+        const double baseCenter = left->session()->cursor()->windowCenter();
+        QTest::mousePress(view, Qt::RightButton, Qt::AltModifier, QPoint(100, 100));
+        QTest::mouseMove(view, QPoint(120, 110));
+        QTest::mouseRelease(view, Qt::RightButton, Qt::AltModifier, QPoint(140, 120));
+        const FusionStyle dragged = *fusion.styleOf(left);
+        QVERIFY(std::abs(dragged.width - style.width * 1.1) < 1e-9);
+        QVERIFY(std::abs(dragged.center - (style.center + style.width / 20.0)) < 1e-9);
+        QCOMPARE(left->session()->cursor()->windowCenter(), baseCenter);
+        QCOMPARE(panel.windowWidth()->value(), dragged.width);
+
         // Opacity 0 shows the base alone.
         panel.opacitySlider()->setValue(0);
         QVERIFY(view->fusedImage() == grey);
