@@ -59,5 +59,7 @@ int runMeasurements(const QStringList& args); // a series' or an SR's measuremen
 int runMovie(const QStringList& args);        // turntable or cine movies (MP4, WebM, GIF)
 int runHang(const QStringList& args);         // hanging protocols: which series goes where
 int runRegister(const QStringList& args);     // rigid registration of two series (ITK)
+int runSegment(const QStringList& args);      // a segment by threshold, islands and margin
+int runSegmentStats(const QStringList& args); // statistics of a labelmap's labels
 
 } // namespace lucent::cli

@@ -17,6 +17,9 @@ const char* kUsageText =
     "  compare A.png B.png                  print psnr_db=<x> ssim=<y> for two images\n"
     "  surface PATH -o OUT.stl|ply|vtk|obj --iso HU [--svr-radius MM] [...]\n"
     "                                       isosurface mesh, local surface-to-volume ratio\n"
+    "  segment PATH --threshold LO,HI [--keep-largest | --min-island-mm3 N] [--margin MM]\n"
+    "          [--name NAME] -o OUT.nii[.gz] [--stats]  a segment as a NIfTI labelmap\n"
+    "  segment-stats PATH LABELS.nii[.gz]   mL, HU, area, diameter of each label\n"
     "  movie PATH -o OUT.mp4|webm|gif [--turntable DEG | --cine-axis i|j|k] [--frames N]\n"
     "        [--fps N] [--size WxH] [options]  turntable or cine movie (FFmpeg)\n"
     "  options [--markdown]                 every render option: flag, wire key, range, default\n"
@@ -103,6 +106,12 @@ int main(int argc, char** argv) {
     }
     if (command == "register") {
         return lucent::cli::runRegister(args);
+    }
+    if (command == "segment") {
+        return lucent::cli::runSegment(args);
+    }
+    if (command == "segment-stats") {
+        return lucent::cli::runSegmentStats(args);
     }
     if (command == "hang") {
         return lucent::cli::runHang(args);

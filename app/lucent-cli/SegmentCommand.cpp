@@ -1,0 +1,177 @@
+// lucent-cli segment PATH --threshold LO,HI [...] -o labels.nii.gz [--stats]: a segment by
+// threshold, islands and margin, written as a NIfTI labelmap; lucent-cli segment-stats
+// PATH LABELS.nii[.gz]: the statistics of each label of a labelmap on PATH's series.
+#include <QCommandLineParser>
+#include <QTextStream>
+
+#include <cmath>
+#include <cstdio>
+
+#include "CliCommand.h"
+#include "core/formats/Nifti.h"
+#include "core/formats/NiftiWrite.h"
+#include "core/io/Catalog.h"
+#include "core/segmentation/Labelmap.h"
+#include "core/segmentation/SegmentEffects.h"
+#include "core/segmentation/SegmentStatistics.h"
+
+namespace lucent::cli {
+namespace {
+
+std::string number(double v, int digits) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.*f", digits, v);
+    return text;
+}
+
+// key=value, as --stats prints it (the volume as volume_ml).
+std::string statsLine(const SegmentStatistics& s) {
+    return "voxels=" + std::to_string(s.voxels) + " volume_ml=" + number(s.volumeMl, 4) +
+           " mean=" + number(s.mean, 3) + " sd=" + number(s.standardDeviation, 3) +
+           " min=" + number(s.minimum, 3) + " max=" + number(s.maximum, 3) +
+           " median=" + number(s.median, 3) + " area_cm2=" + number(s.surfaceAreaCm2, 3) +
+           " diameter_mm=" + number(s.largestDiameterMm, 2);
+}
+
+std::pair<double, double> rangeFlag(const QCommandLineParser& p) {
+    const QStringList parts = p.value("threshold").split(',');
+    bool ok1 = false, ok2 = false;
+    const double lo = parts.size() == 2 ? parts[0].toDouble(&ok1) : 0.0;
+    const double hi = parts.size() == 2 ? parts[1].toDouble(&ok2) : 0.0;
+    if (!ok1 || !ok2 || lo > hi) {
+        throw UsageError("--threshold: '" + p.value("threshold").toStdString() +
+                         "' is not LO,HI with LO <= HI");
+    }
+    return {lo, hi};
+}
+
+bool niftiName(const QString& out) {
+    return out.endsWith(".nii") || out.endsWith(".nii.gz");
+}
+
+// The mask the flags ask for: threshold, then islands, then margin.
+SegmentMask maskOf(const QCommandLineParser& p, const Volume& volume) {
+    const auto [lo, hi] = rangeFlag(p);
+    SegmentMask mask = thresholdMask(volume, lo, hi);
+    if (p.isSet("keep-largest")) {
+        mask = keepLargestIsland(mask);
+    } else if (p.isSet("min-island-mm3")) {
+        mask = removeSmallIslands(mask, volume.geometry(), numberFlag(p, "min-island-mm3", 0.0));
+    }
+    if (const double mm = numberFlag(p, "margin", 0.0); mm != 0.0) {
+        mask = marginMask(mask, volume.geometry(), mm);
+    }
+    return mask;
+}
+
+} // namespace
+
+int runSegment(const QStringList& args) {
+    QCommandLineParser parser;
+    parser.setApplicationDescription(
+        "A segment of one series by threshold, islands and margin, written as a NIfTI labelmap "
+        "(label 1).");
+    parser.addPositionalArgument("PATH", "DICOM folder, file or DICOMDIR, or a volume file");
+    parser.addOption({"series", "Series id or UID (default: the largest volume).", "UID"});
+    parser.addOption({"threshold", "Voxels with LO <= value <= HI (HU for CT).", "LO,HI"});
+    parser.addOption({"keep-largest", "Keep the largest island (6-connected)."});
+    parser.addOption({"min-island-mm3", "Remove islands smaller than N mm^3.", "N"});
+    parser.addOption({"margin", "Grow (> 0) or shrink (< 0) by MM, exact Euclidean.", "MM"});
+    parser.addOption({"name", "The segment's name.", "NAME", "Segment"});
+    parser.addOption({{"o", "output"}, "The labelmap: .nii or .nii.gz.", "OUT"});
+    parser.addOption({"stats", "Print the statistics as key=value."});
+    parser.addHelpOption();
+    QTextStream err(stderr);
+    QTextStream out(stdout);
+    try {
+        if (!parser.parse(args)) {
+            throw UsageError(parser.errorText().toStdString());
+        }
+        if (parser.isSet("help")) {
+            out << parser.helpText();
+            return kOk;
+        }
+        const QStringList positional = parser.positionalArguments();
+        if (positional.size() != 1 || !parser.isSet("threshold") || !parser.isSet("output")) {
+            throw UsageError("expected PATH, --threshold LO,HI and -o OUT.nii[.gz]");
+        }
+        if (!niftiName(parser.value("output"))) {
+            throw UsageError("-o: '" + parser.value("output").toStdString() +
+                             "' must end in .nii or .nii.gz");
+        }
+        if (parser.isSet("keep-largest") && parser.isSet("min-island-mm3")) {
+            throw UsageError("--keep-largest and --min-island-mm3 exclude each other");
+        }
+        const Volume volume =
+            loadPath(positional[0].toStdString(), parser.value("series").toStdString());
+        SegmentMask mask = maskOf(parser, volume);
+        if (!mask.any()) {
+            err << "lucent-cli segment: no voxel left in " << positional[0] << " (threshold "
+                << parser.value("threshold") << "); nothing written\n";
+            return kBadInput;
+        }
+        Segmentation segmentation(volume.geometry());
+        const std::uint32_t id = segmentation.add(parser.value("name").toStdString());
+        segmentation.setMask(id, std::move(mask), "Threshold", "Lucent threshold");
+        writeNifti(parser.value("output").toStdString(), labelmapOf(segmentation));
+        if (parser.isSet("stats")) {
+            out << QString::fromStdString(
+                       statsLine(segmentStatistics(*segmentation.find(id)->mask, volume)))
+                << "\n";
+        }
+    } catch (const UsageError& e) {
+        err << "lucent-cli segment: " << e.what() << "\n";
+        return kUsage;
+    } catch (const std::exception& e) {
+        err << "lucent-cli segment: " << e.what() << "\n";
+        return kBadInput;
+    }
+    return kOk;
+}
+
+int runSegmentStats(const QStringList& args) {
+    QCommandLineParser parser;
+    parser.setApplicationDescription("The statistics of each label of a NIfTI labelmap on a "
+                                     "series: one key=value line per label.");
+    parser.addPositionalArgument("PATH", "the series the labels lie on");
+    parser.addPositionalArgument("LABELS", "a NIfTI labelmap (.nii, .nii.gz) on its grid");
+    parser.addOption({"series", "Series id or UID (default: the largest volume).", "UID"});
+    parser.addHelpOption();
+    QTextStream err(stderr);
+    QTextStream out(stdout);
+    try {
+        if (!parser.parse(args)) {
+            throw UsageError(parser.errorText().toStdString());
+        }
+        if (parser.isSet("help")) {
+            out << parser.helpText();
+            return kOk;
+        }
+        const QStringList positional = parser.positionalArguments();
+        if (positional.size() != 2) {
+            throw UsageError("expected PATH and LABELS");
+        }
+        const Volume volume =
+            loadPath(positional[0].toStdString(), parser.value("series").toStdString());
+        const Volume labels = readNifti(positional[1].toStdString());
+        Segmentation segmentation(volume.geometry());
+        try {
+            importLabelmap(segmentation, labels);
+        } catch (const std::invalid_argument& e) {
+            throw std::runtime_error(positional[1].toStdString() + ": " + e.what());
+        }
+        for (const Segment& s : segmentation.segments()) {
+            out << "label=\"" << QString::fromStdString(s.name) << "\" "
+                << QString::fromStdString(statsLine(segmentStatistics(*s.mask, volume))) << "\n";
+        }
+    } catch (const UsageError& e) {
+        err << "lucent-cli segment-stats: " << e.what() << "\n";
+        return kUsage;
+    } catch (const std::exception& e) {
+        err << "lucent-cli segment-stats: " << e.what() << "\n";
+        return kBadInput;
+    }
+    return kOk;
+}
+
+} // namespace lucent::cli
