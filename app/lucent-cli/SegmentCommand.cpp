@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
 
 #include "CliCommand.h"
 #include "core/formats/Nifti.h"
@@ -64,6 +65,30 @@ SegmentMask maskOf(const QCommandLineParser& p, const Volume& volume) {
     return mask;
 }
 
+// Parses, prints --help, runs `body` and turns its exceptions into the exit status:
+// UsageError 2, anything else 3, each with the message after "lucent-cli NAME: ".
+int guarded(const char* name, QCommandLineParser& parser, const QStringList& args,
+            const std::function<int(QTextStream& out, QTextStream& err)>& body) {
+    QTextStream err(stderr);
+    QTextStream out(stdout);
+    try {
+        if (!parser.parse(args)) {
+            throw UsageError(parser.errorText().toStdString());
+        }
+        if (parser.isSet("help")) {
+            out << parser.helpText();
+            return kOk;
+        }
+        return body(out, err);
+    } catch (const UsageError& e) {
+        err << "lucent-cli " << name << ": " << e.what() << "\n";
+        return kUsage;
+    } catch (const std::exception& e) {
+        err << "lucent-cli " << name << ": " << e.what() << "\n";
+        return kBadInput;
+    }
+}
+
 } // namespace
 
 int runSegment(const QStringList& args) {
@@ -81,16 +106,7 @@ int runSegment(const QStringList& args) {
     parser.addOption({{"o", "output"}, "The labelmap: .nii or .nii.gz.", "OUT"});
     parser.addOption({"stats", "Print the statistics as key=value."});
     parser.addHelpOption();
-    QTextStream err(stderr);
-    QTextStream out(stdout);
-    try {
-        if (!parser.parse(args)) {
-            throw UsageError(parser.errorText().toStdString());
-        }
-        if (parser.isSet("help")) {
-            out << parser.helpText();
-            return kOk;
-        }
+    return guarded("segment", parser, args, [&](QTextStream& out, QTextStream& err) {
         const QStringList positional = parser.positionalArguments();
         if (positional.size() != 1 || !parser.isSet("threshold") || !parser.isSet("output")) {
             throw UsageError("expected PATH, --threshold LO,HI and -o OUT.nii[.gz]");
@@ -119,14 +135,8 @@ int runSegment(const QStringList& args) {
                        statsLine(segmentStatistics(*segmentation.find(id)->mask, volume)))
                 << "\n";
         }
-    } catch (const UsageError& e) {
-        err << "lucent-cli segment: " << e.what() << "\n";
-        return kUsage;
-    } catch (const std::exception& e) {
-        err << "lucent-cli segment: " << e.what() << "\n";
-        return kBadInput;
-    }
-    return kOk;
+        return kOk;
+    });
 }
 
 int runSegmentStats(const QStringList& args) {
@@ -137,16 +147,7 @@ int runSegmentStats(const QStringList& args) {
     parser.addPositionalArgument("LABELS", "a NIfTI labelmap (.nii, .nii.gz) on its grid");
     parser.addOption({"series", "Series id or UID (default: the largest volume).", "UID"});
     parser.addHelpOption();
-    QTextStream err(stderr);
-    QTextStream out(stdout);
-    try {
-        if (!parser.parse(args)) {
-            throw UsageError(parser.errorText().toStdString());
-        }
-        if (parser.isSet("help")) {
-            out << parser.helpText();
-            return kOk;
-        }
+    return guarded("segment-stats", parser, args, [&](QTextStream& out, QTextStream&) {
         const QStringList positional = parser.positionalArguments();
         if (positional.size() != 2) {
             throw UsageError("expected PATH and LABELS");
@@ -164,14 +165,8 @@ int runSegmentStats(const QStringList& args) {
             out << "label=\"" << QString::fromStdString(s.name) << "\" "
                 << QString::fromStdString(statsLine(segmentStatistics(*s.mask, volume))) << "\n";
         }
-    } catch (const UsageError& e) {
-        err << "lucent-cli segment-stats: " << e.what() << "\n";
-        return kUsage;
-    } catch (const std::exception& e) {
-        err << "lucent-cli segment-stats: " << e.what() << "\n";
-        return kBadInput;
-    }
-    return kOk;
+        return kOk;
+    });
 }
 
 } // namespace lucent::cli
