@@ -29,8 +29,7 @@ std::vector<Measurement>::iterator MeasurementDocument::locate(std::uint64_t id)
 }
 
 void MeasurementDocument::record(std::string what) {
-    undo_.push_back({std::move(what), measurements_});
-    redo_.clear();
+    history_.record(std::move(what), measurements_);
     ++revision_;
 }
 
@@ -82,25 +81,17 @@ void MeasurementDocument::clear() {
 }
 
 bool MeasurementDocument::undo() {
-    if (undo_.empty()) {
+    if (!history_.undo(measurements_)) {
         return false;
     }
-    Step step = std::move(undo_.back());
-    undo_.pop_back();
-    std::swap(step.before, measurements_);
-    redo_.push_back(std::move(step));
     ++revision_;
     return true;
 }
 
 bool MeasurementDocument::redo() {
-    if (redo_.empty()) {
+    if (!history_.redo(measurements_)) {
         return false;
     }
-    Step step = std::move(redo_.back());
-    redo_.pop_back();
-    std::swap(step.before, measurements_);
-    undo_.push_back(std::move(step));
     ++revision_;
     return true;
 }
@@ -117,8 +108,7 @@ void MeasurementDocument::load(std::vector<Measurement> measurements) {
         }
     }
     measurements_ = std::move(measurements);
-    undo_.clear();
-    redo_.clear();
+    history_.clear();
     ++revision_;
 }
 

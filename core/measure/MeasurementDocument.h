@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "core/history/SnapshotHistory.h"
 #include "core/measure/Measurement.h"
 
 namespace lucent {
@@ -23,10 +24,10 @@ public:
     bool remove(std::uint64_t id);
     void clear();
 
-    bool canUndo() const { return !undo_.empty(); }
-    bool canRedo() const { return !redo_.empty(); }
-    std::string undoText() const { return canUndo() ? undo_.back().what : std::string(); }
-    std::string redoText() const { return canRedo() ? redo_.back().what : std::string(); }
+    bool canUndo() const { return history_.canUndo(); }
+    bool canRedo() const { return history_.canRedo(); }
+    std::string undoText() const { return history_.undoText(); }
+    std::string redoText() const { return history_.redoText(); }
     bool undo();
     bool redo();
 
@@ -38,16 +39,11 @@ public:
     std::uint64_t revision() const { return revision_; }
 
 private:
-    struct Step {
-        std::string what;
-        std::vector<Measurement> before;
-    };
     void record(std::string what);
     std::vector<Measurement>::iterator locate(std::uint64_t id);
 
     std::vector<Measurement> measurements_;
-    std::vector<Step> undo_;
-    std::vector<Step> redo_;
+    SnapshotHistory<std::vector<Measurement>> history_;
     std::uint64_t nextId_ = 1;
     std::uint64_t revision_ = 0;
 };

@@ -21,7 +21,7 @@ void keepDisplayFlags(std::vector<Segment>& restored, const std::vector<Segment>
 } // namespace
 
 Segmentation::Segmentation(const VolumeGeometry& grid, std::size_t historySteps)
-    : grid_(grid), historySteps_(std::max<std::size_t>(1, historySteps)) {}
+    : grid_(grid), history_(historySteps) {}
 
 const Segment* Segmentation::find(std::uint32_t id) const {
     const auto it = std::find_if(segments_.begin(), segments_.end(),
@@ -36,11 +36,7 @@ Segment* Segmentation::locate(std::uint32_t id) {
 }
 
 void Segmentation::record(std::string what) {
-    undo_.push_back({std::move(what), segments_});
-    if (undo_.size() > historySteps_) {
-        undo_.erase(undo_.begin());
-    }
-    redo_.clear();
+    history_.record(std::move(what), segments_);
     ++revision_;
 }
 
@@ -139,27 +135,21 @@ bool Segmentation::setMask(std::uint32_t id, SegmentMask mask, const std::string
 }
 
 bool Segmentation::undo() {
-    if (undo_.empty()) {
+    const std::vector<Segment> now = segments_;
+    if (!history_.undo(segments_)) {
         return false;
     }
-    Step step = std::move(undo_.back());
-    undo_.pop_back();
-    redo_.push_back({step.what, segments_});
-    keepDisplayFlags(step.before, segments_);
-    segments_ = std::move(step.before);
+    keepDisplayFlags(segments_, now);
     ++revision_;
     return true;
 }
 
 bool Segmentation::redo() {
-    if (redo_.empty()) {
+    const std::vector<Segment> now = segments_;
+    if (!history_.redo(segments_)) {
         return false;
     }
-    Step step = std::move(redo_.back());
-    redo_.pop_back();
-    undo_.push_back({step.what, segments_});
-    keepDisplayFlags(step.before, segments_);
-    segments_ = std::move(step.before);
+    keepDisplayFlags(segments_, now);
     ++revision_;
     return true;
 }

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/history/SnapshotHistory.h"
 #include "core/segmentation/SegmentCodes.h"
 #include "core/segmentation/SegmentMask.h"
 #include "core/volume/Volume.h"
@@ -57,10 +58,10 @@ public:
     bool setMask(std::uint32_t id, SegmentMask mask, const std::string& what,
                  const std::string& algorithm = {}, bool automatic = false);
 
-    bool canUndo() const { return !undo_.empty(); }
-    bool canRedo() const { return !redo_.empty(); }
-    std::string undoText() const { return canUndo() ? undo_.back().what : std::string(); }
-    std::string redoText() const { return canRedo() ? redo_.back().what : std::string(); }
+    bool canUndo() const { return history_.canUndo(); }
+    bool canRedo() const { return history_.canRedo(); }
+    std::string undoText() const { return history_.undoText(); }
+    std::string redoText() const { return history_.redoText(); }
     bool undo();
     bool redo();
 
@@ -68,18 +69,12 @@ public:
     std::uint64_t revision() const { return revision_; }
 
 private:
-    struct Step {
-        std::string what;
-        std::vector<Segment> before;
-    };
     void record(std::string what);
     Segment* locate(std::uint32_t id);
 
     VolumeGeometry grid_;
-    std::size_t historySteps_;
     std::vector<Segment> segments_;
-    std::vector<Step> undo_;
-    std::vector<Step> redo_;
+    SnapshotHistory<std::vector<Segment>> history_;
     std::uint32_t nextId_ = 1;
     std::uint64_t revision_ = 0;
 };
