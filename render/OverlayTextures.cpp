@@ -1,0 +1,59 @@
+#include "render/OverlayTextures.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "core/raycast/OverlaySampler.h"
+#include "render/GlError.h"
+
+namespace lucent {
+
+std::size_t OverlayTextures::update(const RenderOverlay& overlay, double stepRatio) {
+    std::size_t uploaded = 0;
+    const Volume& v = *overlay.volume;
+    if (volumeKey_ != &v || dims_ != v.dims() || volume_.get() == 0) {
+        volume_.reset();
+        volumeKey_ = nullptr;
+        const glm::ivec3 d = v.dims();
+        GlTexture t = makeTexture(GL_TEXTURE_3D);
+        glTextureParameteri(t.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTextureParameteri(t.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        for (const GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) {
+            glTextureParameteri(t.get(), wrap, GL_CLAMP_TO_EDGE);
+        }
+        glTextureStorage3D(t.get(), 1, GL_R32F, d.x, d.y, d.z);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        glTextureSubImage3D(t.get(), 0, 0, 0, 0, d.x, d.y, d.z, GL_RED, GL_FLOAT,
+                            v.voxels<float>().data());
+        checkGl("uploading the overlay volume");
+        volume_ = std::move(t);
+        volumeKey_ = &v;
+        dims_ = d;
+        bytes_ = v.byteCount();
+        uploaded += bytes_;
+    }
+    const auto key = std::tuple(overlay.style.colourMap, overlay.style.opacity, stepRatio);
+    if (tableKey_ != key || table_.get() == 0) {
+        const OverlayTable entries = overlayTable(overlay.style, stepRatio);
+        std::vector<glm::vec4> rows(2 * entries.size());
+        for (std::size_t i = 0; i < entries.size(); ++i) {
+            rows[i] = glm::vec4(entries[i].colour, entries[i].alpha);
+            rows[entries.size() + i] = glm::vec4(entries[i].colour, entries[i].rawAlpha);
+        }
+        table_ = makeTexture2D(GL_RGBA32F, int(entries.size()), 2);
+        glTextureSubImage2D(table_.get(), 0, 0, 0, int(entries.size()), 2, GL_RGBA, GL_FLOAT,
+                            rows.data());
+        checkGl("the overlay's table");
+        tableKey_ = key;
+        uploaded += rows.size() * sizeof(glm::vec4);
+    }
+    return uploaded;
+}
+
+void OverlayTextures::setUniforms(const ShaderProgram& p, const RenderOverlay& overlay) const {
+    p.set("uOverlayLow", float(overlay.style.center - 0.5 * overlay.style.width));
+    p.set("uOverlayWidth", float(std::max(overlay.style.width, 1e-9)));
+    p.set("uOverlayInvDims", 1.0f / glm::vec3(dims_));
+}
+
+} // namespace lucent

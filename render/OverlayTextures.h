@@ -1,0 +1,38 @@
+#pragma once
+// The overlay of a fused render (RenderOverlay, core/scene/RenderDescription.h) on the
+// GPU: its volume as one R32F 3D texture on the base's grid (trilinear, the base's level-0
+// index space), and its table (core/raycast/OverlaySampler.h: row 0 the colour and the
+// opacity corrected for the step, row 1 the raw opacity). The volume is uploaded when the
+// overlay is another Volume than the last (its address or grid), the table when the style
+// or step changed. Outside the brick pool's budget: the whole overlay, at full resolution.
+// Private to render/.
+
+#include <cstddef>
+#include <optional>
+#include <tuple>
+
+#include "core/scene/RenderDescription.h"
+#include "render/GlObjects_p.h"
+
+namespace lucent {
+
+class OverlayTextures {
+public:
+    // Uploads what changed; returns the bytes uploaded this frame. Throws GlError.
+    std::size_t update(const RenderOverlay& overlay, double stepRatio);
+    // Sets the shader's overlay uniforms (uOverlayLow, uOverlayWidth, uOverlayInvDims).
+    void setUniforms(const ShaderProgram& program, const RenderOverlay& overlay) const;
+
+    GLuint volume() const { return volume_.get(); }
+    GLuint table() const { return table_.get(); }
+    std::size_t bytes() const { return bytes_; } // GPU memory of the volume texture
+
+private:
+    GlTexture volume_, table_;
+    const Volume* volumeKey_ = nullptr;
+    glm::ivec3 dims_{0};
+    std::size_t bytes_ = 0;
+    std::optional<std::tuple<FusionColourMap, double, double>> tableKey_; // map, opacity, step
+};
+
+} // namespace lucent
