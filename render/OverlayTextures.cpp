@@ -11,9 +11,10 @@ namespace lucent {
 std::size_t OverlayTextures::update(const RenderOverlay& overlay, double stepRatio) {
     std::size_t uploaded = 0;
     const Volume& v = *overlay.volume;
-    if (volumeKey_ != &v || dims_ != v.dims() || volume_.get() == 0) {
+    const std::uint64_t fingerprint = overlayFingerprint(v);
+    if (fingerprint_ != fingerprint || volume_.get() == 0) {
         volume_.reset();
-        volumeKey_ = nullptr;
+        fingerprint_ = 0;
         const glm::ivec3 d = v.dims();
         GlTexture t = makeTexture(GL_TEXTURE_3D);
         glTextureParameteri(t.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
@@ -27,7 +28,7 @@ std::size_t OverlayTextures::update(const RenderOverlay& overlay, double stepRat
                             v.voxels<float>().data());
         checkGl("uploading the overlay volume");
         volume_ = std::move(t);
-        volumeKey_ = &v;
+        fingerprint_ = fingerprint;
         dims_ = d;
         bytes_ = v.byteCount();
         uploaded += bytes_;

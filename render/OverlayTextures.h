@@ -3,11 +3,12 @@
 // GPU: its volume as one R32F 3D texture on the base's grid (trilinear, the base's level-0
 // index space), and its table (core/raycast/OverlaySampler.h: row 0 the colour and the
 // opacity corrected for the step, row 1 the raw opacity). The volume is uploaded when the
-// overlay is another Volume than the last (its address or grid), the table when the style
-// or step changed. Outside the brick pool's budget: the whole overlay, at full resolution.
-// Private to render/.
+// overlay's fingerprint (OverlaySampler.h: address, grid, a hash of its values) changed, the
+// table when the map, the opacity or the step changed. Outside the brick pool's budget: the whole
+// overlay, at full resolution. Private to render/.
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <tuple>
 
@@ -29,7 +30,7 @@ public:
 
 private:
     GlTexture volume_, table_;
-    const Volume* volumeKey_ = nullptr;
+    std::uint64_t fingerprint_ = 0;
     glm::ivec3 dims_{0};
     std::size_t bytes_ = 0;
     std::optional<std::tuple<FusionColourMap, double, double>> tableKey_; // map, opacity, step

@@ -16,6 +16,7 @@
 #include "core/raycast/FastDvrKernel.h"
 #include "core/raycast/InvisibleCells.h"
 #include "core/raycast/LeapReach.h"
+#include "core/raycast/OverlayLeaping.h"
 #include "core/raycast/OverlaySampler.h"
 #include "core/raycast/PacketDvrKernel.h"
 #include "core/raycast/RayKernel.h"
@@ -53,6 +54,7 @@ struct CpuRayCaster::Cache {
     // Cells no sample can see (fast kernels), and the bounds they were found for.
     std::optional<std::pair<double, double>> invisibleBounds;
     InvisibleCells invisible;
+    OverlayLeaping overlayLeaping; // a fused DVR render's leaping decisions
 };
 
 namespace {
@@ -284,14 +286,23 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
         cache.fine = levelData(cells);
     }
     const LevelData &coarse = cache.coarse, &fine = cache.fine;
+    // A fused render leaps (DVR only) where neither the base nor the overlay shows
+    // (OverlayLeaping.h); MIP, MinIP and average with an overlay take every sample.
+    const bool fusedDvr = overlay != nullptr && desc.mode == RenderMode::Dvr;
+    const std::vector<std::uint8_t>* coarseSkip = &coarse.skippable;
+    const std::vector<std::uint8_t>* fineSkip = &fine.skippable;
+    if (fusedDvr && sampling.emptySpaceLeaping) {
+        OverlayLeaping& o = cache.overlayLeaping;
+        coarseSkip = &o.skippable(*overlay, desc.overlay.style, grid, coarse.skippable, 0);
+        fineSkip = &o.skippable(*overlay, desc.overlay.style, cells, fine.skippable, 1);
+    }
     auto setLevels = [&](auto& s) {
-        // Cells empty for the base may show the overlay: a fused render leaps nowhere.
-        s.leap = sampling.emptySpaceLeaping && overlay == nullptr;
+        s.leap = sampling.emptySpaceLeaping && (overlay == nullptr || fusedDvr);
         using Real = decltype(s.earlyTermination);
         s.levels[0] = {grid.brickSize(), Real(1) / Real(grid.brickSize()), grid.bricksPerAxis(),
-                       &coarse.skippable, &coarse.range};
+                       coarseSkip, &coarse.range};
         s.levels[1] = {cells.brickSize(), Real(1) / Real(cells.brickSize()), cells.bricksPerAxis(),
-                       &fine.skippable, &fine.range};
+                       fineSkip, &fine.range};
     };
     setLevels(sf);
     setLevels(sd);

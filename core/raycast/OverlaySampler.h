@@ -1,6 +1,7 @@
 #pragma once
 // The overlay of a fused render (RenderOverlay in core/scene/RenderDescription.h) as the
-// CPU ray kernels sample it. Private to core/raycast.
+// CPU ray kernels sample it; its table and fingerprint serve the GPU's too
+// (render/OverlayTextures).
 //
 // Mixing rule, one lattice sample (both ray casters):
 //  - the overlay's value v (trilinear; NaN outside the overlay: no contribution) picks entry
@@ -19,13 +20,17 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
+#include <span>
 
 #include <glm/glm.hpp>
 
 #include "core/fusion/FusionColourMap.h"
 #include "core/fusion/FusionStyle.h"
 #include "core/raycast/VolumeFields.h"
+#include "core/volume/Volume.h"
 
 namespace lucent {
 
@@ -49,6 +54,31 @@ inline OverlayTable overlayTable(const FusionStyle& style, double stepRatio) {
         t[i].alpha = a <= 0.0 ? 0.0f : float(1.0 - std::pow(1.0 - std::min(a, 1.0), stepRatio));
     }
     return t;
+}
+
+// What tells one overlay volume from another for the casters' caches: its address, its
+// voxels' address, its grid and a hash of 4096 of its values spread over it. (A view
+// that resamples its overlay anew usually gets a new Volume; one that reuses an address
+// with other values is told apart by the hash.)
+inline std::uint64_t overlayFingerprint(const Volume& overlay) {
+    std::uint64_t h = 1469598103934665603ull; // FNV-1a
+    const auto mix = [&h](std::uint64_t v) {
+        for (int b = 0; b < 8; ++b) {
+            h = (h ^ ((v >> (8 * b)) & 0xffu)) * 1099511628211ull;
+        }
+    };
+    mix(reinterpret_cast<std::uintptr_t>(&overlay));
+    mix(reinterpret_cast<std::uintptr_t>(overlay.bytes().data()));
+    const glm::ivec3 d = overlay.dims();
+    mix(std::uint64_t(d.x) | std::uint64_t(d.y) << 21 | std::uint64_t(d.z) << 42);
+    const std::span<const std::byte> bytes = overlay.bytes();
+    const std::size_t step = std::max<std::size_t>(8, bytes.size() / 4096 / 8 * 8);
+    for (std::size_t at = 0; at + 8 <= bytes.size(); at += step) {
+        std::uint64_t v = 0;
+        std::memcpy(&v, bytes.data() + at, 8);
+        mix(v);
+    }
+    return h;
 }
 
 // What a kernel without an overlay carries: nothing.

@@ -13,8 +13,9 @@
 namespace lucent {
 
 // Overlay: NoOverlay, or OverlaySampler<Real> for a fused render (OverlaySampler.h has the
-// mixing rule; the setup then has leaping off, since a cell empty for the base may show the
-// overlay). Without an overlay the kernel is the plain one: every overlay branch is constexpr.
+// mixing rule; the setup leaps only where the overlay shows nothing either, OverlayLeaping.h,
+// and not at all in MIP, MinIP and average). Without an overlay the kernel is the plain one:
+// every overlay branch is constexpr.
 template <class Real, class Field, class Overlay = NoOverlay> class RayKernel {
     static constexpr long kPrefetchAhead = 16;
 

@@ -126,6 +126,34 @@ private slots:
         QVERIFY(fused.stats.samples >= base.stats.samples);
     }
 
+    // A fused DVR render leaps only where neither the base nor the overlay shows: the
+    // same picture as taking every sample, from fewer samples.
+    void fusedLeapingChangesNoPixel_data() {
+        QTest::addColumn<int>("interp");
+        QTest::addColumn<double>("center");
+        QTest::newRow("linear-bone") << int(Interpolation::Linear) << 300.0;
+        QTest::newRow("linear-soft-tissue") << int(Interpolation::Linear) << 40.0;
+        QTest::newRow("cubic-bone") << int(Interpolation::Cubic) << 300.0;
+    }
+    void fusedLeapingChangesNoPixel() {
+        QFETCH(int, interp);
+        QFETCH(double, center);
+        RenderDescription d = describe(RenderMode::Dvr);
+        d.sampling.interpolation = Interpolation(interp);
+        d.sampling.brickSize = 16;
+        d.overlay.volume = &overlay_;
+        d.overlay.style.center = center;
+        d.overlay.style.width = 400.0;
+        d.overlay.style.opacity = 0.5;
+        CpuRayCaster caster(ct_);
+        const RenderResult leapt = caster.render(d);
+        d.sampling.emptySpaceLeaping = false;
+        const RenderResult every = caster.render(d);
+        QVERIFY(leapt.premultiplied == every.premultiplied);
+        qInfo("%zu samples leaping, %zu without", leapt.stats.samples, every.stats.samples);
+        QVERIFY(leapt.stats.samples < every.stats.samples);
+    }
+
     // The fast (SIMD) kernel draws the base; the fused one the same picture within its
     // float rounding.
     void opacityZeroMatchesTheFastKernel() {
