@@ -23,6 +23,25 @@ void addOverlayFlags(QCommandLineParser& parser) {
     });
 }
 
+std::string renderOverlayUsage(const QCommandLineParser& parser) {
+    if (!parser.isSet("overlay")) {
+        for (const char* flag : {"overlay-map", "overlay-window", "overlay-opacity"}) {
+            if (parser.isSet(flag)) {
+                return std::string("--") + flag + " needs --overlay PATH";
+            }
+        }
+        return {};
+    }
+    if (parser.isSet("distributed")) {
+        return "--overlay is drawn by the cpu and gl backends only, not --distributed";
+    }
+    const QString backend = parser.value("backend");
+    if (backend.startsWith("ws://") || backend.startsWith("wss://")) {
+        return "--overlay is drawn by the cpu and gl backends only, not a render server";
+    }
+    return {};
+}
+
 glm::dmat4 baseToOverlay(const QCommandLineParser& parser, const Volume& base,
                          const Volume& overlay) {
     if (parser.isSet("transform")) {

@@ -7,6 +7,7 @@
 #include <QCommandLineParser>
 
 #include <optional>
+#include <string>
 
 #include <glm/glm.hpp>
 
@@ -17,6 +18,11 @@ namespace lucent::cli {
 
 // Adds --overlay, --overlay-series and --transform.
 void addOverlayFlags(QCommandLineParser& parser);
+
+// Why render's command line cannot take its overlay flags ("" when it can): a flag of the
+// overlay's style (--overlay-map, --overlay-window, --overlay-opacity) without --overlay, or
+// --overlay with --distributed or a render server (ws://, wss://).
+std::string renderOverlayUsage(const QCommandLineParser& parser);
 
 // The base -> overlay transform: the matrix of --transform (core/fusion/TransformFile.h),
 // else the identity when both series name the same Frame of Reference. Throws

@@ -84,17 +84,8 @@ int runRender(const QStringList& args) {
         return kUsage;
     }
     const QString backend = parser.value("backend");
-    if (!parser.isSet("overlay")) {
-        for (const char* flag : {"overlay-map", "overlay-window", "overlay-opacity"}) {
-            if (parser.isSet(flag)) {
-                err << "lucent-cli render: --" << flag << " needs --overlay PATH\n";
-                return kUsage;
-            }
-        }
-    } else if (parser.isSet("distributed") || backend.startsWith("ws://") ||
-               backend.startsWith("wss://")) {
-        err << "lucent-cli render: --overlay is drawn by the cpu and gl backends only, not "
-            << (parser.isSet("distributed") ? "--distributed" : "a render server") << "\n";
+    if (const std::string why = renderOverlayUsage(parser); !why.empty()) {
+        err << "lucent-cli render: " << QString::fromStdString(why) << "\n";
         return kUsage;
     }
     if (parser.isSet("distributed")) {
