@@ -486,7 +486,7 @@ GpuRenderResult GpuRayCaster::cast(const RenderDescription& asked, bool countRow
         "\n#define LUCENT_PRECLASSIFY " + flag(sampling.classification == Classification::Pre) +
         "\n#define LUCENT_PREINTEGRATE " + flag(preintegrate) + "\n#define LUCENT_SHADING " +
         flag(desc.transferFunction.shading.enabled) + "\n#define LUCENT_LEAP " +
-        flag(sampling.emptySpaceLeaping && overlay == nullptr) +
+        flag(sampling.emptySpaceLeaping && (overlay == nullptr || desc.mode == RenderMode::Dvr)) +
         "\n#define LUCENT_CELLS_IN_ONE_BRICK " + flag(table.brickSize % kCellSize == 0) +
         "\n#define LUCENT_GRADIENT_TEXTURE " + flag(pool.hasGradients()) +
         "\n#define LUCENT_GRADIENT_IN_POOL " + flag(pool.gradientsShareTexture()) +
@@ -503,6 +503,7 @@ GpuRenderResult GpuRayCaster::cast(const RenderDescription& asked, bool countRow
     }
     if (overlay != nullptr) {
         out.gpu.bytesUploaded += s.overlay.update(desc.overlay, sampling.step);
+        s.overlay.updateLeaping(desc.overlay, kCellSize, cellsPer, table.brickSize, per);
     }
     const ShaderProgram& p = *program;
     p.use();
@@ -565,6 +566,8 @@ GpuRenderResult GpuRayCaster::cast(const RenderDescription& asked, bool countRow
         {"uSurfaceDistance", s.surface ? s.surfaceRenderer->distance() : 0},
         {"uOverlay", overlay != nullptr ? s.overlay.volume() : 0},
         {"uOverlayTable", overlay != nullptr ? s.overlay.table() : 0},
+        {"uOverlayEmptyCells", overlay != nullptr ? s.overlay.emptyCells() : 0},
+        {"uOverlayEmptyBricks", overlay != nullptr ? s.overlay.emptyBricks() : 0},
     };
     for (int u = 0; u < int(std::size(units)); ++u) {
         glBindTextureUnit(GLuint(u), units[u].second);

@@ -55,6 +55,11 @@ uniform sampler3D uOverlay;
 uniform sampler2D uOverlayTable;
 uniform float uOverlayLow, uOverlayWidth;
 uniform vec3 uOverlayInvDims;
+// Fused DVR leaps only where the overlay shows nothing either: 1 per leaping cell
+// and per page where every overlay voxel its samples can read lies below the
+// window's first visible entry (render/OverlayTextures.h).
+uniform usampler3D uOverlayEmptyCells;
+uniform usampler3D uOverlayEmptyBricks;
 uniform float uEarlyTermination, uIso;
 uniform vec4 uLight; // ambient, diffuse, specular, specular power
 uniform mat3 uGradientToWorld;
@@ -563,10 +568,14 @@ void castRay() {
                     lo = vec3(c * uCellSize);
                     hi = lo + float(uCellSize);
                 } else if (code != 0u && kMode != kAverage) {
-                    leap = true;
                     ivec3 b = brickOf(p);
-                    lo = vec3(code == 2u ? b * uBrickSize : c * uCellSize);
-                    hi = lo + float(code == 2u ? uBrickSize : uCellSize);
+                    // With an overlay: the brick only where it is empty too, else
+                    // the cell (code 2 lets the base leap every cell of the brick).
+                    bool brick = code == 2u &&
+                                 (!kOverlay || texelFetch(uOverlayEmptyBricks, b, 0).r != 0u);
+                    leap = brick || !kOverlay || texelFetch(uOverlayEmptyCells, c, 0).r != 0u;
+                    lo = vec3(brick ? b * uBrickSize : c * uCellSize);
+                    hi = lo + float(brick ? uBrickSize : uCellSize);
                 }
             }
             if (leap) {

@@ -3,8 +3,8 @@
 // onto its own grid) and with a copy shifted half off the grid (NaN there): DVR with every
 // filter, pre-integration, MIP and average, each colour map. Bounds: PSNR 50 dB and SSIM
 // 0.995 (llvmpipe gives 76 dB and more; the unfused images keep to 40 dB). Opacity 0
-// gives the GPU's base image; a frame drawn in place is cast again when only the overlay
-// changed.
+// gives the GPU's base image; fused leaping changes no pixel; a frame drawn in place is
+// cast again when only the overlay changed.
 #include <QTest>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -117,6 +117,24 @@ private slots:
             d.overlay.style.opacity = 0.0;
             const RenderResult fused = gpu.render(d);
             QCOMPARE(maxDifference(fused.premultiplied, base.premultiplied), 0.0f);
+        }
+    }
+
+    // Fused DVR leaps where neither the base nor the overlay shows: the same picture as
+    // taking every sample (a bone and a soft-tissue window; the shifted overlay shows where
+    // the base has air), from fewer samples.
+    void fusedLeapingChangesNoPixel() {
+        GpuRayCaster gpu(ct_);
+        for (const double center : {300.0, 40.0}) {
+            RenderDescription d = describe(RenderMode::Dvr, &shifted_);
+            d.overlay.style.center = center;
+            const RenderResult leapt = gpu.render(d);
+            d.sampling.emptySpaceLeaping = false;
+            const RenderResult every = gpu.render(d);
+            qInfo("window centre %g: %zu samples leaping, %zu without", center, leapt.stats.samples,
+                  every.stats.samples);
+            QCOMPARE(maxDifference(leapt.premultiplied, every.premultiplied), 0.0f);
+            QVERIFY(leapt.stats.samples < every.stats.samples);
         }
     }
 

@@ -45,6 +45,7 @@ class TestFusionRender : public QObject {
 
     Volume ct_;
     Volume overlay_; // the CT on its own grid, Float32
+    Volume shifted_; // the CT shifted 60 mm along x: it shows where the base has air
 
     RenderDescription describe(RenderMode mode) const {
         RenderDescription d;
@@ -82,6 +83,8 @@ private slots:
         QCOMPARE(ct_.dims(), glm::ivec3(512, 512, 28));
         overlay_ = resampleOverlay(ct_, ct_.geometry(), glm::dmat4(1.0));
         QCOMPARE(overlay_.type(), VoxelType::Float32);
+        shifted_ = resampleOverlay(ct_, ct_.geometry(),
+                                   glm::translate(glm::dmat4(1.0), glm::dvec3(60.0, 0.0, 0.0)));
     }
 
     void opacityZeroIsTheBaseImage_data() {
@@ -127,7 +130,8 @@ private slots:
     }
 
     // A fused DVR render leaps only where neither the base nor the overlay shows: the
-    // same picture as taking every sample, from fewer samples.
+    // same picture as taking every sample, from fewer samples. The shifted overlay shows
+    // where the base has air, so leaping the base's empty cells alone would show.
     void fusedLeapingChangesNoPixel_data() {
         QTest::addColumn<int>("interp");
         QTest::addColumn<double>("center");
@@ -141,7 +145,7 @@ private slots:
         RenderDescription d = describe(RenderMode::Dvr);
         d.sampling.interpolation = Interpolation(interp);
         d.sampling.brickSize = 16;
-        d.overlay.volume = &overlay_;
+        d.overlay.volume = &shifted_;
         d.overlay.style.center = center;
         d.overlay.style.width = 400.0;
         d.overlay.style.opacity = 0.5;
