@@ -57,6 +57,7 @@ std::string optionText(const Json& value, const RenderOption& o, const std::stri
         return value.get<bool>() ? "true" : "false";
     case OptionKind::Size:
     case OptionKind::Box:
+    case OptionKind::Window:
         break;
     }
     throw std::logic_error("the image size and clip box travel in their own messages, not " + type);
@@ -81,6 +82,7 @@ Json optionJson(const OptionValue& v) {
         return t == "true";
     case OptionKind::Size:
     case OptionKind::Box:
+    case OptionKind::Window:
         break;
     }
     throw std::logic_error("the image size and clip box travel in their own messages");

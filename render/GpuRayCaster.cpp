@@ -14,9 +14,11 @@
 #include "core/raycast/BrickVisibility.h"
 #include "core/scene/ViewFrame.h"
 #include "render/BrickStreamer.h"
+#include "render/CastKey_p.h"
 #include "render/GlError.h"
 #include "render/GlObjects_p.h"
 #include "render/GpuBudget.h"
+#include "render/OverlayTextures.h"
 #include "render/RenderTarget.h"
 #include "render/SceneTextures.h"
 #include "render/SurfaceRenderer.h"
@@ -49,34 +51,6 @@ int shaderMode(RenderMode m) {
         break;
     }
     return 4;
-}
-
-// The fields of a description that decide the ray cast (all but the
-// background): the structured bindings name every field, so that a field
-// added to one of these structs fails to compile here until it is compared.
-auto castFields(const Camera& c) {
-    const auto& [azimuth, elevation, zoom, fieldOfView, distance, panRight, panUp] = c;
-    return std::tie(azimuth, elevation, zoom, fieldOfView, distance, panRight, panUp);
-}
-auto castFields(const ClipBox& c) {
-    const auto& [lo, hi] = c;
-    return std::tie(lo, hi);
-}
-auto castFields(const SamplingSettings& s) {
-    const auto& [step, interpolation, classification, preintegrate, earlyTermination, brickSize,
-                 emptySpaceLeaping, precision, simd] = s;
-    return std::tie(step, interpolation, classification, preintegrate, earlyTermination, brickSize,
-                    emptySpaceLeaping, precision, simd);
-}
-// Whether a and b (of a caster's own volume: null or that one) cast the same frame.
-bool sameCast(const RenderDescription& a, const RenderDescription& b) {
-    const auto& [volume, transferFunction, camera, mode, isoValue, clip, sampling, width, height,
-                 background] = a;
-    (void)volume;     // both are the caster's
-    (void)background; // composited after the cast
-    return transferFunction == b.transferFunction && castFields(camera) == castFields(b.camera) &&
-           mode == b.mode && isoValue == b.isoValue && castFields(clip) == castFields(b.clip) &&
-           castFields(sampling) == castFields(b.sampling) && width == b.width && height == b.height;
 }
 
 // What refining a brick is worth before its content: the projected size of a
@@ -156,6 +130,7 @@ struct GpuRayCaster::State {
     GpuFrameStats last;                      // the last frame's
     std::unique_ptr<BrickStreamer> streamer; // the bricks on the GPU
     SceneTextures scene;
+    OverlayTextures overlay;                       // a fused render's second volume and its table
     std::shared_ptr<const SurfaceDisplay> surface; // drawn with the volume; null: none
     std::unique_ptr<SurfaceRenderer> surfaceRenderer;
 
@@ -313,7 +288,7 @@ RenderStats GpuRayCaster::drawInPlace(const RenderDescription& desc,
                                     std::to_string(target.height) + " is empty");
     }
     State& s = *state_;
-    const bool newCast = !s.inTarget || !sameCast(*s.inTarget, desc);
+    const bool newCast = !s.inTarget || !castkey::sameCast(*s.inTarget, desc);
     if (newCast) {
         s.inTargetStats = cast(desc, true).frame.stats;
     }
@@ -402,6 +377,11 @@ GpuRenderResult GpuRayCaster::cast(const RenderDescription& asked, bool countRow
     }
     if (desc.volume != nullptr && desc.volume != &s.volume) {
         throw std::invalid_argument("render description names another volume than this caster's");
+    }
+    const Volume* overlay = desc.overlay.volume;
+    if (overlay != nullptr && (s.part || overlay->dims() != s.volume.dims())) {
+        throw std::invalid_argument(s.part ? "a part of a distributed render draws no overlay"
+                                           : "the overlay's grid is not this caster's volume's");
     }
     if (s.surface && !s.surface->showVolume) { // the surface alone: no bricks, no rays
         s.inTarget.reset();
@@ -506,19 +486,24 @@ GpuRenderResult GpuRayCaster::cast(const RenderDescription& asked, bool countRow
         "\n#define LUCENT_PRECLASSIFY " + flag(sampling.classification == Classification::Pre) +
         "\n#define LUCENT_PREINTEGRATE " + flag(preintegrate) + "\n#define LUCENT_SHADING " +
         flag(desc.transferFunction.shading.enabled) + "\n#define LUCENT_LEAP " +
-        flag(sampling.emptySpaceLeaping) + "\n#define LUCENT_CELLS_IN_ONE_BRICK " +
-        flag(table.brickSize % kCellSize == 0) + "\n#define LUCENT_GRADIENT_TEXTURE " +
-        flag(pool.hasGradients()) + "\n#define LUCENT_GRADIENT_IN_POOL " +
-        flag(pool.gradientsShareTexture()) + "\n#define LUCENT_SPECULAR_INT " +
+        flag(sampling.emptySpaceLeaping && (overlay == nullptr || desc.mode == RenderMode::Dvr)) +
+        "\n#define LUCENT_CELLS_IN_ONE_BRICK " + flag(table.brickSize % kCellSize == 0) +
+        "\n#define LUCENT_GRADIENT_TEXTURE " + flag(pool.hasGradients()) +
+        "\n#define LUCENT_GRADIENT_IN_POOL " + flag(pool.gradientsShareTexture()) +
+        "\n#define LUCENT_SPECULAR_INT " +
         std::to_string(integerPower(desc.transferFunction.shading)) +
         "\n#define LUCENT_ROW_SAMPLES " + flag(countRows) + "\n#define LUCENT_SURFACE " +
-        flag(s.surface != nullptr) + "\n";
+        flag(s.surface != nullptr) + "\n#define LUCENT_OVERLAY " + flag(overlay != nullptr) + "\n";
     auto& program = s.programs[defines];
     if (!program) {
         program = std::make_unique<ShaderProgram>("raycast.vert", "raycast.frag", defines);
     }
     if (s.surface) { // its own program and framebuffer: before the rays' are set
         out.gpu.surfaceBytesUploaded = s.drawSurface(desc);
+    }
+    if (overlay != nullptr) {
+        out.gpu.bytesUploaded += s.overlay.update(desc.overlay, sampling.step);
+        s.overlay.updateLeaping(desc.overlay, kCellSize, cellsPer, table.brickSize, per);
     }
     const ShaderProgram& p = *program;
     p.use();
@@ -564,6 +549,9 @@ GpuRenderResult GpuRayCaster::cast(const RenderDescription& asked, bool countRow
     p.set("uCellSize", kCellSize);
     p.set("uInvCellSize", 1.0f / float(kCellSize));
     p.set("uCellsPerAxis", cellsPer);
+    if (overlay != nullptr) {
+        s.overlay.setUniforms(p, desc.overlay);
+    }
     // Texture units, in the order of the samplers' names.
     const std::pair<const char*, GLuint> units[] = {
         {"uPageTable", s.scene.pageTable()},
@@ -576,6 +564,10 @@ GpuRenderResult GpuRayCaster::cast(const RenderDescription& asked, bool countRow
         {"uGradientPool", pool.hasGradients() ? pool.gradientTexture() : pool.texture()},
         {"uSurfaceColour", s.surface ? s.surfaceRenderer->colour() : 0},
         {"uSurfaceDistance", s.surface ? s.surfaceRenderer->distance() : 0},
+        {"uOverlay", overlay != nullptr ? s.overlay.volume() : 0},
+        {"uOverlayTable", overlay != nullptr ? s.overlay.table() : 0},
+        {"uOverlayEmptyCells", overlay != nullptr ? s.overlay.emptyCells() : 0},
+        {"uOverlayEmptyBricks", overlay != nullptr ? s.overlay.emptyBricks() : 0},
     };
     for (int u = 0; u < int(std::size(units)); ++u) {
         glBindTextureUnit(GLuint(u), units[u].second);

@@ -206,6 +206,14 @@ int runMovie(const QStringList& args) {
         err << "lucent-cli movie: expected PATH and -o OUT.mp4|OUT.webm|OUT.gif\n";
         return kUsage;
     }
+    // The table's overlay rows come with the render flags; a movie has no --overlay yet.
+    for (const char* flag : {"overlay-map", "overlay-window", "overlay-opacity"}) {
+        if (parser.isSet(flag)) {
+            err << "lucent-cli movie: --" << flag
+                << ": movies draw no overlay (lucent-cli render --overlay does)\n";
+            return kUsage;
+        }
+    }
     const std::string output = parser.value("output").toStdString();
     MovieRequest request;
     try {

@@ -5,10 +5,6 @@
 // --sro also writes it as a DICOM Spatial Registration object (core/exchange) in the
 // fixed series' study and Frame of Reference.
 #include <QCommandLineParser>
-#include <QFile>
-#include <QJsonArray>
-#include <QJsonDocument>
-#include <QJsonObject>
 #include <QTextStream>
 
 #include <set>
@@ -17,6 +13,7 @@
 #include "CliCommand.h"
 #include "core/exchange/InstanceFiles.h"
 #include "core/exchange/SpatialRegistrationWriter.h"
+#include "core/fusion/TransformFile.h"
 #include "core/io/Catalog.h"
 #include "core/registration/Registration.h"
 
@@ -123,17 +120,13 @@ int runRegister(const QStringList& args) {
         err << "lucent-cli register: " << e.what() << "\n";
         return kBadInput;
     }
-    QJsonArray rows;
     QTextStream out(stdout);
     out << "fixed -> moving (LPS mm):\n";
     for (int row = 0; row < 4; ++row) {
-        QJsonArray values;
         for (int c = 0; c < 4; ++c) {
-            values.append(r.fixedToMoving[c][row]);
             out << QString("%1").arg(r.fixedToMoving[c][row], 12, 'f', 6);
         }
         out << "\n";
-        rows.append(values);
     }
     out << "metric " << metricName(options.metric) << " " << r.metric << ", " << r.iterations
         << " iterations, " << QString::number(r.seconds, 'f', 2) << " s"
@@ -144,18 +137,12 @@ int runRegister(const QStringList& args) {
             << " seconds=" << QString::number(r.seconds, 'f', 3)
             << " converged=" << (r.converged ? 1 : 0) << "\n";
     }
-    const QJsonObject root{{"matrix", rows},
-                           {"convention", "fixed LPS mm -> moving LPS mm, row-major rows"},
-                           {"metric_name", metricName(options.metric)},
-                           {"metric", r.metric},
-                           {"iterations", r.iterations},
-                           {"seconds", r.seconds},
-                           {"converged", r.converged},
-                           {"reason", QString::fromStdString(r.reason)}};
-    QFile file(parser.value("output"));
-    if (!file.open(QIODevice::WriteOnly) ||
-        file.write(QJsonDocument(root).toJson(QJsonDocument::Indented)) < 0) {
-        err << "lucent-cli register: cannot write " << parser.value("output") << "\n";
+    try {
+        writeTransformFile(parser.value("output").toStdString(), r.fixedToMoving,
+                           TransformFileFacts{metricName(options.metric), r.metric, r.iterations,
+                                              r.seconds, r.converged, r.reason});
+    } catch (const TransformFileError& e) {
+        err << "lucent-cli register: " << e.what() << "\n";
         return kBadInput;
     }
     if (parser.isSet("sro")) {

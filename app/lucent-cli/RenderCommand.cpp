@@ -11,10 +11,12 @@
 #include "CliCommand.h"
 #include "DistributedRender.h"
 #include "FrameSeries.h"
+#include "OverlayFlags.h"
 #include "QualityOption.h"
 #include "RemoteRender.h"
 #include "RenderFlags.h"
 #include "TerminalProgress.h"
+#include "core/fusion/OverlayResampler.h"
 #include "core/image/PngIO.h"
 #include "core/io/Catalog.h"
 #include "core/quality/SceneCost.h"
@@ -66,6 +68,7 @@ int runRender(const QStringList& args) {
                         "composites, rank 0 writes OUT.png (docs/distributed.md)."},
     });
     addRenderFlags(parser);
+    addOverlayFlags(parser);
     parser.addHelpOption();
     QTextStream err(stderr);
     if (!parser.parse(args)) {
@@ -80,10 +83,14 @@ int runRender(const QStringList& args) {
         err << "lucent-cli render: expected PATH and -o OUT.png\n";
         return kUsage;
     }
+    const QString backend = parser.value("backend");
+    if (const std::string why = renderOverlayUsage(parser); !why.empty()) {
+        err << "lucent-cli render: " << QString::fromStdString(why) << "\n";
+        return kUsage;
+    }
     if (parser.isSet("distributed")) {
         return runDistributedRender(parser);
     }
-    const QString backend = parser.value("backend");
     if (backend.startsWith("ws://") || backend.startsWith("wss://")) {
         return renderRemote(parser, err);
     }
@@ -143,11 +150,17 @@ int runRender(const QStringList& args) {
     QElapsedTimer timer;
     timer.start();
     Volume volume;
+    std::optional<Volume> overlay; // on the volume's grid
     const TerminalProgress progress;
     try {
         volume = loadPath(parser.positionalArguments()[0].toStdString(),
                           parser.value("series").toStdString(), progress.control());
+        overlay = loadOverlay(parser, volume, kOverlayFill, progress.control());
         progress.finish();
+    } catch (const UsageError& e) {
+        progress.finish();
+        err << "lucent-cli render: " << e.what() << "\n";
+        return kUsage;
     } catch (const std::exception& e) {
         progress.finish();
         err << "lucent-cli render: " << e.what() << "\n";
@@ -157,6 +170,10 @@ int runRender(const QStringList& args) {
 
     try {
         RenderDescription desc = describeFromFlags(parser, volume);
+        if (overlay) {
+            desc.overlay.volume = &*overlay;
+            resolveOverlayWindow(desc.overlay);
+        }
         desc.validate();
         // The GL backend needs an EGL context; without one the CPU renders, and says so.
         const std::unique_ptr<RenderDevice> device = RenderDevice::open(kind);

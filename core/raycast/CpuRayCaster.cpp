@@ -16,6 +16,8 @@
 #include "core/raycast/FastDvrKernel.h"
 #include "core/raycast/InvisibleCells.h"
 #include "core/raycast/LeapReach.h"
+#include "core/raycast/OverlayLeaping.h"
+#include "core/raycast/OverlaySampler.h"
 #include "core/raycast/PacketDvrKernel.h"
 #include "core/raycast/RayKernel.h"
 #include "core/scene/ViewFrame.h"
@@ -52,6 +54,7 @@ struct CpuRayCaster::Cache {
     // Cells no sample can see (fast kernels), and the bounds they were found for.
     std::optional<std::pair<double, double>> invisibleBounds;
     InvisibleCells invisible;
+    OverlayLeaping overlayLeaping; // a fused DVR render's leaping decisions
 };
 
 namespace {
@@ -114,6 +117,13 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
     desc.validate();
     if (desc.volume != nullptr && desc.volume != &volume_) {
         throw std::invalid_argument("render description names another volume than this caster's");
+    }
+    const Volume* overlay = desc.overlay.volume;
+    if (overlay != nullptr && overlay->dims() != volume_.dims()) {
+        throw std::invalid_argument("the overlay's grid is not this caster's volume's");
+    }
+    if (overlay != nullptr && part_) {
+        throw std::invalid_argument("a part of a distributed render draws no overlay");
     }
     const VolumeGeometry& g = volume_.geometry();
     const SamplingSettings& sampling = desc.sampling;
@@ -276,13 +286,23 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
         cache.fine = levelData(cells);
     }
     const LevelData &coarse = cache.coarse, &fine = cache.fine;
+    // A fused render leaps (DVR only) where neither the base nor the overlay shows
+    // (OverlayLeaping.h); MIP, MinIP and average with an overlay take every sample.
+    const bool fusedDvr = overlay != nullptr && desc.mode == RenderMode::Dvr;
+    const std::vector<std::uint8_t>* coarseSkip = &coarse.skippable;
+    const std::vector<std::uint8_t>* fineSkip = &fine.skippable;
+    if (fusedDvr && sampling.emptySpaceLeaping) {
+        OverlayLeaping& o = cache.overlayLeaping;
+        coarseSkip = &o.skippable(*overlay, desc.overlay.style, grid, coarse.skippable, 0);
+        fineSkip = &o.skippable(*overlay, desc.overlay.style, cells, fine.skippable, 1);
+    }
     auto setLevels = [&](auto& s) {
-        s.leap = sampling.emptySpaceLeaping;
+        s.leap = sampling.emptySpaceLeaping && (overlay == nullptr || fusedDvr);
         using Real = decltype(s.earlyTermination);
         s.levels[0] = {grid.brickSize(), Real(1) / Real(grid.brickSize()), grid.bricksPerAxis(),
-                       &coarse.skippable, &coarse.range};
+                       coarseSkip, &coarse.range};
         s.levels[1] = {cells.brickSize(), Real(1) / Real(cells.brickSize()), cells.bricksPerAxis(),
-                       &fine.skippable, &fine.range};
+                       fineSkip, &fine.range};
     };
     setLevels(sf);
     setLevels(sd);
@@ -345,6 +365,23 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
         castImage(kernel, g, frame, local, result.image, result.premultiplied, result.stats.samples,
                   projecting ? &result.projection : nullptr);
     };
+    // The overlay along the same rays (the generic kernel: the fast ones draw the base alone).
+    const OverlayTable overlayEntries =
+        overlay != nullptr ? overlayTable(desc.overlay.style, sampling.step) : OverlayTable{};
+    auto castKernel = [&](const auto& setup, const auto& field) {
+        using Real = decltype(setup.earlyTermination);
+        using Field = std::remove_cvref_t<decltype(field)>;
+        if (overlay == nullptr) {
+            cast(RayKernel<Real, Field>(setup, field));
+            return;
+        }
+        OverlaySampler<Real> sampler{
+            LinearField<Real, float>{Grid<Real, float>(overlay->voxels<float>().data(), g.dims)},
+            &overlayEntries, 0.0, 1.0};
+        sampler.low = desc.overlay.style.center - 0.5 * desc.overlay.style.width;
+        sampler.width = std::max(desc.overlay.style.width, 1e-9);
+        cast(RayKernel<Real, Field, OverlaySampler<Real>>(setup, field, sampler));
+    };
     auto run = [&](const auto& setup, auto tag) {
         using Real = decltype(tag);
         switch (sampling.interpolation) {
@@ -356,7 +393,7 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
                 c = cache.coefficientsF.data();
             }
             const CubicField<Real> field{Grid<Real, Real>(c, g.dims)};
-            cast(RayKernel<Real, CubicField<Real>>(setup, field));
+            castKernel(setup, field);
             return;
         }
         case Interpolation::Nearest:
@@ -365,23 +402,21 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
                 using T = std::remove_const_t<typename decltype(v)::element_type>;
                 const Grid<Real, T> grid(v.data(), g.dims);
                 if (sampling.interpolation == Interpolation::Nearest) {
-                    const NearestField<Real, T> field{grid};
-                    cast(RayKernel<Real, NearestField<Real, T>>(setup, field));
+                    castKernel(setup, NearestField<Real, T>{grid});
                     return;
                 }
                 if constexpr (std::is_same_v<Real, float>) {
-                    if (sampling.simd && simdAllowed() &&
+                    if (overlay == nullptr && sampling.simd && simdAllowed() &&
                         PacketDvrKernel<T>::applies(setup, g.dims)) {
                         cast(PacketDvrKernel<T>(setup, grid));
                         return;
                     }
-                    if (FastDvrKernel<T>::applies(setup, g.dims)) {
+                    if (overlay == nullptr && FastDvrKernel<T>::applies(setup, g.dims)) {
                         cast(FastDvrKernel<T>(setup, grid));
                         return;
                     }
                 }
-                const LinearField<Real, T> field{grid};
-                cast(RayKernel<Real, LinearField<Real, T>>(setup, field));
+                castKernel(setup, LinearField<Real, T>{grid});
             });
             return;
         }

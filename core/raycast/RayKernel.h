@@ -6,16 +6,22 @@
 #include <limits>
 #include <vector>
 
+#include "core/raycast/OverlaySampler.h"
 #include "core/raycast/RaySetup.h"
 #include "core/raycast/VolumeFields.h"
 
 namespace lucent {
 
-template <class Real, class Field> class RayKernel {
+// Overlay: NoOverlay, or OverlaySampler<Real> for a fused render (OverlaySampler.h has the
+// mixing rule; the setup leaps only where the overlay shows nothing either, OverlayLeaping.h,
+// and not at all in MIP, MinIP and average). Without an overlay the kernel is the plain one:
+// every overlay branch is constexpr.
+template <class Real, class Field, class Overlay = NoOverlay> class RayKernel {
     static constexpr long kPrefetchAhead = 16;
 
 public:
-    RayKernel(const RaySetup<Real>& s, const Field& f) : s_(s), f_(f) {}
+    RayKernel(const RaySetup<Real>& s, const Field& f, const Overlay& overlay = {})
+        : s_(s), f_(f), overlay_(overlay) {}
 
     // o, d: ray origin and direction per mm of patient distance, in index space;
     // w: the unit ray direction in patient space.
@@ -40,14 +46,73 @@ private:
                            const glm::dvec3& o, const glm::dvec3& d, double t);
     bool skippable(const typename RaySetup<Real>::LeapLevel& l, int cell, bool havePrev,
                    Real extreme) const;
+    // DVR with an overlay: the base's classified, shaded sample at p mixed with the
+    // overlay's there (alpha 0: nothing). Keeps the pre-integration segment in prev.
+    Rgba fusedSample(const Vec3<Real>& p, Real v, const glm::dvec3& w, bool& havePrev,
+                     Real& prev) const;
+    // A projection's premultiplied colour with the overlay's maximum drawn over it.
+    glm::dvec4 overProjection(const glm::dvec4& base, Real overlayMax) const;
 
     const RaySetup<Real>& s_;
     const Field& f_;
+    [[no_unique_address]] Overlay overlay_;
 };
 
-template <class Real, class Field>
-typename RayKernel<Real, Field>::Rgba RayKernel<Real, Field>::classifyValue(double v,
-                                                                            bool raw) const {
+template <class Real, class Field, class Overlay>
+typename RayKernel<Real, Field, Overlay>::Rgba
+RayKernel<Real, Field, Overlay>::fusedSample(const Vec3<Real>& p, Real v, const glm::dvec3& w,
+                                             bool& havePrev, Real& prev) const {
+    Rgba c{0, 0, 0, 0};
+    if (s_.preintegrate) {
+        if (havePrev) {
+            const glm::dvec4 seg = s_.exactSegments
+                                       ? (*s_.exactSegments)(double(prev), double(v))
+                                       : glm::dvec4(s_.preTable->lookup(double(prev), double(v)));
+            if (seg.a > 0.0) {
+                c = {Real(seg.r / seg.a), Real(seg.g / seg.a), Real(seg.b / seg.a), Real(seg.a)};
+            }
+        }
+        prev = v;
+        havePrev = true; // the first sample opens the first segment
+    } else if (s_.classification != Classification::Post ||
+               (double(v) >= s_.visibleLo && double(v) <= s_.visibleHi)) {
+        c = sampleColour(p, v);
+    }
+    if (c.a > Real(0) && s_.shading) {
+        const Vec3<Real> rgb = shade(Vec3<Real>(c.r, c.g, c.b), p, w);
+        c = {rgb.r, rgb.g, rgb.b, c.a};
+    }
+    if constexpr (Overlay::kEnabled) {
+        const OverlayEntry* e = overlay_.entry(overlay_.value(p));
+        if (e == nullptr || !(e->alpha > 0.0f)) {
+            return c;
+        }
+        const Real ao = Real(e->alpha), ab = c.a > Real(0) ? c.a : Real(0);
+        const Real sum = ab + ao;
+        return {(ab * c.r + ao * Real(e->colour.r)) / sum,
+                (ab * c.g + ao * Real(e->colour.g)) / sum,
+                (ab * c.b + ao * Real(e->colour.b)) / sum, ab + ao - ab * ao};
+    }
+    return c;
+}
+
+template <class Real, class Field, class Overlay>
+glm::dvec4 RayKernel<Real, Field, Overlay>::overProjection(const glm::dvec4& base,
+                                                           Real overlayMax) const {
+    if constexpr (Overlay::kEnabled) {
+        const OverlayEntry* e = overlay_.entry(overlayMax);
+        if (e != nullptr && e->rawAlpha > 0.0f) {
+            const double a = double(e->rawAlpha);
+            return base * (1.0 - a) + glm::dvec4(glm::dvec3(e->colour) * a, a);
+        }
+    }
+    (void)overlayMax;
+    return base;
+}
+
+template <class Real, class Field, class Overlay>
+typename RayKernel<Real, Field, Overlay>::Rgba
+RayKernel<Real, Field, Overlay>::classifyValue(double v, bool raw) const {
     if (s_.exactTf) {
         const glm::dvec3 c = s_.tf->colourAt(v);
         const Real a = Real(s_.tf->opacityAt(v));
@@ -61,9 +126,9 @@ typename RayKernel<Real, Field>::Rgba RayKernel<Real, Field>::classifyValue(doub
     return {Real(c.r), Real(c.g), Real(c.b), Real(c.a)};
 }
 
-template <class Real, class Field>
-typename RayKernel<Real, Field>::Rgba RayKernel<Real, Field>::sampleColour(const Vec3<Real>& p,
-                                                                           Real value) const {
+template <class Real, class Field, class Overlay>
+typename RayKernel<Real, Field, Overlay>::Rgba
+RayKernel<Real, Field, Overlay>::sampleColour(const Vec3<Real>& p, Real value) const {
     if (s_.classification == Classification::Post || Field::isNearest) {
         return classifyValue(double(value), false);
     }
@@ -93,9 +158,9 @@ typename RayKernel<Real, Field>::Rgba RayKernel<Real, Field>::sampleColour(const
     return {r / a, g / a, b / a, corrected(a)};
 }
 
-template <class Real, class Field>
-Vec3<Real> RayKernel<Real, Field>::shade(const Vec3<Real>& base, const Vec3<Real>& p,
-                                         const glm::dvec3& w) const {
+template <class Real, class Field, class Overlay>
+Vec3<Real> RayKernel<Real, Field, Overlay>::shade(const Vec3<Real>& base, const Vec3<Real>& p,
+                                                  const glm::dvec3& w) const {
     const Vec3<Real> g = glm::mat<3, 3, Real>(s_.gradientToWorld) * f_.gradient(p);
     const Real len = glm::length(g);
     if (len < Real(1e-6)) {
@@ -108,25 +173,26 @@ Vec3<Real> RayKernel<Real, Field>::shade(const Vec3<Real>& base, const Vec3<Real
     return base * diffuse + Vec3<Real>(specular);
 }
 
-template <class Real, class Field>
-int RayKernel<Real, Field>::cellOf(const typename RaySetup<Real>::LeapLevel& l,
-                                   const Vec3<Real>& p) {
+template <class Real, class Field, class Overlay>
+int RayKernel<Real, Field, Overlay>::cellOf(const typename RaySetup<Real>::LeapLevel& l,
+                                            const Vec3<Real>& p) {
     // Samples lie inside the box (p >= 0 up to rounding): truncation is floor.
     const glm::ivec3 b = glm::min(glm::ivec3(p * l.inverseSize), l.perAxis - 1);
     return b.x + l.perAxis.x * (b.y + l.perAxis.y * b.z);
 }
 
-template <class Real, class Field>
-double RayKernel<Real, Field>::cellExit(const typename RaySetup<Real>::LeapLevel& l, int cell,
-                                        const glm::dvec3& o, const glm::dvec3& d, double t) {
+template <class Real, class Field, class Overlay>
+double RayKernel<Real, Field, Overlay>::cellExit(const typename RaySetup<Real>::LeapLevel& l,
+                                                 int cell, const glm::dvec3& o, const glm::dvec3& d,
+                                                 double t) {
     const glm::ivec3 n = l.perAxis;
     const glm::ivec3 idx(cell % n.x, (cell / n.x) % n.y, cell / (n.x * n.y));
     return leapCellExit(l.size, n, idx, o, d, t);
 }
 
-template <class Real, class Field>
-bool RayKernel<Real, Field>::skippable(const typename RaySetup<Real>::LeapLevel& l, int cell,
-                                       bool havePrev, Real extreme) const {
+template <class Real, class Field, class Overlay>
+bool RayKernel<Real, Field, Overlay>::skippable(const typename RaySetup<Real>::LeapLevel& l,
+                                                int cell, bool havePrev, Real extreme) const {
     switch (s_.mode) {
     case RenderMode::Mip:
         return havePrev && (*l.range)[cell].y <= float(extreme);
@@ -141,9 +207,9 @@ bool RayKernel<Real, Field>::skippable(const typename RaySetup<Real>::LeapLevel&
     return (*l.skippable)[cell] != 0;
 }
 
-template <class Real, class Field>
-RayOutput RayKernel<Real, Field>::cast(const glm::dvec3& o, const glm::dvec3& d,
-                                       const glm::dvec3& w) const {
+template <class Real, class Field, class Overlay>
+RayOutput RayKernel<Real, Field, Overlay>::cast(const glm::dvec3& o, const glm::dvec3& d,
+                                                const glm::dvec3& w) const {
     RayOutput out;
     RaySpan span;
     if (!raySpan(s_, o, d, span)) {
@@ -163,6 +229,7 @@ RayOutput RayKernel<Real, Field>::cast(const glm::dvec3& o, const glm::dvec3& d,
     bool havePrev = false;
     Real prev = 0;
     double tPrev = 0.0;
+    Real overlayMax = std::numeric_limits<Real>::quiet_NaN(); // NaN: no overlay value yet
     int checkedCell = -1;
     auto position = [&](double t) { return Vec3<Real>(o + d * t); };
     // Lattice samples: one formula for every path, so leaping never moves a sample.
@@ -216,6 +283,25 @@ RayOutput RayKernel<Real, Field>::cast(const glm::dvec3& o, const glm::dvec3& d,
         // Volume reads along a ray miss the cache; ask for them well ahead.
         f_.g.prefetch(lattice(n + kPrefetchAhead));
         const Real v = f_.valueInside(p);
+        if constexpr (Overlay::kEnabled) {
+            if (s_.mode != RenderMode::Dvr) {
+                const Real ov = overlay_.value(p);
+                overlayMax = std::isnan(overlayMax) || ov > overlayMax ? ov : overlayMax;
+            } else {
+                const Rgba c = fusedSample(p, v, w, havePrev, prev);
+                if (c.a > Real(0)) {
+                    const Real weight = (Real(1) - accA) * c.a;
+                    accR += weight * c.r;
+                    accG += weight * c.g;
+                    accB += weight * c.b;
+                    accA += weight;
+                    if (accA >= s_.earlyTermination) {
+                        break;
+                    }
+                }
+                continue;
+            }
+        }
         switch (s_.mode) {
         case RenderMode::Mip:
             extreme = std::max(extreme, v);
@@ -315,6 +401,9 @@ RayOutput RayKernel<Real, Field>::cast(const glm::dvec3& o, const glm::dvec3& d,
         // Projections show the transfer function's colour and opacity of the projected value.
         const double a = double(c.a);
         out.rgba = glm::dvec4(glm::dvec3(c.r, c.g, c.b) * a, a);
+        if constexpr (Overlay::kEnabled) {
+            out.rgba = overProjection(out.rgba, overlayMax);
+        }
         return out;
     }
     out.rgba = glm::dvec4(accR, accG, accB, accA);

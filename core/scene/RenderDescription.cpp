@@ -1,5 +1,6 @@
 #include "core/scene/RenderDescription.h"
 
+#include "core/mpr/PlaneSampler.h"
 #include "core/scene/RenderOptions.h"
 
 #include <cmath>
@@ -50,6 +51,36 @@ void RenderDescription::validate() const {
         fail("the volume is empty");
     }
     transferFunction.validate();
+    if (overlay.volume != nullptr) {
+        const Volume& o = *overlay.volume;
+        if (o.empty() || o.type() != VoxelType::Float32) {
+            fail("the overlay must be a non-empty Float32 volume on the base's grid "
+                 "(resampleOverlay)");
+        }
+        if (volume != nullptr && o.dims() != volume->dims()) {
+            const auto text = [](glm::ivec3 d) {
+                return std::to_string(d.x) + "x" + std::to_string(d.y) + "x" + std::to_string(d.z);
+            };
+            fail("the overlay's grid " + text(o.dims()) + " is not the volume's " +
+                 text(volume->dims()) + " (resample it onto the volume's grid first)");
+        }
+        if (!(overlay.style.width > 0.0) || !std::isfinite(overlay.style.center)) {
+            fail("overlay window: a centre and a width above 0 are needed (auto is resolved "
+                 "by resolveOverlayWindow)");
+        }
+        if (mode == RenderMode::Isosurface) {
+            fail("an overlay is drawn in dvr, mip, minip and avg modes, not iso");
+        }
+    }
+}
+
+void resolveOverlayWindow(RenderOverlay& overlay) {
+    if (overlay.volume == nullptr || overlay.style.width > 0.0) {
+        return;
+    }
+    const WindowLevel w = defaultWindow(*overlay.volume);
+    overlay.style.center = w.center;
+    overlay.style.width = w.width;
 }
 
 } // namespace lucent

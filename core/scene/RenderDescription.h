@@ -11,6 +11,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/fusion/FusionStyle.h"
 #include "core/scene/Camera.h"
 #include "core/tf/TransferFunction.h"
 #include "core/volume/BrickGrid.h"
@@ -41,6 +42,26 @@ struct SamplingSettings {
     bool simd = true;
 };
 
+// A second volume drawn along the same rays (3D fusion, DESIGN.md "Fusion"): already on the
+// grid of the description's volume (resampleOverlay in core/fusion/OverlayResampler.h makes
+// it), Float32, NaN where it has no value. It is sampled trilinearly at the base's lattice
+// samples; a sample's entry i = windowToGrey(value, center, width) of the style's window gives
+// its colour (the map's entry i) and its opacity (opacity * i / 255 per voxel of the smallest
+// spacing, corrected for the step as the transfer function's is). DVR mixes it with the base's
+// classified sample; MIP, MinIP and average draw the overlay's own maximum over the base's
+// projection. Of the style only the colour map, the window and the opacity apply (the mode,
+// checkerboard and swipe are the MPR views'). Not with isosurfaces.
+struct RenderOverlay {
+    const Volume* volume = nullptr; // null: no overlay
+    // Hot iron at opacity 0.5; width 0: the window is not chosen yet ("auto": the
+    // overlay's defaultWindow, set by resolveOverlayWindow).
+    FusionStyle style = [] {
+        FusionStyle s;
+        s.width = 0.0;
+        return s;
+    }();
+};
+
 struct RenderDescription {
     const Volume* volume = nullptr;
     TransferFunction transferFunction; // its shading.enabled switches shading
@@ -52,9 +73,15 @@ struct RenderDescription {
     int width = 512;
     int height = 512;
     glm::dvec3 background{0.0};
+    RenderOverlay overlay;
 
     // Throws std::invalid_argument naming the setting that is out of range.
     void validate() const;
 };
+
+// Sets an overlay window that is still "auto" (width <= 0) to the overlay volume's
+// defaultWindow (core/mpr/PlaneSampler.h: L 40 W 400 for CT, else its 1st to 99th
+// percentile). Does nothing without an overlay.
+void resolveOverlayWindow(RenderOverlay& overlay);
 
 } // namespace lucent

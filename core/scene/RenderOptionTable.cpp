@@ -304,6 +304,55 @@ void addCastingRows(std::vector<RenderOption>& t) {
                  .write = [](D& d, sv v) { d.sampling.brickSize = int(parseNumber(v)); }});
 }
 
+// The overlay of a fused render (RenderOverlay): its colour map, window and opacity. The
+// overlay volume itself comes with the description (lucent-cli render --overlay PATH).
+void addOverlayRows(std::vector<RenderOption>& t) {
+    using D = RenderDescription;
+    using sv = std::string_view;
+    t.push_back(
+        {.name = "overlay-map",
+         .words = "overlay colour map",
+         .kind = OptionKind::Choice,
+         .choices = {"grey", "hot-iron", "rainbow", "pet"},
+         .cliFlag = "overlay-map",
+         .valueName = "MAP",
+         .help = "The overlay's colour map (with --overlay).",
+         .read = [](const D& d) { return std::string(colourMapName(d.overlay.style.colourMap)); },
+         .write =
+             [](D& d, sv v) {
+                 d.overlay.style.colourMap =
+                     colourMapFromName(v).value_or(FusionColourMap::HotIron);
+             }});
+    t.push_back(
+        {.name = "overlay-window",
+         .words = "overlay window",
+         .kind = OptionKind::Window,
+         .cliFlag = "overlay-window",
+         .valueName = "C,W",
+         .help = "The overlay's window (centre, width, in its own units): its colour map "
+                 "spans it and its opacity rises from 0 at the low end to the overlay "
+                 "opacity at the high end; auto: L 40 W 400 for CT, else its 1st to 99th "
+                 "percentile.",
+         .read =
+             [](const D& d) { return windowText(d.overlay.style.center, d.overlay.style.width); },
+         .write =
+             [](D& d, sv v) {
+                 std::tie(d.overlay.style.center, d.overlay.style.width) = parseWindow(v);
+             }});
+    t.push_back({.name = "overlay-opacity",
+                 .words = "overlay opacity",
+                 .kind = OptionKind::Number,
+                 .min = 0.0,
+                 .max = 1.0,
+                 .cliFlag = "overlay-opacity",
+                 .valueName = "A",
+                 .help = "The overlay's opacity at the top of its window (per voxel in DVR; "
+                         "over the base's projection in MIP, MinIP and average); 0 shows the "
+                         "base alone.",
+                 .read = [](const D& d) { return number(d.overlay.style.opacity); },
+                 .write = [](D& d, sv v) { d.overlay.style.opacity = parseNumber(v); }});
+}
+
 // One row per option; `read` and `write` reach its field.
 std::vector<RenderOption> makeTable() {
     std::vector<RenderOption> t;
@@ -311,6 +360,7 @@ std::vector<RenderOption> makeTable() {
     addCameraRows(t);
     addSamplingRows(t);
     addCastingRows(t);
+    addOverlayRows(t);
     return t;
 }
 

@@ -119,6 +119,34 @@ std::string clipBoxText(const ClipBox& box) {
            number(box.hi.x) + "," + number(box.hi.y) + "," + number(box.hi.z);
 }
 
+std::pair<double, double> parseWindow(std::string_view text) {
+    if (text == "auto") {
+        return {0.0, 0.0};
+    }
+    const std::size_t comma = text.find(',');
+    const std::string bad = "window '" + std::string(text) +
+                            "' is not C,W (a centre and a width "
+                            "above 0) or auto";
+    if (comma == std::string_view::npos) {
+        throw std::invalid_argument(bad);
+    }
+    double c = 0.0, w = 0.0;
+    try {
+        c = parseNumber(text.substr(0, comma));
+        w = parseNumber(text.substr(comma + 1));
+    } catch (const std::invalid_argument&) {
+        throw std::invalid_argument(bad);
+    }
+    if (!std::isfinite(c) || !std::isfinite(w) || !(w > 0.0)) {
+        throw std::invalid_argument(bad);
+    }
+    return {c, w};
+}
+
+std::string windowText(double center, double width) {
+    return width > 0.0 ? number(center) + "," + number(width) : "auto";
+}
+
 void applyRenderOption(RenderDescription& description, const RenderOption& option,
                        std::string_view text) {
     switch (option.kind) {
@@ -156,6 +184,9 @@ void applyRenderOption(RenderDescription& description, const RenderOption& optio
         break;
     case OptionKind::Box:
         parseClipBox(text); // throws with the reason
+        break;
+    case OptionKind::Window:
+        parseWindow(text); // throws with the reason
         break;
     }
     option.write(description, text);

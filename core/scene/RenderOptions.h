@@ -23,6 +23,7 @@ enum class OptionKind {
     Switch,  // true or false
     Size,    // WIDTHxHEIGHT
     Box,     // "X0,Y0,Z0,X1,Y1,Z1" (voxel indices, corners included) or "all"
+    Window,  // "C,W" (a centre and a width above 0) or "auto"
 };
 
 // Which protocol message carries an option ("" : not on the wire).
@@ -73,6 +74,11 @@ std::pair<int, int> parseImageSize(std::string_view text);
 // coordinate at most the other's, or "all" (no clip). Throws std::invalid_argument.
 ClipBox parseClipBox(std::string_view text);
 std::string clipBoxText(const ClipBox& box);
+
+// A window as text: "C,W", the centre and a width above 0, both finite; "auto" gives
+// width 0 (resolved later, see resolveOverlayWindow). Throws std::invalid_argument.
+std::pair<double, double> parseWindow(std::string_view text);
+std::string windowText(double center, double width); // "auto" for a width <= 0
 
 // The option list as a Markdown table (docs/options.md).
 std::string renderOptionsMarkdown();

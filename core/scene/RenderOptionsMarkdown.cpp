@@ -47,6 +47,10 @@ std::string renderOptionsMarkdown() {
             kind = "box";
             range = "X0,Y0,Z0,X1,Y1,Z1 (voxels, X0 <= X1 ...) or all";
             break;
+        case OptionKind::Window:
+            kind = "window";
+            range = "C,W (width above 0) or auto";
+            break;
         }
         md += "| `" + std::string(o.name) + "` | " + cli + " | " + wire + " | " + kind + " | " +
               range + " | " + renderOptionDefault(o) + " | " + std::string(o.help) + " |\n";

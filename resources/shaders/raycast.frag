@@ -46,6 +46,20 @@ const bool kSurface = LUCENT_SURFACE;
 uniform sampler2D uSurfaceColour;
 uniform sampler2D uSurfaceDistance;
 layout(binding = 0, r32ui) uniform uimage2D uRowSamples; // (row, 0)
+// A second volume along the same rays (3D fusion; the mixing rule is in
+// core/raycast/OverlaySampler.h): its values on the base's grid, level-0 index
+// space, trilinear; its table (row 0: colour, opacity corrected for the step;
+// row 1: colour, raw opacity), indexed as windowToGrey indexes grey.
+const bool kOverlay = LUCENT_OVERLAY;
+uniform sampler3D uOverlay;
+uniform sampler2D uOverlayTable;
+uniform float uOverlayLow, uOverlayWidth;
+uniform vec3 uOverlayInvDims;
+// Fused DVR leaps only where the overlay shows nothing either: 1 per leaping cell
+// and per page where every overlay voxel its samples can read lies below the
+// window's first visible entry (render/OverlayTextures.h).
+uniform usampler3D uOverlayEmptyCells;
+uniform usampler3D uOverlayEmptyBricks;
 uniform float uEarlyTermination, uIso;
 uniform vec4 uLight; // ambient, diffuse, specular, specular power
 uniform mat3 uGradientToWorld;
@@ -372,6 +386,33 @@ float exitIndex(vec3 lo, vec3 hi) {
     return e;
 }
 
+// --- the overlay ------------------------------------------------------------------
+
+float overlayValue(vec3 p) {
+    return texture(uOverlay, (p + 0.5) * uOverlayInvDims).r;
+}
+
+// The overlay's entry for v in the table's row (0: opacity corrected, 1: raw);
+// transparent for NaN (no overlay there).
+vec4 overlayEntry(float v, int row) {
+    if (isnan(v)) {
+        return vec4(0.0);
+    }
+    // windowToGrey's lround: halves away from zero (below 0 clamps to 0 anyway).
+    float x = floor((v - uOverlayLow) / uOverlayWidth * 255.0 + 0.5);
+    return texelFetch(uOverlayTable, ivec2(int(clamp(x, 0.0, 255.0)), row), 0);
+}
+
+// The base's sample k (colour, opacity) and the overlay's o mixed: the opacities
+// combined, the colours weighted by opacity; o.a = 0 leaves k.
+vec4 fuse(vec4 k, vec4 o) {
+    if (!(o.a > 0.0)) {
+        return k;
+    }
+    float ab = max(k.a, 0.0), sum = ab + o.a;
+    return vec4((ab * k.rgb + o.a * o.rgb) / sum, ab + o.a - ab * o.a);
+}
+
 // --- the ray --------------------------------------------------------------------
 
 void writeSamples(uint samples) {
@@ -501,8 +542,11 @@ void castRay() {
     ivec3 cell = ivec3(-1);
     uint code = 0u;
 
+    float overlayMax = 0.0;
+    bool overlaySeen = false;
     for (int n = nFirst; n <= nLast; ++n) {
         vec3 p = entry + stride * float(n);
+        vec3 lattice = p; // where the overlay is sampled, whatever the base's filter
         if (kInterp == kNearest) {
             // The voxel the sample reads decides the brick too: where bricks of
             // different levels meet, the one holding that voxel answers.
@@ -524,10 +568,14 @@ void castRay() {
                     lo = vec3(c * uCellSize);
                     hi = lo + float(uCellSize);
                 } else if (code != 0u && kMode != kAverage) {
-                    leap = true;
                     ivec3 b = brickOf(p);
-                    lo = vec3(code == 2u ? b * uBrickSize : c * uCellSize);
-                    hi = lo + float(code == 2u ? uBrickSize : uCellSize);
+                    // With an overlay: the brick only where it is empty too, else
+                    // the cell (code 2 lets the base leap every cell of the brick).
+                    bool brick = code == 2u &&
+                                 (!kOverlay || texelFetch(uOverlayEmptyBricks, b, 0).r != 0u);
+                    leap = brick || !kOverlay || texelFetch(uOverlayEmptyCells, c, 0).r != 0u;
+                    lo = vec3(brick ? b * uBrickSize : c * uCellSize);
+                    hi = lo + float(brick ? uBrickSize : uCellSize);
                 }
             }
             if (leap) {
@@ -560,10 +608,27 @@ void castRay() {
             enterBrick(brickOf(p));
         }
         ++samples;
-        if (!backed(p)) {
-            // Outside the boxes of resident bricks nothing can contribute; a
-            // value read across it is unknown.
+        bool isBacked = backed(p);
+        if (kOverlay && kMode != kDvr) {
+            float ov = overlayValue(lattice);
+            if (!isnan(ov) && (!overlaySeen || ov > overlayMax)) {
+                overlayMax = ov;
+                overlaySeen = true;
+            }
+        }
+        if (!isBacked) {
+            // Outside the boxes of resident bricks nothing of the base can
+            // contribute; a value read across it is unknown.
             havePrev = havePrev && !continuity;
+            if (kOverlay && kMode == kDvr) {
+                vec4 k = fuse(vec4(0.0), overlayEntry(overlayValue(lattice), 0));
+                if (k.a > 0.0) {
+                    acc += vec4((1.0 - acc.a) * k.a * k.rgb, (1.0 - acc.a) * k.a);
+                    if (acc.a >= uEarlyTermination) {
+                        break;
+                    }
+                }
+            }
             continue;
         }
         float v = valueAt(p);
@@ -612,6 +677,32 @@ void castRay() {
             continue;
         }
 
+        if (kOverlay) { // DVR: the base's sample, shaded, mixed with the overlay's
+            vec4 k = vec4(0.0);
+            if (kPreintegrate) {
+                if (havePrev) {
+                    vec4 seg = preintegrated(prev, v);
+                    k = seg.a > 0.0 ? vec4(seg.rgb / seg.a, seg.a) : vec4(0.0);
+                }
+                prev = v;
+                havePrev = true;
+            } else if (kPreclassify || (v >= uVisibleLo && v <= uVisibleHi)) {
+                k = kPreclassify && kInterp != kNearest ? preclassified(p) : classify(v, 0);
+            }
+            if (k.a > 0.0 && kShading) {
+                k.rgb = shadeLast(k.rgb, p, w);
+            }
+            k = fuse(k, overlayEntry(overlayValue(lattice), 0));
+            if (k.a > 0.0) {
+                float weight = (1.0 - acc.a) * k.a;
+                acc += vec4(weight * k.rgb, weight);
+                if (acc.a >= uEarlyTermination) {
+                    break;
+                }
+            }
+            continue;
+        }
+
         vec4 k;
         if (kPreintegrate) {
             if (!havePrev) {
@@ -650,6 +741,10 @@ void castRay() {
             float v = kMode == kAverage ? float(sum / double(count)) : extreme;
             vec4 k = classify(v, 1);
             outColour = vec4(k.rgb * k.a, k.a);
+            if (kOverlay && overlaySeen) { // the overlay's maximum over the projection
+                vec4 o = overlayEntry(overlayMax, 1);
+                outColour = outColour * (1.0 - o.a) + vec4(o.rgb * o.a, o.a);
+            }
         }
         return;
     }

@@ -19,7 +19,10 @@ std::string otherValue(const RenderOption& o) {
     switch (o.kind) {
     case OptionKind::Number:
     case OptionKind::Integer:
-        return o.max >= 7.0 && o.min <= 7.0 ? "7" : "0.5";
+        if (o.max >= 7.0 && o.min <= 7.0) {
+            return "7";
+        }
+        return renderOptionDefault(o) == "0.5" ? "0.25" : "0.5";
     case OptionKind::Choice:
         return std::string(o.choices.back());
     case OptionKind::Switch:
@@ -28,6 +31,8 @@ std::string otherValue(const RenderOption& o) {
         return "300x200";
     case OptionKind::Box:
         return "1,2,3,40,50.5,60";
+    case OptionKind::Window:
+        return "300,600.5";
     }
     return {};
 }
@@ -98,6 +103,14 @@ private slots:
         QVERIFY(refuses(*findRenderOption("size"), "512", "WIDTHxHEIGHT"));
         QVERIFY(refuses(*findRenderOption("size"), "0x10", "out of range"));
         QVERIFY(refuses(*findRenderOption("size"), "20000x10", "out of range"));
+        for (const char* window : {"300", "300,0", "300,-5", "a,600", "300,inf", ""}) {
+            QVERIFY2(refuses(*findRenderOption("overlay-window"), window, "is not C,W"), window);
+        }
+        QVERIFY(refuses(*findRenderOption("overlay-opacity"), "1.5", "overlay opacity"));
+        QVERIFY(refuses(*findRenderOption("overlay-map"), "jet", "grey, hot-iron, rainbow, pet"));
+        RenderDescription d;
+        applyRenderOption(d, *findRenderOption("overlay-window"), "auto");
+        QCOMPARE(d.overlay.style.width, 0.0);
     }
 
     // validate() checks the table's ranges for descriptions made in code too.
