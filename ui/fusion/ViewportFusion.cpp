@@ -2,6 +2,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "core/fusion/OverlayResampler.h"
 #include "core/mpr/PlaneSampler.h"
 #include "ui/fusion/FusionNudge.h"
 #include "ui/fusion/OverlayWindowDrag.h"
@@ -14,6 +15,7 @@
 #include "ui/viewports/ViewportLinks.h"
 #include "ui/viewports/ViewportRegistration.h"
 #include "ui/viewports/ViewportWorkspace.h"
+#include "ui/volume/VolumeView.h"
 
 namespace lucent {
 
@@ -112,7 +114,8 @@ bool ViewportFusion::fuse(Viewport* viewport, SeriesSession* overlay, QString* m
 
 bool ViewportFusion::apply(Viewport* viewport, const Fused& fused, QString* message) {
     SliceView* view = viewport->sliceView();
-    if (view == nullptr || fused.base == nullptr || fused.overlay == nullptr) {
+    if ((view == nullptr && viewport->volumeView() == nullptr) || fused.base == nullptr ||
+        fused.overlay == nullptr) {
         return false;
     }
     const SeriesLink link = workspace_->links()->linkBetween(*fused.base, *fused.overlay);
@@ -126,6 +129,10 @@ bool ViewportFusion::apply(Viewport* viewport, const Fused& fused, QString* mess
         }
         return false;
     }
+    if (view == nullptr) {
+        applyTo3d(viewport, fused, *transform);
+        return true;
+    }
     FusionLayer layer;
     layer.overlay = fused.overlay->volume();
     layer.baseToOverlay = *transform;
@@ -136,6 +143,33 @@ bool ViewportFusion::apply(Viewport* viewport, const Fused& fused, QString* mess
     nudge_->watch(view);
     windowDrag_->watch(view);
     return true;
+}
+
+void ViewportFusion::applyTo3d(Viewport* viewport, const Fused& fused,
+                               const glm::dmat4& transform) {
+    const std::uint64_t job = ++lastJob_;
+    jobs_[viewport] = job;
+    if (workers_.size() > 8) {
+        workers_.clear(); // joins the earlier jobs, done by now or nearly
+    }
+    const QPointer<Viewport> target(viewport);
+    workers_.emplace_back([this, target, job, transform, base = fused.base->volume(),
+                           overlay = fused.overlay->volume()] {
+        auto onGrid =
+            std::make_shared<const Volume>(resampleOverlay(*overlay, base->geometry(), transform));
+        QMetaObject::invokeMethod(
+            this,
+            [this, target, job, onGrid] {
+                const auto it = jobs_.find(target.data());
+                const auto style = target ? styleOf(target) : std::nullopt;
+                if (target && it != jobs_.end() && it->second == job && style &&
+                    target->volumeView() != nullptr) {
+                    target->volumeView()->setOverlay(onGrid, *style);
+                    emit overlayShownIn3d(target);
+                }
+            },
+            Qt::QueuedConnection);
+    });
 }
 
 void ViewportFusion::reapplyAll() {
@@ -182,8 +216,12 @@ void ViewportFusion::keepTransform(Viewport* viewport, const glm::dmat4& transfo
 }
 
 void ViewportFusion::clear(Viewport* viewport) {
+    jobs_.erase(viewport);
     if (fused_.erase(viewport) > 0 && viewport->sliceView() != nullptr) {
         viewport->sliceView()->setFusionLayer(std::nullopt);
+    }
+    if (viewport->volumeView() != nullptr) {
+        viewport->volumeView()->setOverlay(nullptr, {});
     }
     emit fusionChanged(viewport);
 }
@@ -209,6 +247,9 @@ void ViewportFusion::setStyle(Viewport* viewport, const FusionStyle& style) {
     it->second.style = style;
     if (viewport->sliceView() != nullptr) {
         viewport->sliceView()->setFusionStyle(style);
+    }
+    if (viewport->volumeView() != nullptr) {
+        viewport->volumeView()->setOverlayStyle(style);
     }
     emit fusionChanged(viewport);
 }

@@ -4,8 +4,11 @@
 // "link here" offset: ViewportLinks), a default look by modality, and the layer kept
 // across a viewport's view changes and refreshed when a registration lands.
 
+#include <cstdint>
 #include <map>
 #include <optional>
+#include <thread>
+#include <vector>
 
 #include <QObject>
 #include <QPointer>
@@ -39,9 +42,9 @@ class ViewportFusion : public QObject {
 public:
     explicit ViewportFusion(ViewportWorkspace* workspace, QObject* parent = nullptr);
 
-    // Fuses `overlay` over the viewport's series (an MPR view of a volume). False, with
-    // the reason in `message`, when the viewport shows no volume or the two series have
-    // no known relation (Register or Link Here first).
+    // Fuses `overlay` over the viewport's series (an MPR or 3D view of a volume). False,
+    // with the reason in `message`, when the viewport shows no volume or the two series
+    // have no known relation (Register or Link Here first).
     bool fuse(Viewport* viewport, SeriesSession* overlay, QString* message = nullptr);
     void clear(Viewport* viewport);
     // The viewport's overlay and its look; nullptr / nullopt without one.
@@ -63,6 +66,8 @@ public:
 signals:
     // A viewport's overlay or look changed (the controls follow).
     void fusionChanged(lucent::Viewport* viewport);
+    // A 3D viewport's overlay, resampled onto its grid, is drawn from now on.
+    void overlayShownIn3d(lucent::Viewport* viewport);
 
 private:
     struct Fused {
@@ -72,13 +77,19 @@ private:
     };
     // Puts the layer on the viewport's slice view again (a new view, a new transform).
     bool apply(Viewport* viewport, const Fused& fused, QString* message);
+    // A 3D viewport: the overlay resampled onto the base's grid on a worker thread, then
+    // handed to its VolumeView (the last job of a viewport wins).
+    void applyTo3d(Viewport* viewport, const Fused& fused, const glm::dmat4& transform);
     void reapplyAll();
 
     ViewportWorkspace* workspace_;
     std::map<Viewport*, Fused, std::less<>> fused_;
+    std::map<const Viewport*, std::uint64_t, std::less<>> jobs_; // the 3D resampling wanted
+    std::uint64_t lastJob_ = 0;
     FusionNudge* nudge_;            // a child
     OverlayWindowDrag* windowDrag_; // a child
     bool nudging_ = false;
+    std::vector<std::jthread> workers_; // last: joined before the rest goes
 };
 
 } // namespace lucent

@@ -233,6 +233,7 @@ void VolumeView::setSurfaceDisplay(std::shared_ptr<const SurfaceDisplay> display
 
 void VolumeView::setVolume(std::shared_ptr<const Volume> volume) {
     volume_ = std::move(volume);
+    overlay_.reset(); // it lay on the old volume's grid
     ++volumeGeneration_;
     // The GPU caster is remade on its next frame, in its own context.
     local_->setVolume(volume_);
@@ -347,6 +348,10 @@ RenderDescription VolumeView::description(int width, int height) const {
     d.sampling = sampling_;
     d.width = width;
     d.height = height;
+    if (overlay_ && mode_ != RenderMode::Isosurface && backend_ != Backend::Remote) {
+        d.overlay.volume = overlay_.get();
+        d.overlay.style = overlayStyle_;
+    }
     return d;
 }
 

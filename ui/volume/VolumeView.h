@@ -140,6 +140,13 @@ public:
     void setSurfaceDisplay(std::shared_ptr<const SurfaceDisplay> display, double radiusMm);
     const std::shared_ptr<const SurfaceDisplay>& surfaceDisplay() const { return surfaceDisplay_; }
 
+    // A second series already on this volume's grid (core/fusion resampleOverlay), drawn
+    // along the same rays in `style`'s colour map (null: none). Left out in isosurface mode
+    // and on a render server, which draw the base alone.
+    void setOverlay(std::shared_ptr<const Volume> onGrid, const FusionStyle& style);
+    void setOverlayStyle(const FusionStyle& style);
+    const std::shared_ptr<const Volume>& overlay() const { return overlay_; }
+
 signals:
     void volumeChanged();
     void cameraChanged(const lucent::Camera& camera);
@@ -192,6 +199,8 @@ private:
     bool orientationMarkerShown_ = true;
 
     std::shared_ptr<const SurfaceDisplay> surfaceDisplay_;
+    std::shared_ptr<const Volume> overlay_; // on volume_'s grid
+    FusionStyle overlayStyle_;
     double surfaceRadius_ = 0.0;
 
     Backend backend_ = Backend::Cpu;

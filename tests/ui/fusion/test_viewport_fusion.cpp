@@ -7,6 +7,7 @@
 #include <QCheckBox>
 #include <QComboBox>
 #include <QDoubleSpinBox>
+#include <QSignalSpy>
 #include <QSlider>
 #include <QTemporaryDir>
 #include <QTest>
@@ -34,6 +35,7 @@
 #include "ui/viewports/ViewportGrid.h"
 #include "ui/viewports/ViewportLinks.h"
 #include "ui/viewports/ViewportWorkspace.h"
+#include "ui/volume/VolumeView.h"
 
 using namespace lucent;
 
@@ -222,6 +224,27 @@ private slots:
         // The viewport turns to coronal: the overlay stays.
         left->show(left->session(), ViewportView::Coronal);
         QVERIFY(left->sliceView()->fusion().active());
+        // A 3D view of the series draws the overlay as a second volume, resampled onto the
+        // base's grid through the kept transform on a worker thread.
+        QSignalSpy shown3d(&fusion, &ViewportFusion::overlayShownIn3d);
+        left->show(left->session(), ViewportView::Volume3D);
+        QVERIFY(left->volumeView() != nullptr);
+        QVERIFY(shown3d.wait(60000));
+        const std::shared_ptr<const Volume>& onGrid = left->volumeView()->overlay();
+        QVERIFY(onGrid != nullptr);
+        QCOMPARE(onGrid->dims(), ct_->dims());
+        QCOMPARE(left->volumeView()->description().overlay.volume, onGrid.get());
+        const glm::dmat4 keptNow = *workspace.links()->transform(ct_->seriesUid, moved_->seriesUid);
+        const glm::ivec3 voxel(256, 240, 14);
+        const glm::dvec3 at(keptNow *
+                            glm::dvec4(ct_->geometry().toPatient(glm::dvec3(voxel)), 1.0));
+        const double expected3d = sampleAt(*moved_, moved_->geometry().toIndex(at));
+        QVERIFY(std::abs(onGrid->value(voxel.x, voxel.y, voxel.z) - expected3d) < 1e-2);
+        // Isosurfaces draw the base alone.
+        left->volumeView()->setMode(RenderMode::Isosurface);
+        QVERIFY(left->volumeView()->description().overlay.volume == nullptr);
+        left->show(left->session(), ViewportView::Axial);
+
         // None in the panel clears it.
         panel.refresh();
         panel.overlayChoice()->setCurrentIndex(0);
