@@ -19,6 +19,15 @@
 
 namespace lucent {
 
+namespace {
+
+// What the overlay's values are in, for its colour bar.
+QString overlayUnit(const Volume& overlay) {
+    return overlay.modality == "CT" ? QStringLiteral("HU") : QString();
+}
+
+} // namespace
+
 std::optional<glm::dmat4> fusionTransform(const SeriesLink& link) {
     switch (link.kind) {
     case SeriesLink::Kind::SamePosition:
@@ -138,7 +147,7 @@ bool ViewportFusion::apply(Viewport* viewport, const Fused& fused, QString* mess
     layer.baseToOverlay = *transform;
     layer.style = fused.style;
     layer.title = fused.overlay->title();
-    layer.unit = layer.overlay->modality == "CT" ? QStringLiteral("HU") : QString();
+    layer.unit = overlayUnit(*layer.overlay);
     view->setFusionLayer(std::move(layer));
     nudge_->watch(view);
     windowDrag_->watch(view);
@@ -164,7 +173,7 @@ void ViewportFusion::applyTo3d(Viewport* viewport, const Fused& fused,
                 const auto style = target ? styleOf(target) : std::nullopt;
                 if (target && it != jobs_.end() && it->second == job && style &&
                     target->volumeView() != nullptr) {
-                    target->volumeView()->setOverlay(onGrid, *style);
+                    target->volumeView()->setOverlay(onGrid, *style, overlayUnit(*onGrid));
                     emit overlayShownIn3d(target);
                 }
             },

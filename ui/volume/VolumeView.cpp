@@ -13,6 +13,7 @@
 #include <QWheelEvent>
 
 #include "core/scene/ViewFrame.h"
+#include "ui/fusion/FusionColourBar.h"
 #include "ui/volume/SurfaceColourBar.h"
 #include "ui/volume/TeachingMarksOverlay.h"
 #include "ui/volume/VolumeSurfaces.h"
@@ -448,6 +449,12 @@ void VolumeView::paintFrame(QPainter& painter) {
         }
         if (surfaceDisplay_ && local_->surfaceShown() && backend_ == Backend::Gpu) {
             paintSurfaceColourBar(painter, area, *surfaceDisplay_, surfaceRadius_);
+        }
+        if (overlay_ && mode_ != RenderMode::Isosurface && backend_ != Backend::Remote) {
+            const int h = std::min(int(area.height()) / 2, 240);
+            paintFusionColourBar(painter,
+                                 QRect(int(area.right()) - 96, int(area.center().y()) - h / 2, 88, h),
+                                 overlayStyle_, overlayUnit_);
         }
         if (backend_ == Backend::Remote && lastProjection_) {
             paintTeachingMarks(painter, area, remote_->teachingMarks(), *lastProjection_);

@@ -143,7 +143,9 @@ public:
     // A second series already on this volume's grid (core/fusion resampleOverlay), drawn
     // along the same rays in `style`'s colour map (null: none). Left out in isosurface mode
     // and on a render server, which draw the base alone.
-    void setOverlay(std::shared_ptr<const Volume> onGrid, const FusionStyle& style);
+    // `unit` labels its colour bar ("HU", "SUVbw").
+    void setOverlay(std::shared_ptr<const Volume> onGrid, const FusionStyle& style,
+                    const QString& unit = {});
     void setOverlayStyle(const FusionStyle& style);
     const std::shared_ptr<const Volume>& overlay() const { return overlay_; }
 
@@ -201,6 +203,7 @@ private:
     std::shared_ptr<const SurfaceDisplay> surfaceDisplay_;
     std::shared_ptr<const Volume> overlay_; // on volume_'s grid
     FusionStyle overlayStyle_;
+    QString overlayUnit_;
     double surfaceRadius_ = 0.0;
 
     Backend backend_ = Backend::Cpu;

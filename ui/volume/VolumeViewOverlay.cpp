@@ -3,12 +3,14 @@
 
 namespace lucent {
 
-void VolumeView::setOverlay(std::shared_ptr<const Volume> onGrid, const FusionStyle& style) {
+void VolumeView::setOverlay(std::shared_ptr<const Volume> onGrid, const FusionStyle& style,
+                            const QString& unit) {
     if (onGrid && volume_ && onGrid->dims() != volume_->dims()) {
         onGrid.reset(); // not on this volume's grid (the volume changed meanwhile)
     }
     overlay_ = std::move(onGrid);
     overlayStyle_ = style;
+    overlayUnit_ = unit;
     requestRender();
 }
 
