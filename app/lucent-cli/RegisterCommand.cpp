@@ -1,7 +1,9 @@
 // lucent-cli register FIXED MOVING [--series UID] [--moving-series UID] [--affine]
-//                     [--metric mi|ms] -o transform.json [--stats] [--sro reg.dcm]
-// Rigid registration of two series (core/registration): the 4x4 matrix that maps a point
-// in the fixed series' LPS mm to the same anatomy in the moving series' LPS mm.
+//                     [--metric mi|ms] [--init auto|centres|frame] -o transform.json
+//                     [--stats] [--sro reg.dcm]
+// Rigid (then with --affine affine) registration of two series (core/registration): the
+// 4x4 matrix that maps a point in the fixed series' LPS mm to the same anatomy in the
+// moving series' LPS mm.
 // --sro also writes it as a DICOM Spatial Registration object (core/exchange) in the
 // fixed series' study and Frame of Reference.
 #include <QCommandLineParser>
@@ -53,19 +55,24 @@ const SeriesEntry& entryOf(const Catalog& catalog, const std::string& idOrUid,
 int runRegister(const QStringList& args) {
     QCommandLineParser parser;
     parser.setApplicationDescription(
-        "Rigid registration (versor rigid, ITK) of MOVING onto FIXED. Writes the 4x4 matrix "
-        "that maps fixed LPS mm to moving LPS mm (row-major rows) with the metric, iterations "
-        "and seconds.");
+        "Rigid registration (versor rigid, ITK) of MOVING onto FIXED, then affine with "
+        "--affine. Writes the 4x4 matrix that maps fixed LPS mm to moving LPS mm (row-major "
+        "rows) with the metric, iterations and seconds.");
     parser.addPositionalArgument("FIXED", "the fixed series' path (DICOM folder, file, ...)");
     parser.addPositionalArgument("MOVING", "the moving series' path");
     parser.addOption(
         {"series", "The fixed series (id or UID; default the largest volume).", "UID"});
     parser.addOption({"moving-series", "The moving series (id or UID).", "UID"});
-    parser.addOption({"affine", "An affine stage after the rigid one (not implemented yet)."});
+    parser.addOption({"affine", "An affine stage (scaling, shear) after the rigid one."});
     parser.addOption(
         {"metric", "mi (Mattes mutual information, default) or ms (mean squares).", "mi|ms", "mi"});
+    parser.addOption({"init",
+                      "The start: auto (default: the scanner's frame when both series share "
+                      "their Frame of Reference, else the centres), centres, or frame.",
+                      "auto|centres|frame", "auto"});
     parser.addOption({{"o", "output"}, "The transform as JSON.", "transform.json"});
-    parser.addOption({"stats", "Print metric=, iterations=, seconds= on one line."});
+    parser.addOption({"stats", "Print transform=, init=, metric=, iterations=, seconds=, "
+                               "converged= on one line."});
     parser.addOption({"sro",
                       "Also write the registration as a DICOM Spatial Registration object "
                       "(both series DICOM).",
@@ -94,8 +101,14 @@ int runRegister(const QStringList& args) {
         err << "lucent-cli register: --metric: '" << metric << "' is neither mi nor ms\n";
         return kUsage;
     }
-    if (parser.isSet("affine")) {
-        err << "lucent-cli register: --affine: the affine stage is not implemented yet\n";
+    options.affine = parser.isSet("affine");
+    const QString init = parser.value("init");
+    if (init == "centres") {
+        options.initialisation = RegistrationOptions::Initialisation::Centres;
+    } else if (init == "frame") {
+        options.initialisation = RegistrationOptions::Initialisation::FrameOfReference;
+    } else if (init != "auto") {
+        err << "lucent-cli register: --init: '" << init << "' is none of auto, centres, frame\n";
         return kUsage;
     }
     RegistrationResult r;
@@ -135,17 +148,23 @@ int runRegister(const QStringList& args) {
         out << "\n";
         rows.append(values);
     }
-    out << "metric " << metricName(options.metric) << " " << r.metric << ", " << r.iterations
-        << " iterations, " << QString::number(r.seconds, 'f', 2) << " s"
-        << (r.converged ? "" : " (not converged)") << ": " << QString::fromStdString(r.reason)
-        << "\n";
+    const char* transform = r.affine ? "affine" : "rigid";
+    out << transform << ", started from the " << initialisationName(r.initialisation) << "; metric "
+        << metricName(options.metric) << " " << r.metric << ", " << r.iterations << " iterations, "
+        << QString::number(r.seconds, 'f', 2) << " s" << (r.converged ? "" : " (not converged)")
+        << ": " << QString::fromStdString(r.reason) << "\n";
     if (parser.isSet("stats")) {
-        out << "metric=" << r.metric << " iterations=" << r.iterations
+        const bool frame =
+            r.initialisation == RegistrationOptions::Initialisation::FrameOfReference;
+        out << "transform=" << transform << " init=" << (frame ? "frame" : "centres")
+            << " metric=" << r.metric << " iterations=" << r.iterations
             << " seconds=" << QString::number(r.seconds, 'f', 3)
             << " converged=" << (r.converged ? 1 : 0) << "\n";
     }
     const QJsonObject root{{"matrix", rows},
                            {"convention", "fixed LPS mm -> moving LPS mm, row-major rows"},
+                           {"transform", transform},
+                           {"initialisation", initialisationName(r.initialisation)},
                            {"metric_name", metricName(options.metric)},
                            {"metric", r.metric},
                            {"iterations", r.iterations},
@@ -160,7 +179,8 @@ int runRegister(const QStringList& args) {
     }
     if (parser.isSet("sro")) {
         sro.fixedToMoving = r.fixedToMoving;
-        sro.contentDescription = QString("Rigid registration, metric %1 %2, %3 iterations")
+        sro.contentDescription = QString("%1 registration, metric %2 %3, %4 iterations")
+                                     .arg(r.affine ? "Affine" : "Rigid")
                                      .arg(metricName(options.metric))
                                      .arg(r.metric)
                                      .arg(r.iterations)
