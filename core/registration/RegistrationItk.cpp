@@ -5,12 +5,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <random>
 #include <sstream>
 #include <thread>
 #include <vector>
 
 #include <itkBinShrinkImageFilter.h>
 #include <itkCenteredTransformInitializer.h>
+#include <itkGradientImageFilter.h>
 #include <itkMattesMutualInformationImageToImageMetricv4.h>
 #include <itkMeanSquaresImageToImageMetricv4.h>
 #include <itkMultiThreaderBase.h>
@@ -22,7 +24,6 @@ namespace lucent::detail {
 
 namespace {
 
-using MaskImageType = itk::Image<unsigned char, 3>;
 using MattesType = itk::MattesMutualInformationImageToImageMetricv4<ImageType, ImageType>;
 using MeanSquaresType = itk::MeanSquaresImageToImageMetricv4<ImageType, ImageType>;
 
@@ -71,25 +72,36 @@ ImageType::Pointer toItk(const Volume& v) {
     return image;
 }
 
-// The fixed-image mask (voxels above `threshold`) and the fraction of voxels in it.
-std::pair<MaskType::Pointer, double> maskOf(const ImageType& image, double threshold) {
-    auto mask = MaskImageType::New();
-    mask->SetRegions(image.GetLargestPossibleRegion());
-    mask->CopyInformation(&image);
-    mask->Allocate();
+// `count` random points (LPS mm) of the fixed image where it is above `threshold` (all of it
+// without one): a voxel drawn at random, kept when inside, moved by up to half a voxel.
+// Fewer when the mask is so small that 1000 draws a point do not find them.
+SampledPointSetType::Pointer samplePoints(const ImageType& image, std::optional<double> threshold,
+                                          int count, std::mt19937& random) {
+    auto points = SampledPointSetType::New();
+    points->Initialize();
     const float* in = image.GetBufferPointer();
-    unsigned char* out = mask->GetBufferPointer();
+    const auto size = image.GetLargestPossibleRegion().GetSize();
     const std::size_t n = image.GetLargestPossibleRegion().GetNumberOfPixels();
-    std::size_t inside = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-        out[i] = in[i] > threshold ? 1 : 0;
-        inside += out[i];
+    std::uniform_int_distribution<std::size_t> voxel(0, n - 1);
+    std::uniform_real_distribution<double> jitter(-0.5, 0.5);
+    itk::ContinuousIndex<double, 3> index;
+    ImageType::PointType point;
+    SampledPointSetType::PointType stored;
+    itk::IdentifierType kept = 0;
+    for (std::size_t draw = 0;
+         draw < 1000 * std::size_t(count) && kept < itk::IdentifierType(count); ++draw) {
+        const std::size_t v = voxel(random);
+        if (threshold && !(in[v] > *threshold)) {
+            continue;
+        }
+        index[0] = double(v % size[0]) + jitter(random);
+        index[1] = double(v / size[0] % size[1]) + jitter(random);
+        index[2] = double(v / (size[0] * size[1])) + jitter(random);
+        image.TransformContinuousIndexToPhysicalPoint(index, point);
+        stored.CastFrom(point);
+        points->SetPoint(kept++, stored);
     }
-    auto spatial = MaskType::New();
-    spatial->SetImage(mask);
-    spatial->Update();
-    return {spatial,
-            static_cast<double>(inside) / static_cast<double>(std::max<std::size_t>(n, 1))};
+    return points;
 }
 
 // Mean and variance of the voxels (of the fixed image: those above `threshold`).
@@ -176,11 +188,12 @@ ImageType::ConstPointer pyramidImage(const ImageType::Pointer& image, const Shri
     return out;
 }
 
-// The levels 4/2/1 (coarsest first) of both images, smoothing 2/1/0 mm; the sampling
-// percentage of each level gives about options.samplesPerLevel samples inside the mask.
+// The levels 4/2/1 (coarsest first) of both images, smoothing 2/1/0 mm, each with its own
+// options.samplesPerLevel points.
 std::vector<PyramidLevel> pyramidOf(const ImageType::Pointer& fixed,
                                     const ImageType::Pointer& moving, const VolumeGeometry& g,
-                                    const RegistrationOptions& options, double maskFraction) {
+                                    const RegistrationOptions& options,
+                                    std::vector<SampledPointSetType::Pointer> points) {
     const unsigned levels = static_cast<unsigned>(options.levels);
     std::vector<PyramidLevel> pyramid;
     for (unsigned l = 0; l < levels; ++l) {
@@ -190,10 +203,7 @@ std::vector<PyramidLevel> pyramidOf(const ImageType::Pointer& fixed,
         PyramidLevel level;
         level.fixed = pyramidImage(fixed, shrink, sigma);
         level.moving = pyramidImage(moving, shrink, sigma);
-        const double voxels =
-            static_cast<double>(level.fixed->GetLargestPossibleRegion().GetNumberOfPixels());
-        level.samplingPercentage =
-            std::clamp(options.samplesPerLevel / (voxels * maskFraction), 1e-4, 1.0);
+        level.points = points[l];
         pyramid.push_back(std::move(level));
     }
     return pyramid;
@@ -201,7 +211,7 @@ std::vector<PyramidLevel> pyramidOf(const ImageType::Pointer& fixed,
 
 } // namespace
 
-MetricType::Pointer makeMetric(const StageSetup& setup) {
+MetricType::Pointer makeMetric(const StageSetup& setup, bool finest) {
     MetricType::Pointer metric;
     if (setup.options->metric == RegistrationOptions::Metric::MeanSquares) {
         metric = MeanSquaresType::New();
@@ -211,8 +221,17 @@ MetricType::Pointer makeMetric(const StageSetup& setup) {
             static_cast<itk::SizeValueType>(setup.options->histogramBins));
         metric = mattes;
     }
-    if (setup.mask) {
-        metric->SetFixedImageMask(setup.mask);
+    // The moving image's gradient: ITK's default, a recursive Gaussian of the largest
+    // spacing (5 mm for 5 mm slices, in-plane too), on the coarser levels, where its smooth
+    // direction widens the capture range; central differences (one pass) on the finest
+    // level, where that blur would stop short of the optimum and take most of the time.
+    if (finest) {
+        using GradientFilterType =
+            itk::GradientImageFilter<ImageType, double, double,
+                                     MetricType::MovingImageGradientImageType>;
+        auto gradient = GradientFilterType::New();
+        gradient->SetUseImageDirection(true);
+        metric->SetMovingImageGradientFilter(gradient);
     }
     return metric;
 }
@@ -330,24 +349,31 @@ RegistrationResult registerItk(const Volume& fixed, const Volume& moving,
 
     const ImageType::Pointer fixedImage = toItk(fixed);
     const ImageType::Pointer movingImage = toItk(moving);
+    // The samples, drawn before clamping lifts the air to the lowest tissue value: over the
+    // whole fixed volume on the coarser levels (the outline of the body against the air
+    // brings a distant start in), inside the mask on the finest (the anatomy decides).
+    std::mt19937 random(options.seed);
+    std::vector<SampledPointSetType::Pointer> points;
+    for (int l = 0; l < options.levels; ++l) {
+        const bool finest = l + 1 == options.levels;
+        points.push_back(samplePoints(*fixedImage, finest ? maskAbove : std::nullopt,
+                                      options.samplesPerLevel, random));
+        if (points.back()->GetNumberOfPoints() < std::size_t(options.samplesPerLevel / 10)) {
+            std::ostringstream why;
+            why << "only " << points.back()->GetNumberOfPoints()
+                << " samples of the fixed volume found above the mask threshold "
+                << maskAbove.value_or(0.0);
+            throw RegistrationError(metricName(options.metric), why.str());
+        }
+    }
     if (options.metric == RegistrationOptions::Metric::MutualInformation) {
         clampToPercentiles(*fixedImage, maskAbove);
         clampToPercentiles(*movingImage, std::nullopt);
     }
     StageSetup setup;
     setup.options = &options;
-    double maskFraction = 1.0;
-    if (maskAbove) {
-        auto [mask, fraction] = maskOf(*fixedImage, *maskAbove);
-        if (fraction <= 0.0) {
-            throw RegistrationError(metricName(options.metric),
-                                    "no voxel of the fixed volume is above the mask threshold " +
-                                        std::to_string(*maskAbove));
-        }
-        setup.mask = mask;
-        maskFraction = fraction;
-    }
-    setup.pyramid = pyramidOf(fixedImage, movingImage, fixed.geometry(), options, maskFraction);
+    setup.pyramid =
+        pyramidOf(fixedImage, movingImage, fixed.geometry(), options, std::move(points));
 
     // Progress: each stage gets its share by its number of levels.
     const unsigned rigidLevels = static_cast<unsigned>(options.levels);

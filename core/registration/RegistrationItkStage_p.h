@@ -1,5 +1,5 @@
 #pragma once
-// One stage of registerRigid (rigid or affine) with ITK's ImageRegistrationMethodv4,
+// One stage of registerRigid (rigid or affine) with ITK's v4 metrics and optimizer,
 // private to core/registration: included only by RegistrationItk.cpp (the rigid stage and
 // what both share) and RegistrationItkAffine.cpp (the affine stage), each instantiating
 // runStage for its transform.
@@ -10,9 +10,9 @@
 #include <vector>
 
 #include <itkCommand.h>
+#include <itkIdentityTransform.h>
 #include <itkImage.h>
-#include <itkImageMaskSpatialObject.h>
-#include <itkImageRegistrationMethodv4.h>
+#include <itkImageToImageMetricv4.h>
 #include <itkMatrixOffsetTransformBase.h>
 #include <itkRegistrationParameterScalesFromPhysicalShift.h>
 #include <itkRegularStepGradientDescentOptimizerv4.h>
@@ -23,28 +23,27 @@
 namespace lucent::detail {
 
 using ImageType = itk::Image<float, 3>;
-using MaskType = itk::ImageMaskSpatialObject<3>;
 using MetricType = itk::ImageToImageMetricv4<ImageType, ImageType>;
+using SampledPointSetType = MetricType::FixedSampledPointSetType;
 using OptimizerType = itk::RegularStepGradientDescentOptimizerv4<double>;
 using ScalesType = itk::RegistrationParameterScalesFromPhysicalShift<MetricType>;
 using RigidTransformType = itk::VersorRigid3DTransform<double>;
 using LinearTransformType = itk::MatrixOffsetTransformBase<double, 3, 3>;
 
-// One level of the multi-resolution pyramid: both images binned (block averages) by the
-// same factors and then smoothed, so that the metric's gradient image and the smoothing
-// are computed on the small images (ImageRegistrationMethodv4's own pyramid smooths and
-// differentiates the full images at every level).
+// One level of the multi-resolution pyramid: both images binned (block means) by the same
+// factors and then smoothed, so that the smoothing and the metric's gradient image are
+// computed on the small images (ImageRegistrationMethodv4's pyramid smooths and
+// differentiates the full images at every level), and the level's random points.
 struct PyramidLevel {
     ImageType::ConstPointer fixed;
     ImageType::ConstPointer moving;
-    double samplingPercentage = 1.0; // of the level's fixed voxels: options.samplesPerLevel
+    SampledPointSetType::Pointer points; // fixed LPS mm (the finest level's inside the mask)
 };
 
-// What every stage shares: the pyramid (intensities already clamped for MI), the mask.
+// What every stage shares: the pyramid (intensities already clamped for MI).
 struct StageSetup {
     const RegistrationOptions* options = nullptr;
     std::vector<PyramidLevel> pyramid; // coarsest first; a stage of n levels takes the last n
-    MaskType::ConstPointer mask;       // null: every voxel of the fixed image is sampled
 };
 
 // A stage's pyramid and its share of the progress.
@@ -61,10 +60,10 @@ struct StageOutcome {
     std::size_t validPoints = 0; // samples of the last evaluation inside the moving image
 };
 
-// Defined in RegistrationItk.cpp.
-MetricType::Pointer makeMetric(const StageSetup& setup);
+// Defined in RegistrationItk.cpp. makeMetric: `finest` for the last level of the pyramid.
+MetricType::Pointer makeMetric(const StageSetup& setup, bool finest);
 glm::dmat4 toMatrix(const LinearTransformType& t);
-// Throws RegistrationCancelled or RegistrationError for what Update() threw.
+// Throws RegistrationCancelled or RegistrationError for the ITK exception being handled.
 [[noreturn]] void rethrowStageFailure(const RegistrationOptions& options);
 
 // Defined in RegistrationItkAffine.cpp: the affine stage started from `rigid`; its
@@ -101,18 +100,25 @@ struct IterationObserver {
 };
 
 // One level of a stage on `transform` (optimised in place): the metric of setup.options on
-// random fixed-image samples inside the mask, regular-step gradient descent with
-// physical-shift scales. `observer` counts on from the stage's previous levels.
+// the level's points, regular-step gradient descent with physical-shift scales, driven
+// here (ImageRegistrationMethodv4 would copy the virtual domain and draw its samples over
+// every voxel at every level). `observer` counts on from the stage's previous levels.
 template <class Transform>
 StageOutcome runLevel(const StageSetup& setup, const PyramidLevel& images,
                       IterationObserver& observer, Transform& transform) {
-    using RegistrationType = itk::ImageRegistrationMethodv4<ImageType, ImageType, Transform>;
     const RegistrationOptions& options = *setup.options;
-    const MetricType::Pointer metric = makeMetric(setup);
+    const MetricType::Pointer metric = makeMetric(setup, &images == &setup.pyramid.back());
+    metric->SetFixedImage(images.fixed);
+    metric->SetMovingImage(images.moving);
+    metric->SetFixedTransform(itk::IdentityTransform<double, 3>::New());
+    metric->SetMovingTransform(&transform);
+    metric->SetFixedSampledPointSet(images.points);
+    metric->SetUseSampledPointSet(true);
 
     auto optimizer = OptimizerType::New();
     auto scales = ScalesType::New();
     scales->SetMetric(metric);
+    optimizer->SetMetric(metric);
     optimizer->SetScalesEstimator(scales);
     optimizer->SetDoEstimateScales(true);
     optimizer->SetDoEstimateLearningRateOnce(true); // first step = max step (one voxel)
@@ -120,27 +126,6 @@ StageOutcome runLevel(const StageSetup& setup, const PyramidLevel& images,
     optimizer->SetNumberOfIterations(static_cast<itk::SizeValueType>(options.maxIterations));
     optimizer->SetGradientMagnitudeTolerance(1e-10);
     optimizer->SetReturnBestParametersAndValue(false);
-
-    // One level of ITK's method: the pyramid is ours (no shrinking, no smoothing here).
-    auto registration = RegistrationType::New();
-    registration->SetFixedImage(images.fixed);
-    registration->SetMovingImage(images.moving);
-    registration->SetMetric(metric);
-    registration->SetOptimizer(optimizer);
-    registration->SetInitialTransform(&transform);
-    registration->InPlaceOn();
-    registration->SetNumberOfLevels(1);
-    typename RegistrationType::ShrinkFactorsPerDimensionContainerType one;
-    one.Fill(1);
-    registration->SetShrinkFactorsPerDimension(0, one);
-    typename RegistrationType::SmoothingSigmasArrayType sigmas(1);
-    sigmas.Fill(0.0);
-    registration->SetSmoothingSigmasPerLevel(sigmas);
-    registration->SetMetricSamplingStrategy(RegistrationType::MetricSamplingStrategyEnum::RANDOM);
-    typename RegistrationType::MetricSamplingPercentageArrayType percentage(1);
-    percentage.Fill(images.samplingPercentage);
-    registration->SetMetricSamplingPercentagePerLevel(percentage);
-    registration->MetricSamplingReinitializeSeed(static_cast<int>(options.seed % 2147483647u));
 
     observer.optimizer = optimizer.GetPointer();
     auto onIteration = itk::CStyleCommand::New();
@@ -153,7 +138,8 @@ StageOutcome runLevel(const StageSetup& setup, const PyramidLevel& images,
         if (options.stop.stop_requested()) {
             throw RegistrationCancelled();
         }
-        registration->Update();
+        metric->Initialize();
+        optimizer->StartOptimization();
     } catch (const itk::ExceptionObject&) {
         rethrowStageFailure(options);
     }
