@@ -12,7 +12,6 @@
 
 #include <itkBinShrinkImageFilter.h>
 #include <itkCenteredTransformInitializer.h>
-#include <itkGradientImageFilter.h>
 #include <itkMattesMutualInformationImageToImageMetricv4.h>
 #include <itkMeanSquaresImageToImageMetricv4.h>
 #include <itkMultiThreaderBase.h>
@@ -221,17 +220,13 @@ MetricType::Pointer makeMetric(const StageSetup& setup, bool finest) {
             static_cast<itk::SizeValueType>(setup.options->histogramBins));
         metric = mattes;
     }
-    // The moving image's gradient: ITK's default, a recursive Gaussian of the largest
-    // spacing (5 mm for 5 mm slices, in-plane too), on the coarser levels, where its smooth
-    // direction widens the capture range; central differences (one pass) on the finest
-    // level, where that blur would stop short of the optimum and take most of the time.
+    // The moving image's gradient: ITK's default, an image of it (a recursive Gaussian of the
+    // largest spacing: 5 mm for 5 mm slices, in-plane too) on the coarser levels, where their
+    // images are small and its smooth direction widens the capture range; central
+    // differences at the samples on the finest level, where that blur would stop short of
+    // the optimum and the image (24 bytes a voxel) would take most of the time and memory.
     if (finest) {
-        using GradientFilterType =
-            itk::GradientImageFilter<ImageType, double, double,
-                                     MetricType::MovingImageGradientImageType>;
-        auto gradient = GradientFilterType::New();
-        gradient->SetUseImageDirection(true);
-        metric->SetMovingImageGradientFilter(gradient);
+        metric->SetUseMovingImageGradientFilter(false);
     }
     return metric;
 }
