@@ -41,7 +41,7 @@ struct RegistrationOptions {
     // spacing), smoothing 2/1/0 mm; fewer levels drop the coarsest first.
     int levels = 3;
     int histogramBins = 50;      // Mattes MI
-    int samplesPerLevel = 30000; // random fixed-image samples (inside the mask) per level
+    int samplesPerLevel = 30000; // random fixed-image samples per level (see registerRigid)
     int maxIterations = 200;     // per level (of each stage)
     unsigned seed = 2026;        // the random sampling; the same seed gives the same result
     std::stop_token stop;        // a request ends registerRigid with RegistrationCancelled
@@ -83,13 +83,14 @@ struct RegistrationCancelled : std::runtime_error {
     RegistrationCancelled() : std::runtime_error("registration cancelled") {}
 };
 
-// Versor rigid registration (ITK ImageRegistrationMethodv4), then an affine stage when
+// Versor rigid registration (ITK's v4 metrics and optimizer), then an affine stage when
 // options.affine: started as options.initialisation says, Mattes MI or mean squares on
-// random samples of the fixed image inside its mask, regular-step gradient descent with
-// physical-shift scales, a 3-level pyramid (2 levels for the affine stage).
-// The fixed-image mask leaves out air: for CT (modality "CT", or no modality and a
-// minimum below -500) voxels above -500 HU; otherwise voxels above 5 % of the way from
-// the minimum to the 99th percentile.
+// random samples of the fixed image, regular-step gradient descent with physical-shift
+// scales, a 3-level pyramid (the 2 finest for the affine stage).
+// The finest level's samples lie inside the fixed-image mask, which leaves out air: for CT
+// (modality "CT", or no modality and a minimum below -500) voxels above -500 HU; otherwise
+// voxels above 5 % of the way from the minimum to the 99th percentile. The coarser levels
+// sample the whole volume: the body's outline against the air brings a distant start in.
 // Throws RegistrationError (see above; also an affine stage that folds or blows the
 // volume up), RegistrationCancelled, std::invalid_argument for an empty volume or bad
 // options (naming the option).
