@@ -13,6 +13,7 @@
 #include <QJsonObject>
 #include <QTextStream>
 
+#include <optional>
 #include <set>
 #include <stdexcept>
 
@@ -50,10 +51,7 @@ const SeriesEntry& entryOf(const Catalog& catalog, const std::string& idOrUid,
     return *e;
 }
 
-} // namespace
-
-int runRegister(const QStringList& args) {
-    QCommandLineParser parser;
+void addRegisterOptions(QCommandLineParser& parser) {
     parser.setApplicationDescription(
         "Rigid registration (versor rigid, ITK) of MOVING onto FIXED, then affine with "
         "--affine. Writes the 4x4 matrix that maps fixed LPS mm to moving LPS mm (row-major "
@@ -78,6 +76,75 @@ int runRegister(const QStringList& args) {
                       "(both series DICOM).",
                       "reg.dcm"});
     parser.addHelpOption();
+}
+
+// --metric, --init and --affine as options; a message naming the option when one is bad.
+std::optional<RegistrationOptions> optionsOf(const QCommandLineParser& parser, QTextStream& err) {
+    RegistrationOptions options;
+    const QString metric = parser.value("metric");
+    if (metric == "ms") {
+        options.metric = RegistrationOptions::Metric::MeanSquares;
+    } else if (metric != "mi") {
+        err << "lucent-cli register: --metric: '" << metric << "' is neither mi nor ms\n";
+        return std::nullopt;
+    }
+    options.affine = parser.isSet("affine");
+    const QString init = parser.value("init");
+    if (init == "centres") {
+        options.initialisation = RegistrationOptions::Initialisation::Centres;
+    } else if (init == "frame") {
+        options.initialisation = RegistrationOptions::Initialisation::FrameOfReference;
+    } else if (init != "auto") {
+        err << "lucent-cli register: --init: '" << init << "' is none of auto, centres, frame\n";
+        return std::nullopt;
+    }
+    return options;
+}
+
+// The matrix and a summary on stdout (with --stats its key=value line); the JSON document.
+QJsonObject report(const RegistrationResult& r, const RegistrationOptions& options, bool stats) {
+    QJsonArray rows;
+    QTextStream out(stdout);
+    out << "fixed -> moving (LPS mm):\n";
+    for (int row = 0; row < 4; ++row) {
+        QJsonArray values;
+        for (int c = 0; c < 4; ++c) {
+            values.append(r.fixedToMoving[c][row]);
+            out << QString("%1").arg(r.fixedToMoving[c][row], 12, 'f', 6);
+        }
+        out << "\n";
+        rows.append(values);
+    }
+    const char* transform = r.affine ? "affine" : "rigid";
+    out << transform << ", started from the " << initialisationName(r.initialisation) << "; metric "
+        << metricName(options.metric) << " " << r.metric << ", " << r.iterations << " iterations, "
+        << QString::number(r.seconds, 'f', 2) << " s" << (r.converged ? "" : " (not converged)")
+        << ": " << QString::fromStdString(r.reason) << "\n";
+    if (stats) {
+        const bool frame =
+            r.initialisation == RegistrationOptions::Initialisation::FrameOfReference;
+        out << "transform=" << transform << " init=" << (frame ? "frame" : "centres")
+            << " metric=" << r.metric << " iterations=" << r.iterations
+            << " seconds=" << QString::number(r.seconds, 'f', 3)
+            << " converged=" << (r.converged ? 1 : 0) << "\n";
+    }
+    return QJsonObject{{"matrix", rows},
+                       {"convention", "fixed LPS mm -> moving LPS mm, row-major rows"},
+                       {"transform", transform},
+                       {"initialisation", initialisationName(r.initialisation)},
+                       {"metric_name", metricName(options.metric)},
+                       {"metric", r.metric},
+                       {"iterations", r.iterations},
+                       {"seconds", r.seconds},
+                       {"converged", r.converged},
+                       {"reason", QString::fromStdString(r.reason)}};
+}
+
+} // namespace
+
+int runRegister(const QStringList& args) {
+    QCommandLineParser parser;
+    addRegisterOptions(parser);
     QTextStream err(stderr);
     if (!parser.parse(args)) {
         err << "lucent-cli register: " << parser.errorText() << "\n";
@@ -93,22 +160,8 @@ int runRegister(const QStringList& args) {
             << parser.helpText();
         return kUsage;
     }
-    RegistrationOptions options;
-    const QString metric = parser.value("metric");
-    if (metric == "ms") {
-        options.metric = RegistrationOptions::Metric::MeanSquares;
-    } else if (metric != "mi") {
-        err << "lucent-cli register: --metric: '" << metric << "' is neither mi nor ms\n";
-        return kUsage;
-    }
-    options.affine = parser.isSet("affine");
-    const QString init = parser.value("init");
-    if (init == "centres") {
-        options.initialisation = RegistrationOptions::Initialisation::Centres;
-    } else if (init == "frame") {
-        options.initialisation = RegistrationOptions::Initialisation::FrameOfReference;
-    } else if (init != "auto") {
-        err << "lucent-cli register: --init: '" << init << "' is none of auto, centres, frame\n";
+    const std::optional<RegistrationOptions> options = optionsOf(parser, err);
+    if (!options) {
         return kUsage;
     }
     RegistrationResult r;
@@ -131,46 +184,12 @@ int runRegister(const QStringList& args) {
         }
         const Volume fixed = loadSeries(fixedEntry);
         const Volume moving = loadSeries(movingEntry);
-        r = registerRigid(fixed, moving, options);
+        r = registerRigid(fixed, moving, *options);
     } catch (const std::exception& e) {
         err << "lucent-cli register: " << e.what() << "\n";
         return kBadInput;
     }
-    QJsonArray rows;
-    QTextStream out(stdout);
-    out << "fixed -> moving (LPS mm):\n";
-    for (int row = 0; row < 4; ++row) {
-        QJsonArray values;
-        for (int c = 0; c < 4; ++c) {
-            values.append(r.fixedToMoving[c][row]);
-            out << QString("%1").arg(r.fixedToMoving[c][row], 12, 'f', 6);
-        }
-        out << "\n";
-        rows.append(values);
-    }
-    const char* transform = r.affine ? "affine" : "rigid";
-    out << transform << ", started from the " << initialisationName(r.initialisation) << "; metric "
-        << metricName(options.metric) << " " << r.metric << ", " << r.iterations << " iterations, "
-        << QString::number(r.seconds, 'f', 2) << " s" << (r.converged ? "" : " (not converged)")
-        << ": " << QString::fromStdString(r.reason) << "\n";
-    if (parser.isSet("stats")) {
-        const bool frame =
-            r.initialisation == RegistrationOptions::Initialisation::FrameOfReference;
-        out << "transform=" << transform << " init=" << (frame ? "frame" : "centres")
-            << " metric=" << r.metric << " iterations=" << r.iterations
-            << " seconds=" << QString::number(r.seconds, 'f', 3)
-            << " converged=" << (r.converged ? 1 : 0) << "\n";
-    }
-    const QJsonObject root{{"matrix", rows},
-                           {"convention", "fixed LPS mm -> moving LPS mm, row-major rows"},
-                           {"transform", transform},
-                           {"initialisation", initialisationName(r.initialisation)},
-                           {"metric_name", metricName(options.metric)},
-                           {"metric", r.metric},
-                           {"iterations", r.iterations},
-                           {"seconds", r.seconds},
-                           {"converged", r.converged},
-                           {"reason", QString::fromStdString(r.reason)}};
+    const QJsonObject root = report(r, *options, parser.isSet("stats"));
     QFile file(parser.value("output"));
     if (!file.open(QIODevice::WriteOnly) ||
         file.write(QJsonDocument(root).toJson(QJsonDocument::Indented)) < 0) {
@@ -181,7 +200,7 @@ int runRegister(const QStringList& args) {
         sro.fixedToMoving = r.fixedToMoving;
         sro.contentDescription = QString("%1 registration, metric %2 %3, %4 iterations")
                                      .arg(r.affine ? "Affine" : "Rigid")
-                                     .arg(metricName(options.metric))
+                                     .arg(metricName(options->metric))
                                      .arg(r.metric)
                                      .arg(r.iterations)
                                      .toStdString();
