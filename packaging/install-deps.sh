@@ -38,8 +38,10 @@ packages=(
   libqrencode-dev libavcodec-dev libavformat-dev libavutil-dev libswscale-dev ffmpeg
   # the invite test reads the QR codes back with a real decoder (zbarimg)
   zbar-tools
-  # rigid registration of two series (core/registration): ITK 5.2
+  # rigid and affine registration of two series (core/registration): ITK 5.2
   libinsighttoolkit5-dev
+  # the registration benchmark's anchor (tests/perf/bench_register_elastix): elastix 5.0.1
+  elastix
 )
 
 missing=()

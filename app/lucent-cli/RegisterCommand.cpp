@@ -1,40 +1,25 @@
 // lucent-cli register FIXED MOVING [--series UID] [--moving-series UID] [--affine]
-//                     [--metric mi|ms] -o transform.json [--stats] [--sro reg.dcm]
-// Rigid registration of two series (core/registration): the 4x4 matrix that maps a point
-// in the fixed series' LPS mm to the same anatomy in the moving series' LPS mm.
+//                     [--metric mi|ms] [--init auto|centres|frame] -o transform.json
+//                     [--stats] [--sro reg.dcm]
+// Rigid (then with --affine affine) registration of two series (core/registration): the
+// 4x4 matrix that maps a point in the fixed series' LPS mm to the same anatomy in the
+// moving series' LPS mm.
 // --sro also writes it as a DICOM Spatial Registration object (core/exchange) in the
 // fixed series' study and Frame of Reference.
 #include <QCommandLineParser>
 #include <QTextStream>
 
-#include <set>
+#include <optional>
 #include <stdexcept>
 
 #include "CliCommand.h"
-#include "core/exchange/InstanceFiles.h"
-#include "core/exchange/SpatialRegistrationWriter.h"
+#include "core/exchange/SpatialRegistrationSource.h"
 #include "core/fusion/TransformFile.h"
 #include "core/io/Catalog.h"
 #include "core/registration/Registration.h"
 
 namespace lucent::cli {
 namespace {
-
-// The DICOM series of an entry with its instances' SOP UIDs (read from its files).
-RegisteredSeries registeredSeries(const SeriesEntry& entry) {
-    if (entry.format != SourceFormat::Dicom) {
-        throw std::runtime_error(entry.seriesUid + ": not DICOM, so no Spatial Registration");
-    }
-    RegisteredSeries s{entry.studyUid, entry.seriesUid, entry.frameOfReferenceUid, {}};
-    std::set<std::string> files;
-    for (const SliceRef& slice : entry.slices) {
-        if (files.insert(slice.file).second) {
-            const InstanceHeader h = readInstanceHeader(slice.file);
-            s.instances.push_back({h.sopClassUid, h.sopInstanceUid});
-        }
-    }
-    return s;
-}
 
 const SeriesEntry& entryOf(const Catalog& catalog, const std::string& idOrUid,
                            const QString& path) {
@@ -45,29 +30,87 @@ const SeriesEntry& entryOf(const Catalog& catalog, const std::string& idOrUid,
     return *e;
 }
 
-} // namespace
-
-int runRegister(const QStringList& args) {
-    QCommandLineParser parser;
+void addRegisterOptions(QCommandLineParser& parser) {
     parser.setApplicationDescription(
-        "Rigid registration (versor rigid, ITK) of MOVING onto FIXED. Writes the 4x4 matrix "
-        "that maps fixed LPS mm to moving LPS mm (row-major rows) with the metric, iterations "
-        "and seconds.");
+        "Rigid registration (versor rigid, ITK) of MOVING onto FIXED, then affine with "
+        "--affine. Writes the 4x4 matrix that maps fixed LPS mm to moving LPS mm (row-major "
+        "rows) with the metric, iterations and seconds.");
     parser.addPositionalArgument("FIXED", "the fixed series' path (DICOM folder, file, ...)");
     parser.addPositionalArgument("MOVING", "the moving series' path");
     parser.addOption(
         {"series", "The fixed series (id or UID; default the largest volume).", "UID"});
     parser.addOption({"moving-series", "The moving series (id or UID).", "UID"});
-    parser.addOption({"affine", "An affine stage after the rigid one (not implemented yet)."});
+    parser.addOption({"affine", "An affine stage (scaling, shear) after the rigid one."});
     parser.addOption(
         {"metric", "mi (Mattes mutual information, default) or ms (mean squares).", "mi|ms", "mi"});
+    parser.addOption({"init",
+                      "The start: auto (default: the scanner's frame when both series share "
+                      "their Frame of Reference, else the centres), centres, or frame.",
+                      "auto|centres|frame", "auto"});
     parser.addOption({{"o", "output"}, "The transform as JSON.", "transform.json"});
-    parser.addOption({"stats", "Print metric=, iterations=, seconds= on one line."});
+    parser.addOption({"stats", "Print transform=, init=, metric=, iterations=, seconds=, "
+                               "converged= on one line."});
     parser.addOption({"sro",
                       "Also write the registration as a DICOM Spatial Registration object "
                       "(both series DICOM).",
                       "reg.dcm"});
     parser.addHelpOption();
+}
+
+// --metric, --init and --affine as options; a message naming the option when one is bad.
+std::optional<RegistrationOptions> optionsOf(const QCommandLineParser& parser, QTextStream& err) {
+    RegistrationOptions options;
+    const QString metric = parser.value("metric");
+    if (metric == "ms") {
+        options.metric = RegistrationOptions::Metric::MeanSquares;
+    } else if (metric != "mi") {
+        err << "lucent-cli register: --metric: '" << metric << "' is neither mi nor ms\n";
+        return std::nullopt;
+    }
+    options.affine = parser.isSet("affine");
+    const QString init = parser.value("init");
+    if (init == "centres") {
+        options.initialisation = RegistrationOptions::Initialisation::Centres;
+    } else if (init == "frame") {
+        options.initialisation = RegistrationOptions::Initialisation::FrameOfReference;
+    } else if (init != "auto") {
+        err << "lucent-cli register: --init: '" << init << "' is none of auto, centres, frame\n";
+        return std::nullopt;
+    }
+    return options;
+}
+
+// The matrix and a summary on stdout (with --stats its key=value line); the JSON document.
+// The matrix and the figures on standard output (--stats: one key=value line).
+void report(const RegistrationResult& r, const RegistrationOptions& options, bool stats) {
+    QTextStream out(stdout);
+    out << "fixed -> moving (LPS mm):\n";
+    for (int row = 0; row < 4; ++row) {
+        for (int c = 0; c < 4; ++c) {
+            out << QString("%1").arg(r.fixedToMoving[c][row], 12, 'f', 6);
+        }
+        out << "\n";
+    }
+    const char* transform = r.affine ? "affine" : "rigid";
+    out << transform << ", started from the " << initialisationName(r.initialisation) << "; metric "
+        << metricName(options.metric) << " " << r.metric << ", " << r.iterations << " iterations, "
+        << QString::number(r.seconds, 'f', 2) << " s" << (r.converged ? "" : " (not converged)")
+        << ": " << QString::fromStdString(r.reason) << "\n";
+    if (stats) {
+        const bool frame =
+            r.initialisation == RegistrationOptions::Initialisation::FrameOfReference;
+        out << "transform=" << transform << " init=" << (frame ? "frame" : "centres")
+            << " metric=" << r.metric << " iterations=" << r.iterations
+            << " seconds=" << QString::number(r.seconds, 'f', 3)
+            << " converged=" << (r.converged ? 1 : 0) << "\n";
+    }
+}
+
+} // namespace
+
+int runRegister(const QStringList& args) {
+    QCommandLineParser parser;
+    addRegisterOptions(parser);
     QTextStream err(stderr);
     if (!parser.parse(args)) {
         err << "lucent-cli register: " << parser.errorText() << "\n";
@@ -83,16 +126,8 @@ int runRegister(const QStringList& args) {
             << parser.helpText();
         return kUsage;
     }
-    RegistrationOptions options;
-    const QString metric = parser.value("metric");
-    if (metric == "ms") {
-        options.metric = RegistrationOptions::Metric::MeanSquares;
-    } else if (metric != "mi") {
-        err << "lucent-cli register: --metric: '" << metric << "' is neither mi nor ms\n";
-        return kUsage;
-    }
-    if (parser.isSet("affine")) {
-        err << "lucent-cli register: --affine: the affine stage is not implemented yet\n";
+    const std::optional<RegistrationOptions> options = optionsOf(parser, err);
+    if (!options) {
         return kUsage;
     }
     RegistrationResult r;
@@ -105,50 +140,31 @@ int runRegister(const QStringList& args) {
         const SeriesEntry& movingEntry =
             entryOf(movingCatalog, parser.value("moving-series").toStdString(), paths[1]);
         if (parser.isSet("sro")) {
-            sro.fixed = registeredSeries(fixedEntry);
-            sro.moving = registeredSeries(movingEntry);
-            sro.patientName = fixedEntry.patientName;
-            sro.patientId = fixedEntry.patientId;
-            sro.studyUid = fixedEntry.studyUid;
-            sro.studyDate = fixedEntry.studyDate;
-            sro.studyTime = fixedEntry.studyTime;
+            sro = spatialRegistrationInput(fixedEntry, movingEntry, glm::dmat4(1.0));
         }
         const Volume fixed = loadSeries(fixedEntry);
         const Volume moving = loadSeries(movingEntry);
-        r = registerRigid(fixed, moving, options);
+        r = registerRigid(fixed, moving, *options);
     } catch (const std::exception& e) {
         err << "lucent-cli register: " << e.what() << "\n";
         return kBadInput;
     }
-    QTextStream out(stdout);
-    out << "fixed -> moving (LPS mm):\n";
-    for (int row = 0; row < 4; ++row) {
-        for (int c = 0; c < 4; ++c) {
-            out << QString("%1").arg(r.fixedToMoving[c][row], 12, 'f', 6);
-        }
-        out << "\n";
-    }
-    out << "metric " << metricName(options.metric) << " " << r.metric << ", " << r.iterations
-        << " iterations, " << QString::number(r.seconds, 'f', 2) << " s"
-        << (r.converged ? "" : " (not converged)") << ": " << QString::fromStdString(r.reason)
-        << "\n";
-    if (parser.isSet("stats")) {
-        out << "metric=" << r.metric << " iterations=" << r.iterations
-            << " seconds=" << QString::number(r.seconds, 'f', 3)
-            << " converged=" << (r.converged ? 1 : 0) << "\n";
-    }
+    report(r, *options, parser.isSet("stats"));
     try {
         writeTransformFile(parser.value("output").toStdString(), r.fixedToMoving,
-                           TransformFileFacts{metricName(options.metric), r.metric, r.iterations,
-                                              r.seconds, r.converged, r.reason});
+                           TransformFileFacts{metricName(options->metric), r.metric, r.iterations,
+                                              r.seconds, r.converged, r.reason,
+                                              r.affine ? "affine" : "rigid",
+                                              initialisationName(r.initialisation)});
     } catch (const TransformFileError& e) {
         err << "lucent-cli register: " << e.what() << "\n";
         return kBadInput;
     }
     if (parser.isSet("sro")) {
         sro.fixedToMoving = r.fixedToMoving;
-        sro.contentDescription = QString("Rigid registration, metric %1 %2, %3 iterations")
-                                     .arg(metricName(options.metric))
+        sro.contentDescription = QString("%1 registration, metric %2 %3, %4 iterations")
+                                     .arg(r.affine ? "Affine" : "Rigid")
+                                     .arg(metricName(options->metric))
                                      .arg(r.metric)
                                      .arg(r.iterations)
                                      .toStdString();

@@ -1,5 +1,6 @@
 #include "core/exchange/SpatialRegistrationWriter.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -71,6 +72,25 @@ void checkSeries(const RegisteredSeries& s, const char* which, const std::filesy
     }
 }
 
+// Frame of Reference Transformation Matrix Type (PS3.3 C.20.2.1.2): RIGID for a rotation
+// and a translation, RIGID_SCALE when a uniform scale is added, AFFINE otherwise
+// (lucent-cli register --affine).
+const char* matrixType(const glm::dmat4& m) {
+    const glm::dmat3 a(m);
+    const glm::dmat3 gram = glm::transpose(a) * a; // s^2 I for a scaled rotation
+    const double s2 = (gram[0][0] + gram[1][1] + gram[2][2]) / 3.0;
+    double off = 0.0;
+    for (int c = 0; c < 3; ++c) {
+        for (int r = 0; r < 3; ++r) {
+            off = std::max(off, std::abs(gram[c][r] - (r == c ? s2 : 0.0)));
+        }
+    }
+    if (!(glm::determinant(a) > 0.0) || off > 1e-6 * std::max(s2, 1e-12)) {
+        return "AFFINE";
+    }
+    return std::abs(s2 - 1.0) < 1e-6 ? "RIGID" : "RIGID_SCALE";
+}
+
 // One Registration Sequence item: a Frame of Reference, its images, its matrix.
 void addRegistration(DcmItem& dataset, const RegisteredSeries& s, const glm::dmat4& toSro,
                      const std::string& comment, const std::filesystem::path& out) {
@@ -89,7 +109,7 @@ void addRegistration(DcmItem& dataset, const RegisteredSeries& s, const glm::dma
     }
     DcmItem& matrix = newItem(matrixRegistration, DCM_MatrixSequence, out);
     put(matrix, DCM_FrameOfReferenceTransformationMatrix, matrixValue(toSro), out);
-    put(matrix, DCM_FrameOfReferenceTransformationMatrixType, "RIGID", out);
+    put(matrix, DCM_FrameOfReferenceTransformationMatrixType, matrixType(toSro), out);
 }
 
 // Common Instance Reference Module: series of this study, then other studies.

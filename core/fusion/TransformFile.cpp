@@ -85,6 +85,12 @@ void writeTransformFile(const std::string& path, const glm::dmat4& fixedToMoving
         root["seconds"] = facts->seconds;
         root["converged"] = facts->converged;
         root["reason"] = facts->reason;
+        if (!facts->transform.empty()) {
+            root["transform"] = facts->transform;
+        }
+        if (!facts->initialisation.empty()) {
+            root["initialisation"] = facts->initialisation;
+        }
     }
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
     out << root.dump(4) << "\n";

@@ -25,6 +25,8 @@ struct TransformFileFacts {
     double seconds = 0.0;
     bool converged = false;
     std::string reason;
+    std::string transform;      // "rigid", "affine" ("" leaves it out)
+    std::string initialisation; // where it started ("" leaves it out)
 };
 
 // The matrix of `path`. Throws TransformFileError naming the file and what is wrong: it

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "core/registration/RegistrationItk_p.h"
@@ -29,6 +30,36 @@ double upperPercentile(const Volume& v) {
     return *at;
 }
 
+// std::invalid_argument naming the first option out of its range.
+void checkOptions(const RegistrationOptions& o) {
+    const auto bad = [](const char* field, long long value, const char* range) {
+        throw std::invalid_argument(std::string("registration: options.") + field + " is " +
+                                    std::to_string(value) + ", expected " + range);
+    };
+    if (o.levels < 1 || o.levels > 3) {
+        bad("levels", o.levels, "1..3");
+    }
+    if (o.samplesPerLevel < 100) {
+        bad("samplesPerLevel", o.samplesPerLevel, "at least 100");
+    }
+    if (o.maxIterations < 1) {
+        bad("maxIterations", o.maxIterations, "at least 1");
+    }
+    if (o.histogramBins < 5) {
+        bad("histogramBins", o.histogramBins, "at least 5");
+    }
+    using Metric = RegistrationOptions::Metric;
+    if (o.metric != Metric::MutualInformation && o.metric != Metric::MeanSquares) {
+        bad("metric", static_cast<long long>(o.metric), "MutualInformation or MeanSquares");
+    }
+    using Init = RegistrationOptions::Initialisation;
+    if (o.initialisation != Init::Auto && o.initialisation != Init::Centres &&
+        o.initialisation != Init::FrameOfReference) {
+        bad("initialisation", static_cast<long long>(o.initialisation),
+            "Auto, Centres or FrameOfReference");
+    }
+}
+
 } // namespace
 
 const char* metricName(RegistrationOptions::Metric metric) {
@@ -39,19 +70,24 @@ RegistrationError::RegistrationError(const std::string& metricName_, const std::
     : std::runtime_error("registration (" + metricName_ + ") failed: " + reason_),
       metric(metricName_), reason(reason_) {}
 
+const char* initialisationName(RegistrationOptions::Initialisation initialisation) {
+    switch (initialisation) {
+    case RegistrationOptions::Initialisation::Centres:
+        return "geometric centres";
+    case RegistrationOptions::Initialisation::FrameOfReference:
+        return "Frame of Reference";
+    case RegistrationOptions::Initialisation::Auto:
+        break;
+    }
+    return "auto";
+}
+
 RegistrationResult registerRigid(const Volume& fixed, const Volume& moving,
                                  const RegistrationOptions& options) {
     if (fixed.empty() || moving.empty()) {
         throw std::invalid_argument("registration: the fixed or the moving volume is empty");
     }
-    if (options.affine) {
-        throw std::invalid_argument("registration: the affine stage is not implemented yet");
-    }
-    if (options.levels < 1 || options.levels > 3 || options.samplesPerLevel < 100 ||
-        options.maxIterations < 1 || options.histogramBins < 5) {
-        throw std::invalid_argument("registration: levels must be 1..3, samplesPerLevel at "
-                                    "least 100, maxIterations at least 1, bins at least 5");
-    }
+    checkOptions(options);
     const auto [lo, hi] = fixed.valueRange();
     if (lo == hi) {
         throw RegistrationError(metricName(options.metric),
@@ -65,7 +101,15 @@ RegistrationResult registerRigid(const Volume& fixed, const Volume& moving,
     } else {
         maskAbove = lo + 0.05 * (upperPercentile(fixed) - lo);
     }
-    return detail::registerRigidItk(fixed, moving, options, maskAbove);
+    // Auto: the scanner's frame when both series come from it (one session), else centring.
+    auto initialisation = options.initialisation;
+    if (initialisation == RegistrationOptions::Initialisation::Auto) {
+        const bool sameFrame = !fixed.frameOfReferenceUid.empty() &&
+                               fixed.frameOfReferenceUid == moving.frameOfReferenceUid;
+        initialisation = sameFrame ? RegistrationOptions::Initialisation::FrameOfReference
+                                   : RegistrationOptions::Initialisation::Centres;
+    }
+    return detail::registerItk(fixed, moving, options, maskAbove, initialisation);
 }
 
 } // namespace lucent

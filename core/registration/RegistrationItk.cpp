@@ -1,39 +1,30 @@
-// Every ITK include of Lucent: the rigid registration of registerRigid (Registration.h).
+// The ITK part of registerRigid (Registration.h): what both stages share, the rigid
+// stage and the checks of the result. The affine stage is in RegistrationItkAffine.cpp.
 #include "core/registration/RegistrationItk_p.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <random>
 #include <sstream>
 #include <thread>
 #include <vector>
 
+#include <itkBinShrinkImageFilter.h>
 #include <itkCenteredTransformInitializer.h>
-#include <itkCommand.h>
-#include <itkImage.h>
-#include <itkImageMaskSpatialObject.h>
-#include <itkImageRegistrationMethodv4.h>
 #include <itkMattesMutualInformationImageToImageMetricv4.h>
 #include <itkMeanSquaresImageToImageMetricv4.h>
 #include <itkMultiThreaderBase.h>
-#include <itkRegistrationParameterScalesFromPhysicalShift.h>
-#include <itkRegularStepGradientDescentOptimizerv4.h>
-#include <itkVersorRigid3DTransform.h>
+#include <itkSmoothingRecursiveGaussianImageFilter.h>
+
+#include "core/registration/RegistrationItkStage_p.h"
 
 namespace lucent::detail {
 
 namespace {
 
-using ImageType = itk::Image<float, 3>;
-using MaskImageType = itk::Image<unsigned char, 3>;
-using MaskType = itk::ImageMaskSpatialObject<3>;
-using TransformType = itk::VersorRigid3DTransform<double>;
-using OptimizerType = itk::RegularStepGradientDescentOptimizerv4<double>;
-using MetricType = itk::ImageToImageMetricv4<ImageType, ImageType>;
 using MattesType = itk::MattesMutualInformationImageToImageMetricv4<ImageType, ImageType>;
 using MeanSquaresType = itk::MeanSquaresImageToImageMetricv4<ImageType, ImageType>;
-using RegistrationType = itk::ImageRegistrationMethodv4<ImageType, ImageType, TransformType>;
-using ScalesType = itk::RegistrationParameterScalesFromPhysicalShift<MetricType>;
 
 // The final MI (nats, Mattes: negative) must reach this: unrelated volumes (noise) stay
 // near 0, a CT against itself or an MR of the same head is well below -0.2.
@@ -43,6 +34,9 @@ constexpr double kMinimumMutualInformation = 0.05;
 // check only: the linear interpolation of the moving volume averages away part of its
 // variance (of noise more than half), so noise against a CT is not caught; Mattes MI is.
 constexpr double kMaximumRelativeMeanSquares = 0.5;
+// The determinant of the linear part must stay within this and its inverse: an affine
+// stage that folds (negative) or shrinks/blows up the volume has diverged.
+constexpr double kMinimumDeterminant = 0.5;
 
 template <class Image> void setGeometry(Image& image, const VolumeGeometry& g) {
     typename Image::RegionType region;
@@ -77,25 +71,36 @@ ImageType::Pointer toItk(const Volume& v) {
     return image;
 }
 
-// The fixed-image mask (voxels above `threshold`) and the fraction of voxels in it.
-std::pair<MaskType::Pointer, double> maskOf(const ImageType& image, double threshold) {
-    auto mask = MaskImageType::New();
-    mask->SetRegions(image.GetLargestPossibleRegion());
-    mask->CopyInformation(&image);
-    mask->Allocate();
+// `count` random points (LPS mm) of the fixed image where it is above `threshold` (all of it
+// without one): a voxel drawn at random, kept when inside, moved by up to half a voxel.
+// Fewer when the mask is so small that 1000 draws a point do not find them.
+SampledPointSetType::Pointer samplePoints(const ImageType& image, std::optional<double> threshold,
+                                          int count, std::mt19937& random) {
+    auto points = SampledPointSetType::New();
+    points->Initialize();
     const float* in = image.GetBufferPointer();
-    unsigned char* out = mask->GetBufferPointer();
+    const auto size = image.GetLargestPossibleRegion().GetSize();
     const std::size_t n = image.GetLargestPossibleRegion().GetNumberOfPixels();
-    std::size_t inside = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-        out[i] = in[i] > threshold ? 1 : 0;
-        inside += out[i];
+    std::uniform_int_distribution<std::size_t> voxel(0, n - 1);
+    std::uniform_real_distribution<double> jitter(-0.5, 0.5);
+    itk::ContinuousIndex<double, 3> index;
+    ImageType::PointType point;
+    SampledPointSetType::PointType stored;
+    itk::IdentifierType kept = 0;
+    for (std::size_t draw = 0;
+         draw < 1000 * std::size_t(count) && kept < itk::IdentifierType(count); ++draw) {
+        const std::size_t v = voxel(random);
+        if (threshold && !(in[v] > *threshold)) {
+            continue;
+        }
+        index[0] = double(v % size[0]) + jitter(random);
+        index[1] = double(v / size[0] % size[1]) + jitter(random);
+        index[2] = double(v / (size[0] * size[1])) + jitter(random);
+        image.TransformContinuousIndexToPhysicalPoint(index, point);
+        stored.CastFrom(point);
+        points->SetPoint(kept++, stored);
     }
-    auto spatial = MaskType::New();
-    spatial->SetImage(mask);
-    spatial->Update();
-    return {spatial,
-            static_cast<double>(inside) / static_cast<double>(std::max<std::size_t>(n, 1))};
+    return points;
 }
 
 // Mean and variance of the voxels (of the fixed image: those above `threshold`).
@@ -139,12 +144,13 @@ void clampToPercentiles(ImageType& image, std::optional<double> threshold) {
     std::transform(data, data + n, data, [&](float v) { return std::clamp(v, lo, hi); });
 }
 
+using ShrinkFactors = itk::FixedArray<unsigned, 3>;
+
 // Per level: shrink the in-plane axes by 4/2/1 and an axis only as far as it stays no
 // coarser than the shrunk finest axis (5 mm slices of a 0.7 mm CT are not shrunk).
-RegistrationType::ShrinkFactorsPerDimensionContainerType shrinkFor(const VolumeGeometry& g,
-                                                                   unsigned factor) {
+ShrinkFactors shrinkFor(const VolumeGeometry& g, unsigned factor) {
     const double finest = std::min({g.spacing.x, g.spacing.y, g.spacing.z});
-    RegistrationType::ShrinkFactorsPerDimensionContainerType s;
+    ShrinkFactors s;
     for (unsigned d = 0; d < 3; ++d) {
         const double want = factor * finest / g.spacing[static_cast<int>(d)];
         s[d] = static_cast<unsigned>(std::clamp(std::floor(want + 0.5), 1.0, double(factor)));
@@ -152,7 +158,80 @@ RegistrationType::ShrinkFactorsPerDimensionContainerType shrinkFor(const VolumeG
     return s;
 }
 
-glm::dmat4 toMatrix(const TransformType& t) {
+// `image` averaged over blocks of `shrink` voxels, then smoothed so that the whole is a
+// Gaussian of `sigma` mm (the blocks' own variance taken off).
+ImageType::ConstPointer pyramidImage(const ImageType::Pointer& image, const ShrinkFactors& shrink,
+                                     double sigma) {
+    ImageType::Pointer out = image;
+    if (shrink[0] > 1 || shrink[1] > 1 || shrink[2] > 1) {
+        auto bin = itk::BinShrinkImageFilter<ImageType, ImageType>::New();
+        bin->SetInput(image);
+        bin->SetShrinkFactors(shrink);
+        bin->Update();
+        out = bin->GetOutput();
+    }
+    if (sigma > 0.0) {
+        using SmoothingType = itk::SmoothingRecursiveGaussianImageFilter<ImageType, ImageType>;
+        SmoothingType::SigmaArrayType sigmas;
+        for (unsigned d = 0; d < 3; ++d) {
+            const double h = image->GetSpacing()[d];
+            const double block = (double(shrink[d]) * shrink[d] - 1.0) * h * h / 12.0;
+            sigmas[d] = std::sqrt(std::max(sigma * sigma - block, 0.01 * sigma * sigma));
+        }
+        auto smooth = SmoothingType::New();
+        smooth->SetInput(out);
+        smooth->SetSigmaArray(sigmas);
+        smooth->Update();
+        out = smooth->GetOutput();
+    }
+    return out;
+}
+
+// The levels 4/2/1 (coarsest first) of both images, smoothing 2/1/0 mm, each with its own
+// options.samplesPerLevel points.
+std::vector<PyramidLevel> pyramidOf(const ImageType::Pointer& fixed,
+                                    const ImageType::Pointer& moving, const VolumeGeometry& g,
+                                    const RegistrationOptions& options,
+                                    std::vector<SampledPointSetType::Pointer> points) {
+    const unsigned levels = static_cast<unsigned>(options.levels);
+    std::vector<PyramidLevel> pyramid;
+    for (unsigned l = 0; l < levels; ++l) {
+        const unsigned factor = 1u << (levels - 1 - l);           // 4, 2, 1
+        const double sigma = static_cast<double>(levels - 1 - l); // 2, 1, 0 mm
+        const ShrinkFactors shrink = shrinkFor(g, factor);
+        PyramidLevel level;
+        level.fixed = pyramidImage(fixed, shrink, sigma);
+        level.moving = pyramidImage(moving, shrink, sigma);
+        level.points = points[l];
+        pyramid.push_back(std::move(level));
+    }
+    return pyramid;
+}
+
+} // namespace
+
+MetricType::Pointer makeMetric(const StageSetup& setup, bool finest) {
+    MetricType::Pointer metric;
+    if (setup.options->metric == RegistrationOptions::Metric::MeanSquares) {
+        metric = MeanSquaresType::New();
+    } else {
+        auto mattes = MattesType::New();
+        mattes->SetNumberOfHistogramBins(
+            static_cast<itk::SizeValueType>(setup.options->histogramBins));
+        metric = mattes;
+    }
+    // The moving image's gradient: ITK's default, an image of it (a recursive Gaussian of the
+    // largest spacing: 5 mm for 5 mm slices, in-plane too) on the coarser levels, where their
+    // images are small and its smooth direction widens the capture range; central
+    // differences at the samples on the finest level, where that blur would stop short of
+    // the optimum and the image (24 bytes a voxel) would take most of the time and memory.
+    if (finest) {
+        metric->SetUseMovingImageGradientFilter(false);
+    }
+    return metric;
+}
+
+glm::dmat4 toMatrix(const LinearTransformType& t) {
     glm::dmat4 m(1.0);
     const auto& a = t.GetMatrix();
     const auto& offset = t.GetOffset();
@@ -165,172 +244,159 @@ glm::dmat4 toMatrix(const TransformType& t) {
     return m;
 }
 
-} // namespace
-
-RegistrationResult registerRigidItk(const Volume& fixed, const Volume& moving,
-                                    const RegistrationOptions& options,
-                                    std::optional<double> maskAbove) {
-    const auto start = std::chrono::steady_clock::now();
-    const std::string name = metricName(options.metric);
-    // Every core: ITK's default already, said here so that no caller's setting changes it.
-    itk::MultiThreaderBase::SetGlobalDefaultNumberOfThreads(
-        std::max(1u, std::thread::hardware_concurrency()));
-
-    const ImageType::Pointer fixedImage = toItk(fixed);
-    const ImageType::Pointer movingImage = toItk(moving);
-
-    MetricType::Pointer metric;
-    if (options.metric == RegistrationOptions::Metric::MeanSquares) {
-        metric = MeanSquaresType::New();
-    } else {
-        clampToPercentiles(*fixedImage, maskAbove);
-        clampToPercentiles(*movingImage, std::nullopt);
-        auto mattes = MattesType::New();
-        mattes->SetNumberOfHistogramBins(static_cast<itk::SizeValueType>(options.histogramBins));
-        metric = mattes;
-    }
-    double maskFraction = 1.0;
-    if (maskAbove) {
-        auto [mask, fraction] = maskOf(*fixedImage, *maskAbove);
-        if (fraction <= 0.0) {
-            throw RegistrationError(name, "no voxel of the fixed volume is above the mask "
-                                          "threshold " +
-                                              std::to_string(*maskAbove));
-        }
-        metric->SetFixedImageMask(mask);
-        maskFraction = fraction;
-    }
-
-    auto transform = TransformType::New();
-    using InitializerType = itk::CenteredTransformInitializer<TransformType, ImageType, ImageType>;
-    auto initializer = InitializerType::New();
-    initializer->SetTransform(transform);
-    initializer->SetFixedImage(fixedImage);
-    initializer->SetMovingImage(movingImage);
-    initializer->GeometryOn();
-    initializer->InitializeTransform();
-
-    auto optimizer = OptimizerType::New();
-    auto scales = ScalesType::New();
-    scales->SetMetric(metric);
-    optimizer->SetScalesEstimator(scales);
-    optimizer->SetDoEstimateScales(true);
-    optimizer->SetDoEstimateLearningRateOnce(true); // per level: first step = max step (mm)
-    optimizer->SetRelaxationFactor(0.5);
-    optimizer->SetNumberOfIterations(static_cast<itk::SizeValueType>(options.maxIterations));
-    optimizer->SetGradientMagnitudeTolerance(1e-10);
-    optimizer->SetReturnBestParametersAndValue(false);
-
-    auto registration = RegistrationType::New();
-    registration->SetFixedImage(fixedImage);
-    registration->SetMovingImage(movingImage);
-    registration->SetMetric(metric);
-    registration->SetOptimizer(optimizer);
-    registration->SetInitialTransform(transform);
-    registration->InPlaceOn();
-
-    const unsigned levels = static_cast<unsigned>(options.levels);
-    registration->SetNumberOfLevels(levels);
-    RegistrationType::SmoothingSigmasArrayType sigmas(levels);
-    RegistrationType::MetricSamplingPercentageArrayType percentages(levels);
-    for (unsigned l = 0; l < levels; ++l) {
-        const unsigned factor = 1u << (levels - 1 - l); // 4, 2, 1
-        const auto shrink = shrinkFor(fixed.geometry(), factor);
-        registration->SetShrinkFactorsPerDimension(l, shrink);
-        sigmas[l] = static_cast<double>(levels - 1 - l); // 2, 1, 0 mm
-        double voxels = 1.0;
-        for (unsigned d = 0; d < 3; ++d) {
-            voxels *= std::ceil(fixed.dims()[static_cast<int>(d)] / double(shrink[d]));
-        }
-        percentages[l] = std::clamp(options.samplesPerLevel / (voxels * maskFraction), 1e-4, 1.0);
-    }
-    registration->SetSmoothingSigmasPerLevel(sigmas);
-    registration->SetSmoothingSigmasAreSpecifiedInPhysicalUnits(true);
-    registration->SetMetricSamplingStrategy(RegistrationType::MetricSamplingStrategyEnum::RANDOM);
-    registration->SetMetricSamplingPercentagePerLevel(percentages);
-    registration->MetricSamplingReinitializeSeed(static_cast<int>(options.seed % 2147483647u));
-
-    // Progress, cancellation, and the step at which a level has converged: 1/1000 of
-    // its first step (the learning rate is estimated at a level's first iteration).
-    int iterations = 0;
-    auto onIteration = itk::CStyleCommand::New();
-    struct Context {
-        const RegistrationOptions* options;
-        OptimizerType* optimizer;
-        RegistrationType* registration;
-        int* iterations;
-        unsigned levels;
-    } context{&options, optimizer.GetPointer(), registration.GetPointer(), &iterations, levels};
-    onIteration->SetClientData(&context);
-    onIteration->SetCallback([](itk::Object*, const itk::EventObject&, void* data) {
-        auto& c = *static_cast<Context*>(data);
-        if (c.options->stop.stop_requested()) {
-            throw itk::ProcessAborted(__FILE__, __LINE__);
-        }
-        ++*c.iterations;
-        if (c.optimizer->GetCurrentIteration() == 0) {
-            c.optimizer->SetMinimumStepLength(1e-3 * c.optimizer->GetLearningRate());
-        }
-        if (c.options->onProgress) {
-            const double level = c.registration->GetCurrentLevel();
-            const double within = std::min(1.0, (c.optimizer->GetCurrentIteration() + 1.0) /
-                                                    c.optimizer->GetNumberOfIterations());
-            c.options->onProgress((level + within) / c.levels, c.optimizer->GetValue());
-        }
-    });
-    optimizer->AddObserver(itk::IterationEvent(), onIteration);
-
+void rethrowStageFailure(const RegistrationOptions& options) {
     try {
-        if (options.stop.stop_requested()) {
-            throw RegistrationCancelled();
-        }
-        registration->Update();
+        throw;
     } catch (const itk::ProcessAborted&) {
         throw RegistrationCancelled();
     } catch (const itk::ExceptionObject& e) {
         if (options.stop.stop_requested()) {
             throw RegistrationCancelled();
         }
-        throw RegistrationError(name, std::string("the metric cannot be evaluated: ") +
-                                          e.GetDescription());
+        throw RegistrationError(metricName(options.metric),
+                                std::string("the metric cannot be evaluated: ") +
+                                    e.GetDescription());
     }
+}
 
-    RegistrationResult result;
-    result.fixedToMoving = toMatrix(*transform);
-    result.metric = optimizer->GetValue();
-    result.iterations = iterations;
-    result.reason = optimizer->GetStopConditionDescription();
-    result.converged = result.reason.find("Maximum number of iterations") == std::string::npos;
-    result.seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+namespace {
 
-    const auto valid = metric->GetNumberOfValidPoints();
-    if (valid < static_cast<itk::SizeValueType>(options.samplesPerLevel / 10)) {
+// The rigid stage's start: the geometric centres on each other, or the identity about
+// the fixed volume's centre (the two Frames of Reference agree).
+RigidTransformType::Pointer initialRigid(const ImageType& fixed, const ImageType& moving,
+                                         const VolumeGeometry& fixedGeometry,
+                                         RegistrationOptions::Initialisation initialisation) {
+    auto transform = RigidTransformType::New();
+    if (initialisation == RegistrationOptions::Initialisation::FrameOfReference) {
+        const glm::dvec3 c = volumeCentre(fixedGeometry);
+        RigidTransformType::CenterType centre;
+        for (unsigned d = 0; d < 3; ++d) {
+            centre[d] = c[static_cast<int>(d)];
+        }
+        transform->SetIdentity();
+        transform->SetCenter(centre);
+        return transform;
+    }
+    using InitializerType =
+        itk::CenteredTransformInitializer<RigidTransformType, ImageType, ImageType>;
+    auto initializer = InitializerType::New();
+    initializer->SetTransform(transform);
+    initializer->SetFixedImage(&fixed);
+    initializer->SetMovingImage(&moving);
+    initializer->GeometryOn();
+    initializer->InitializeTransform();
+    return transform;
+}
+
+// Throws RegistrationError when the result shows that the volumes do not register:
+// too few samples overlap, the metric at the end is no better than for unrelated
+// volumes, or the transform folds or blows up the volume.
+void checkResult(const RegistrationOptions& options, const StageOutcome& last,
+                 const ImageType& fixed, const ImageType& moving, std::optional<double> maskAbove,
+                 const glm::dmat4& fixedToMoving) {
+    const std::string name = metricName(options.metric);
+    if (last.validPoints < static_cast<std::size_t>(options.samplesPerLevel / 10)) {
         std::ostringstream why;
-        why << "only " << valid << " of about " << options.samplesPerLevel
+        why << "only " << last.validPoints << " of about " << options.samplesPerLevel
             << " samples of the fixed volume fall inside the moving one: they barely overlap";
         throw RegistrationError(name, why.str());
     }
     if (options.metric == RegistrationOptions::Metric::MutualInformation) {
-        if (!(result.metric < -kMinimumMutualInformation)) {
+        if (!(last.value < -kMinimumMutualInformation)) {
             std::ostringstream why;
-            why << "the mutual information at the end is " << -result.metric << " (at least "
+            why << "the mutual information at the end is " << -last.value << " (at least "
                 << kMinimumMutualInformation << " expected): the volumes share no structure";
             throw RegistrationError(name, why.str());
         }
     } else {
-        const auto [mf, vf] = meanVariance(*fixedImage, maskAbove);
-        const auto [mm, vm] = meanVariance(*movingImage, std::nullopt);
+        const auto [mf, vf] = meanVariance(fixed, maskAbove);
+        const auto [mm, vm] = meanVariance(moving, std::nullopt);
         const double unrelated = vf + vm + (mf - mm) * (mf - mm);
-        if (!(unrelated > 0.0) || !(result.metric < kMaximumRelativeMeanSquares * unrelated)) {
+        if (!(unrelated > 0.0) || !(last.value < kMaximumRelativeMeanSquares * unrelated)) {
             std::ostringstream why;
-            why << "the mean squared difference at the end (" << result.metric << ") is "
-                << (unrelated > 0.0 ? result.metric / unrelated : 1.0)
+            why << "the mean squared difference at the end (" << last.value << ") is "
+                << (unrelated > 0.0 ? last.value / unrelated : 1.0)
                 << " of what unrelated volumes give (at most " << kMaximumRelativeMeanSquares
                 << " expected): the volumes share no structure";
             throw RegistrationError(name, why.str());
         }
     }
+    // An affine stage can fold the volume (a negative determinant) or shrink it to
+    // nothing on a pair without enough structure: not a registration.
+    const double det = glm::determinant(glm::dmat3(fixedToMoving));
+    if (!(det > kMinimumDeterminant && det < 1.0 / kMinimumDeterminant)) {
+        std::ostringstream why;
+        why << "the transform scales volumes by " << det << " (between " << kMinimumDeterminant
+            << " and " << 1.0 / kMinimumDeterminant << " expected): the stage diverged";
+        throw RegistrationError(name, why.str());
+    }
+}
+
+} // namespace
+
+RegistrationResult registerItk(const Volume& fixed, const Volume& moving,
+                               const RegistrationOptions& options, std::optional<double> maskAbove,
+                               RegistrationOptions::Initialisation initialisation) {
+    const auto start = std::chrono::steady_clock::now();
+    // Every core: ITK's default already, said here so that no caller's setting changes it.
+    itk::MultiThreaderBase::SetGlobalDefaultNumberOfThreads(
+        std::max(1u, std::thread::hardware_concurrency()));
+
+    const ImageType::Pointer fixedImage = toItk(fixed);
+    const ImageType::Pointer movingImage = toItk(moving);
+    // The samples, drawn before clamping lifts the air to the lowest tissue value: over the
+    // whole fixed volume on the coarser levels (the outline of the body against the air
+    // brings a distant start in), inside the mask on the finest (the anatomy decides).
+    std::mt19937 random(options.seed);
+    std::vector<SampledPointSetType::Pointer> points;
+    for (int l = 0; l < options.levels; ++l) {
+        const bool finest = l + 1 == options.levels;
+        points.push_back(samplePoints(*fixedImage, finest ? maskAbove : std::nullopt,
+                                      options.samplesPerLevel, random));
+        if (points.back()->GetNumberOfPoints() < std::size_t(options.samplesPerLevel / 10)) {
+            std::ostringstream why;
+            why << "only " << points.back()->GetNumberOfPoints()
+                << " samples of the fixed volume found above the mask threshold "
+                << maskAbove.value_or(0.0);
+            throw RegistrationError(metricName(options.metric), why.str());
+        }
+    }
+    if (options.metric == RegistrationOptions::Metric::MutualInformation) {
+        clampToPercentiles(*fixedImage, maskAbove);
+        clampToPercentiles(*movingImage, std::nullopt);
+    }
+    StageSetup setup;
+    setup.options = &options;
+    setup.pyramid =
+        pyramidOf(fixedImage, movingImage, fixed.geometry(), options, std::move(points));
+
+    // Progress: each stage gets its share by its number of levels.
+    const unsigned rigidLevels = static_cast<unsigned>(options.levels);
+    const unsigned affineLevels = options.affine ? std::min(rigidLevels, 2u) : 0u;
+    const double rigidShare = double(rigidLevels) / double(rigidLevels + affineLevels);
+
+    RegistrationResult result;
+    result.initialisation = initialisation;
+    const RigidTransformType::Pointer rigid =
+        initialRigid(*fixedImage, *movingImage, fixed.geometry(), initialisation);
+    StageOutcome last = runStage(setup, {rigidLevels, 0.0, rigidShare}, *rigid);
+    result.rigidFixedToMoving = toMatrix(*rigid);
+    result.fixedToMoving = result.rigidFixedToMoving;
+    result.iterations = last.iterations;
+    // Checked before the affine stage too: a pair that does not register rigidly is
+    // refused without the affine stage's time.
+    checkResult(options, last, *fixedImage, *movingImage, maskAbove, result.fixedToMoving);
+    if (options.affine) {
+        last = runAffineStage(setup, {affineLevels, rigidShare, 1.0}, *rigid, result.fixedToMoving);
+        result.affine = true;
+        result.iterations += last.iterations;
+        checkResult(options, last, *fixedImage, *movingImage, maskAbove, result.fixedToMoving);
+    }
+    result.metric = last.value;
+    result.reason = last.reason;
+    result.converged = result.reason.find("Maximum number of iterations") == std::string::npos;
+    result.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;
 }
 

@@ -89,14 +89,14 @@ struct Written {
     SpatialRegistrationIds ids;
 };
 
-Written writeExample(const QTemporaryDir& dir) {
+Written writeExample(const QTemporaryDir& dir, const glm::dmat4& fixedToMoving = knownMatrix()) {
     Written w;
     const test::PriorStudy prior =
         test::writePriorStudy(test::kRealData / kCt, fs::path(dir.path().toStdString()) / "moved",
                               "20100101", glm::dvec3(5.0, -3.0, 2.0));
     w.input.fixed = readSeries(test::kRealData / kCt, &w.input);
     w.input.moving = readSeries(fs::path(dir.path().toStdString()) / "moved", nullptr);
-    w.input.fixedToMoving = knownMatrix();
+    w.input.fixedToMoving = fixedToMoving;
     w.input.contentDescription = "test registration";
     w.file = fs::path(dir.path().toStdString()) / "reg.dcm";
     w.ids = writeSpatialRegistration(w.file, w.input);
@@ -286,6 +286,40 @@ private slots:
             }
         }
         QVERIFY(refuses(ctFile, "SOPClassUID (0008,0016)"));
+    }
+
+    // The matrix type follows the matrix: an affine registration (lucent-cli register
+    // --affine) is AFFINE, a rotation with a uniform scale RIGID_SCALE; the fixed item's
+    // identity stays RIGID.
+    void matrixTypeFollowsTheMatrix_data() {
+        QTest::addColumn<glm::dmat4>("fixedToMoving");
+        QTest::addColumn<QString>("type");
+        glm::dmat4 sheared = glm::scale(knownMatrix(), glm::dvec3(1.04, 1.0, 1.0));
+        sheared[1][0] += 0.03;
+        QTest::newRow("affine") << sheared << "AFFINE";
+        QTest::newRow("scaled rotation")
+            << glm::scale(knownMatrix(), glm::dvec3(1.1)) << "RIGID_SCALE";
+        QTest::newRow("rigid") << knownMatrix() << "RIGID";
+    }
+    void matrixTypeFollowsTheMatrix() {
+        REQUIRE_DATA(kCt);
+        QFETCH(glm::dmat4, fixedToMoving);
+        QFETCH(QString, type);
+        QTemporaryDir dir;
+        const Written w = writeExample(dir, fixedToMoving);
+        DcmFileFormat file;
+        QVERIFY(file.loadFile(w.file.c_str()).good());
+        for (int k = 0; k < 2; ++k) {
+            DcmItem* item = nullptr;
+            QVERIFY(file.getDataset()
+                        ->findAndGetSequenceItem(DCM_RegistrationSequence, item, k)
+                        .good());
+            QVERIFY(item->findAndGetSequenceItem(DCM_MatrixRegistrationSequence, item, 0).good());
+            QVERIFY(item->findAndGetSequenceItem(DCM_MatrixSequence, item, 0).good());
+            QCOMPARE(
+                QString::fromStdString(text(*item, DCM_FrameOfReferenceTransformationMatrixType)),
+                k == 0 ? QString("RIGID") : type);
+        }
     }
 
     void failsNamingTheFile() {

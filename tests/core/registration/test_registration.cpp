@@ -1,7 +1,8 @@
-// registerRigid on the real 28-slice CT (512x512x28, 0.7 x 0.7 x 5 mm) against copies of it
-// resampled (trilinear) under known rigid transforms: the target registration error over
-// the points of a grid inside the body; an MR-like (non-monotonic) remapping through
-// Mattes MI; noise, which must end in a RegistrationError; cancellation and progress.
+// registerRigid on the real 28-slice CT (512x512x28, 0.45 x 0.45 x 5 mm) against copies of
+// it resampled (trilinear) under known rigid and affine transforms: the target registration
+// error over the points of a grid inside the body; an MR-like (non-monotonic) remapping
+// through Mattes MI; the affine stage; the start from a shared Frame of Reference; noise,
+// which must end in a RegistrationError; cancellation (in either stage) and progress.
 #include <QTest>
 
 #include <chrono>
@@ -12,111 +13,43 @@
 
 #include "core/io/Catalog.h"
 #include "core/registration/Registration.h"
+#include "tests/support/KnownTransform.h"
 #include "tests/support/RealData.h"
 
 using namespace lucent;
+using test::bodyGrid;
+using test::resampled;
+using test::rigidAbout;
+using test::Tre;
+using test::treOf;
 
 namespace {
 
 constexpr const char* kCt = "dcm_qa_ct/Philips_S21570/S2010";
+const std::string kNewFrame = "1.2.826.0.1.3680043.2.1143.29.1";
 
-// A rigid transform about the volume centre c: x -> c + t + R (x - c), R from rotations
-// about x, then y, then z (degrees).
-glm::dmat4 rigidAbout(const glm::dvec3& c, const glm::dvec3& degrees, const glm::dvec3& t) {
-    glm::dmat4 r(1.0);
-    r = glm::rotate(r, glm::radians(degrees.z), glm::dvec3(0, 0, 1));
-    r = glm::rotate(r, glm::radians(degrees.y), glm::dvec3(0, 1, 0));
-    r = glm::rotate(r, glm::radians(degrees.x), glm::dvec3(1, 0, 0));
-    return glm::translate(glm::dmat4(1.0), c + t) * r * glm::translate(glm::dmat4(1.0), -c);
-}
-
-// Trilinear sample at a continuous index; `outside` beyond the voxel centres.
-double trilinear(const Volume& v, const glm::dvec3& ijk, double outside) {
-    const glm::ivec3 d = v.dims();
-    if (ijk.x < 0 || ijk.y < 0 || ijk.z < 0 || ijk.x > d.x - 1 || ijk.y > d.y - 1 ||
-        ijk.z > d.z - 1) {
-        return outside;
-    }
-    const glm::ivec3 i0 = glm::min(glm::ivec3(glm::floor(ijk)), d - 2);
-    const glm::dvec3 f = ijk - glm::dvec3(i0);
-    double sum = 0.0;
-    for (int n = 0; n < 8; ++n) {
-        const glm::ivec3 o(n & 1, (n >> 1) & 1, (n >> 2) & 1);
-        const double w = (o.x ? f.x : 1 - f.x) * (o.y ? f.y : 1 - f.y) * (o.z ? f.z : 1 - f.z);
-        if (w != 0.0) {
-            sum += w * v.value(i0.x + o.x, i0.y + o.y, i0.z + o.z);
-        }
-    }
-    return sum;
-}
-
-// The anatomy of `fixed` moved by fixedToMoving, on fixed's grid, intensities through `map`:
-// moving(y) = map(fixed(fixedToMoving^-1 y)); air (-1024 HU) outside.
-template <class Map>
-Volume resampled(const Volume& fixed, const glm::dmat4& fixedToMoving, Map map,
-                 const std::string& modality) {
-    Volume moving(fixed.geometry(), VoxelType::Float32);
-    moving.modality = modality;
-    const glm::dmat4 indexToFixedIndex = fixed.geometry().patientToIndex() *
-                                         glm::inverse(fixedToMoving) *
-                                         fixed.geometry().indexToPatient();
-    const glm::ivec3 d = fixed.dims();
-    std::span<float> out = moving.voxels<float>();
-    for (int k = 0; k < d.z; ++k) {
-        for (int j = 0; j < d.y; ++j) {
-            for (int i = 0; i < d.x; ++i) {
-                const glm::dvec3 src = glm::dvec3(indexToFixedIndex * glm::dvec4(i, j, k, 1.0));
-                out[moving.linearIndex(i, j, k)] =
-                    static_cast<float>(map(trilinear(fixed, src, -1024.0)));
+// The CT cut to i in [i0, i0 + ni), j in [j0, j0 + nj), every slice: the same patient
+// coordinates (and Frame of Reference), another box and so another geometric centre.
+Volume cropped(const Volume& v, int i0, int ni, int j0, int nj) {
+    VolumeGeometry g = v.geometry();
+    g.origin = g.toPatient(glm::dvec3(i0, j0, 0));
+    g.dims = glm::ivec3(ni, nj, v.dims().z);
+    Volume out(g, VoxelType::Float32);
+    out.modality = v.modality;
+    out.frameOfReferenceUid = v.frameOfReferenceUid;
+    std::span<float> voxels = out.voxels<float>();
+    for (int k = 0; k < g.dims.z; ++k) {
+        for (int j = 0; j < nj; ++j) {
+            for (int i = 0; i < ni; ++i) {
+                voxels[out.linearIndex(i, j, k)] = static_cast<float>(v.value(i0 + i, j0 + j, k));
             }
         }
     }
-    return moving;
+    return out;
 }
 
 double identityMap(double hu) {
     return hu;
-}
-
-// MR-like and non-monotonic: air and bone dark, fat bright, soft tissue in between.
-double mrLike(double hu) {
-    return 1000.0 * std::exp(-std::pow((hu + 100.0) / 150.0, 2)) +
-           500.0 * std::exp(-std::pow((hu - 40.0) / 80.0, 2)) + 20.0;
-}
-
-// The grid of the TRE: every 10 mm in x, y and z, over the fixed volume
-// (two slices in from its ends), where the fixed CT is above -500 HU (inside the body).
-std::vector<glm::dvec3> bodyGrid(const Volume& fixed) {
-    std::vector<glm::dvec3> points;
-    const VolumeGeometry& g = fixed.geometry();
-    const glm::dvec3 step = glm::dvec3(10.0) / g.spacing;
-    for (double k = 2; k <= g.dims.z - 3; k += step.z) {
-        for (double j = 0; j < g.dims.y; j += step.y) {
-            for (double i = 0; i < g.dims.x; i += step.x) {
-                const glm::ivec3 n = glm::ivec3(glm::round(glm::dvec3(i, j, k)));
-                if (fixed.value(n.x, n.y, n.z) > -500.0) {
-                    points.push_back(g.toPatient(glm::dvec3(n)));
-                }
-            }
-        }
-    }
-    return points;
-}
-
-struct Tre {
-    double mean = 0.0;
-    double max = 0.0;
-};
-
-Tre treOf(const std::vector<glm::dvec3>& points, const glm::dmat4& truth, const glm::dmat4& found) {
-    Tre t;
-    for (const glm::dvec3& p : points) {
-        const double e = glm::length(glm::dvec3(truth * glm::dvec4(p, 1.0)) -
-                                     glm::dvec3(found * glm::dvec4(p, 1.0)));
-        t.mean += e / static_cast<double>(points.size());
-        t.max = std::max(t.max, e);
-    }
-    return t;
 }
 
 } // namespace
@@ -129,8 +62,8 @@ class TestRegistration : public QObject {
     void checkKnown(const glm::dvec3& degrees, const glm::dvec3& shift, bool mr,
                     RegistrationOptions::Metric metric, double maxTre) {
         const glm::dmat4 truth = rigidAbout(volumeCentre(ct_.geometry()), degrees, shift);
-        const Volume moving =
-            mr ? resampled(ct_, truth, mrLike, "MR") : resampled(ct_, truth, identityMap, "CT");
+        const Volume moving = mr ? resampled(ct_, truth, test::mrLike, "MR", kNewFrame)
+                                 : resampled(ct_, truth, identityMap, "CT", kNewFrame);
         RegistrationOptions options;
         options.metric = metric;
         int calls = 0;
@@ -152,6 +85,10 @@ class TestRegistration : public QObject {
               metricName(metric), tre.mean, tre.max, grid_.size(), r.metric, r.iterations,
               r.seconds, r.reason.c_str());
         QVERIFY2(tre.max < maxTre, qPrintable(QString("max TRE %1 mm").arg(tre.max)));
+        // Another Frame of Reference: started from the geometric centres; rigid only.
+        QCOMPARE(r.initialisation, RegistrationOptions::Initialisation::Centres);
+        QVERIFY(!r.affine);
+        QCOMPARE(r.rigidFixedToMoving, r.fixedToMoving);
     }
 
 private slots:
@@ -244,9 +181,113 @@ private slots:
         QVERIFY(std::chrono::steady_clock::now() - start < std::chrono::seconds(10));
     }
 
-    void affineIsNotYet() {
+    // A 4 % stretch along x, a shear, 5 degrees about z and 10 mm, in a new Frame of
+    // Reference: the affine stage ends under 1 mm everywhere inside the body, where the
+    // rigid stage (its start, which is what a rigid-only run gives) cannot.
+    void affineStage() {
+        const glm::dmat4 truth = test::affineAbout(volumeCentre(ct_.geometry()), {1.04, 1.0, 1.0},
+                                                   0.03, 5.0, {10.0, -6.0, 0.0});
+        const Volume moving = resampled(ct_, truth, identityMap, "CT", kNewFrame);
         RegistrationOptions options;
         options.affine = true;
+        double lastFraction = 0.0;
+        bool monotonic = true;
+        options.onProgress = [&](double fraction, double) {
+            monotonic = monotonic && fraction >= lastFraction && fraction <= 1.0;
+            lastFraction = fraction;
+        };
+        RegistrationResult r;
+        try {
+            r = registerRigid(ct_, moving, options);
+        } catch (const std::exception& e) {
+            QFAIL(e.what());
+        }
+        const Tre affine = treOf(grid_, truth, r.fixedToMoving);
+        const Tre rigid = treOf(grid_, truth, r.rigidFixedToMoving);
+        qInfo("affine: TRE mean %.3f max %.3f mm (rigid stage: mean %.3f max %.3f); metric "
+              "%.4f, %d iterations, %.1f s, %s",
+              affine.mean, affine.max, rigid.mean, rigid.max, r.metric, r.iterations, r.seconds,
+              r.reason.c_str());
+        QVERIFY(r.affine);
+        QCOMPARE(r.initialisation, RegistrationOptions::Initialisation::Centres);
+        QVERIFY2(affine.max < 1.0, qPrintable(QString("max TRE %1 mm").arg(affine.max)));
+        QVERIFY(affine.mean < 0.5 * rigid.mean && affine.max < rigid.max);
+        QVERIFY(monotonic && lastFraction > 0.6); // the affine stage's share: 2 of 5 levels
+    }
+
+    // The CT against a crop of itself that keeps its Frame of Reference: Auto starts from
+    // the identity (the scanner's frame), where the anatomy already matches, not from the
+    // two boxes' centres 48 mm apart. The first progress report gives the metric at the start
+    // (the coarsest level, the same samples for both starts).
+    void sameFrameOfReference() {
+        QVERIFY(!ct_.frameOfReferenceUid.empty());
+        const Volume crop = cropped(ct_, 0, 320, 96, 416);
+        const glm::dvec3 apart = volumeCentre(crop.geometry()) - volumeCentre(ct_.geometry());
+        QVERIFY(glm::length(apart) > 40.0);
+        RegistrationOptions options;
+        double atStart = 0.0;
+        int calls = 0;
+        options.onProgress = [&](double, double metric) {
+            atStart = calls++ == 0 ? metric : atStart;
+        };
+        const RegistrationResult r = registerRigid(ct_, crop, options);
+        const double identityStart = atStart;
+        const Tre tre = treOf(grid_, glm::dmat4(1.0), r.fixedToMoving);
+        qInfo("same Frame of Reference: %s, MI at the start %.3f; TRE mean %.3f max %.3f mm, "
+              "%d iterations, %.1f s",
+              initialisationName(r.initialisation), identityStart, tre.mean, tre.max, r.iterations,
+              r.seconds);
+        QCOMPARE(r.initialisation, RegistrationOptions::Initialisation::FrameOfReference);
+        QVERIFY2(tre.max < 0.1, qPrintable(QString("max TRE %1 mm").arg(tre.max)));
+
+        // Centres asked for: one iteration a level from the centres' offset, far from the
+        // anatomy (so far that the result is refused; only the start matters here).
+        options.initialisation = RegistrationOptions::Initialisation::Centres;
+        options.maxIterations = 1;
+        calls = 0;
+        try {
+            registerRigid(ct_, crop, options);
+        } catch (const RegistrationError& e) {
+            qInfo("centres, one iteration a level: %s", e.what());
+        }
+        qInfo("centres: MI at the start %.3f", atStart);
+        QCOMPARE(calls, 3);
+        QVERIFY(atStart > 0.5 * identityStart); // Mattes MI: negative, lower is better
+    }
+
+    // Cancelled in the affine stage: after the rigid stage's fraction, no more progress.
+    void cancelInAffineStage() {
+        std::stop_source stop;
+        RegistrationOptions options;
+        options.affine = true;
+        options.levels = 1; // one level per stage: the rigid stage has the first half
+        options.stop = stop.get_token();
+        int affineCalls = 0;
+        int afterStop = 0;
+        options.onProgress = [&](double fraction, double) {
+            afterStop += stop.stop_requested() ? 1 : 0;
+            if (fraction > 0.5 && ++affineCalls == 3) {
+                stop.request_stop();
+            }
+        };
+        const auto start = std::chrono::steady_clock::now();
+        QVERIFY_THROWS_EXCEPTION(RegistrationCancelled, registerRigid(ct_, ct_, options));
+        QCOMPARE(affineCalls, 3);
+        QCOMPARE(afterStop, 0);
+        QVERIFY(std::chrono::steady_clock::now() - start < std::chrono::seconds(20));
+    }
+
+    void badOptionsNameTheField() {
+        RegistrationOptions options;
+        options.levels = 4;
+        try {
+            registerRigid(ct_, ct_, options);
+            QFAIL("levels 4 accepted");
+        } catch (const std::invalid_argument& e) {
+            QVERIFY2(QString(e.what()).contains("options.levels is 4"), e.what());
+        }
+        options = {};
+        options.samplesPerLevel = 10;
         QVERIFY_THROWS_EXCEPTION(std::invalid_argument, registerRigid(ct_, ct_, options));
     }
 };
