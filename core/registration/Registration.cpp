@@ -1,11 +1,14 @@
 #include "core/registration/Registration.h"
 
+#include <cmath>
+
 #include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "core/registration/RegistrationItk_p.h"
+#include "core/segmentation/SegmentEffects.h"
 
 namespace lucent {
 
@@ -109,7 +112,11 @@ RegistrationResult registerRigid(const Volume& fixed, const Volume& moving,
         initialisation = sameFrame ? RegistrationOptions::Initialisation::FrameOfReference
                                    : RegistrationOptions::Initialisation::Centres;
     }
-    return detail::registerItk(fixed, moving, options, maskAbove, initialisation);
+    // The body alone: the largest island above the threshold leaves out the table (and
+    // cables, cushions) that lie apart from it and need not move with the patient.
+    const SegmentMask body =
+        keepLargestIsland(thresholdMask(fixed, std::nextafter(*maskAbove, HUGE_VAL), HUGE_VAL));
+    return detail::registerItk(fixed, moving, options, maskAbove, body, initialisation);
 }
 
 } // namespace lucent

@@ -87,9 +87,10 @@ struct RegistrationCancelled : std::runtime_error {
 // options.affine: started as options.initialisation says, Mattes MI or mean squares on
 // random samples of the fixed image, regular-step gradient descent with physical-shift
 // scales, a 3-level pyramid (the 2 finest for the affine stage).
-// The finest level's samples lie inside the fixed-image mask, which leaves out air: for CT
-// (modality "CT", or no modality and a minimum below -500) voxels above -500 HU; otherwise
-// voxels above 5 % of the way from the minimum to the 99th percentile. The coarser levels
+// The finest level's samples lie inside the fixed-image mask, which leaves out air and the
+// table: the largest face-connected region of the voxels above -500 HU for CT (modality
+// "CT", or no modality and a minimum below -500), otherwise above 5 % of the way from the
+// minimum to the 99th percentile (the table lies apart from the body). The coarser levels
 // sample the whole volume: the body's outline against the air brings a distant start in.
 // Throws RegistrationError (see above; also an affine stage that folds or blows the
 // volume up), RegistrationCancelled, std::invalid_argument for an empty volume or bad

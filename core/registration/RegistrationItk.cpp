@@ -71,14 +71,13 @@ ImageType::Pointer toItk(const Volume& v) {
     return image;
 }
 
-// `count` random points (LPS mm) of the fixed image where it is above `threshold` (all of it
+// `count` random points (LPS mm) of the fixed image inside `mask` (on its grid; all of it
 // without one): a voxel drawn at random, kept when inside, moved by up to half a voxel.
 // Fewer when the mask is so small that 1000 draws a point do not find them.
-SampledPointSetType::Pointer samplePoints(const ImageType& image, std::optional<double> threshold,
+SampledPointSetType::Pointer samplePoints(const ImageType& image, const SegmentMask* mask,
                                           int count, std::mt19937& random) {
     auto points = SampledPointSetType::New();
     points->Initialize();
-    const float* in = image.GetBufferPointer();
     const auto size = image.GetLargestPossibleRegion().GetSize();
     const std::size_t n = image.GetLargestPossibleRegion().GetNumberOfPixels();
     std::uniform_int_distribution<std::size_t> voxel(0, n - 1);
@@ -90,7 +89,7 @@ SampledPointSetType::Pointer samplePoints(const ImageType& image, std::optional<
     for (std::size_t draw = 0;
          draw < 1000 * std::size_t(count) && kept < itk::IdentifierType(count); ++draw) {
         const std::size_t v = voxel(random);
-        if (threshold && !(in[v] > *threshold)) {
+        if (mask != nullptr && !mask->get(v)) {
             continue;
         }
         index[0] = double(v % size[0]) + jitter(random);
@@ -336,6 +335,7 @@ void checkResult(const RegistrationOptions& options, const StageOutcome& last,
 
 RegistrationResult registerItk(const Volume& fixed, const Volume& moving,
                                const RegistrationOptions& options, std::optional<double> maskAbove,
+                               const SegmentMask& mask,
                                RegistrationOptions::Initialisation initialisation) {
     const auto start = std::chrono::steady_clock::now();
     // Every core: ITK's default already, said here so that no caller's setting changes it.
@@ -351,13 +351,13 @@ RegistrationResult registerItk(const Volume& fixed, const Volume& moving,
     std::vector<SampledPointSetType::Pointer> points;
     for (int l = 0; l < options.levels; ++l) {
         const bool finest = l + 1 == options.levels;
-        points.push_back(samplePoints(*fixedImage, finest ? maskAbove : std::nullopt,
-                                      options.samplesPerLevel, random));
+        points.push_back(
+            samplePoints(*fixedImage, finest ? &mask : nullptr, options.samplesPerLevel, random));
         if (points.back()->GetNumberOfPoints() < std::size_t(options.samplesPerLevel / 10)) {
             std::ostringstream why;
             why << "only " << points.back()->GetNumberOfPoints()
-                << " samples of the fixed volume found above the mask threshold "
-                << maskAbove.value_or(0.0);
+                << " samples of the fixed volume found in its mask (the largest region above "
+                << maskAbove.value_or(0.0) << ")";
             throw RegistrationError(metricName(options.metric), why.str());
         }
     }
