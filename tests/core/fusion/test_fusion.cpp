@@ -16,35 +16,16 @@
 #include "core/fusion/OverlayResampler.h"
 #include "core/io/Catalog.h"
 #include "core/mpr/CrosshairSlice.h"
+#include "tests/support/MovedVolume.h"
 #include "tests/support/RealData.h"
 
 using namespace lucent;
+using lucent::test::movedCopy;
+using lucent::test::rigidAbout;
 
 namespace {
 
 constexpr const char* kCt = "dcm_qa_ct/Philips_S21570/S2010";
-
-// A rigid transform about c: rotation (degrees about x, y, z in turn), then a shift.
-glm::dmat4 rigidAbout(const glm::dvec3& c, const glm::dvec3& degrees, const glm::dvec3& t) {
-    glm::dmat4 r(1.0);
-    r = glm::rotate(r, glm::radians(degrees.z), glm::dvec3(0, 0, 1));
-    r = glm::rotate(r, glm::radians(degrees.y), glm::dvec3(0, 1, 0));
-    r = glm::rotate(r, glm::radians(degrees.x), glm::dvec3(1, 0, 0));
-    return glm::translate(glm::dmat4(1.0), c + t) * r * glm::translate(glm::dmat4(1.0), -c);
-}
-
-// The CT's voxels on a grid moved by `move`: voxel (i, j, k) lies at move(ct(i, j, k)), so
-// the copy's anatomy at move(p) is the CT's at p.
-Volume movedCopy(const Volume& ct, const glm::dmat4& move) {
-    VolumeGeometry g = ct.geometry();
-    g.origin = glm::dvec3(move * glm::dvec4(g.origin, 1.0));
-    g.direction = glm::dmat3(move) * g.direction;
-    Volume copy(g, ct.type());
-    std::memcpy(copy.bytes().data(), ct.bytes().data(), ct.byteCount());
-    copy.modality = ct.modality;
-    copy.frameOfReferenceUid = "2.25.2029";
-    return copy;
-}
 
 SlicePlane planeThrough(const Volume& v, Orientation o, const glm::dvec3& degrees) {
     SlicePlane p = standardPlane(v.geometry(), o, volumeCentre(v.geometry()), 256, 256);
