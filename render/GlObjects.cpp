@@ -63,8 +63,26 @@ GlTexture makeTexture(GLenum target) {
 
 namespace {
 
-GLuint compile(GLenum stage, std::string_view fileName, const std::string& defines) {
+// The shader's text with each line `#include "name"` replaced by that embedded file's text
+// (one level: an included file includes nothing).
+std::string withIncludes(std::string_view fileName) {
     std::string text(shaderSource(fileName));
+    const std::string directive = "#include \"";
+    for (std::size_t at = text.find(directive); at != std::string::npos;
+         at = text.find(directive, at)) {
+        const std::size_t nameEnd = text.find('"', at + directive.size());
+        const std::size_t lineEnd = text.find('\n', at);
+        const std::string name =
+            text.substr(at + directive.size(), nameEnd - at - directive.size());
+        const std::string included(shaderSource(name));
+        text.replace(at, (lineEnd == std::string::npos ? text.size() : lineEnd) - at, included);
+        at += included.size();
+    }
+    return text;
+}
+
+GLuint compile(GLenum stage, std::string_view fileName, const std::string& defines) {
+    std::string text = withIncludes(fileName);
     const std::size_t lineEnd = text.find('\n');
     text.insert(lineEnd == std::string::npos ? text.size() : lineEnd + 1, defines);
     const GLuint shader = glCreateShader(stage);

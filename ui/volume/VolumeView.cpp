@@ -452,9 +452,9 @@ void VolumeView::paintFrame(QPainter& painter) {
         }
         if (overlay_ && mode_ != RenderMode::Isosurface && backend_ != Backend::Remote) {
             const int h = std::min(int(area.height()) / 2, 240);
-            paintFusionColourBar(painter,
-                                 QRect(int(area.right()) - 96, int(area.center().y()) - h / 2, 88, h),
-                                 overlayStyle_, overlayUnit_);
+            paintFusionColourBar(
+                painter, QRect(int(area.right()) - 96, int(area.center().y()) - h / 2, 88, h),
+                overlayStyle_, overlayUnit_);
         }
         if (backend_ == Backend::Remote && lastProjection_) {
             paintTeachingMarks(painter, area, remote_->teachingMarks(), *lastProjection_);

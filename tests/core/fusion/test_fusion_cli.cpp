@@ -215,7 +215,9 @@ private slots:
         m[1] = glm::dvec4(-0.17, 0.98, 0.0, 0.0);
         m[3] = glm::dvec4(1.5, -2.25, 3.125, 1.0);
         const std::string file = dir_.filePath("written.json").toStdString();
-        writeTransformFile(file, m, TransformFileFacts{"Mattes MI", -0.5, 12, 1.5, true, "ok", "rigid", "centres"});
+        writeTransformFile(
+            file, m,
+            TransformFileFacts{"Mattes MI", -0.5, 12, 1.5, true, "ok", "rigid", "centres"});
         QVERIFY(readTransformFile(file) == m);
     }
 };
