@@ -40,6 +40,7 @@
 #include "ui/viewports/ViewportLinks.h"
 #include "ui/viewports/ViewportWorkspace.h"
 #include "ui/volume/RenderServerSettings.h"
+#include "ui/volume/RotatingMip.h"
 #include "ui/volume/SurfacePanel.h"
 #include "ui/volume/VolumeView.h"
 #include "ui/volume/VolumeViewControls.h"
@@ -250,8 +251,9 @@ void MainWindow::addViewMenu() {
                             layout_->maximize(layout_->activeView());
                         }
                     });
-    addRenderBackendMenu(menu, volumeView_); // this computer or a render server
-    addThemeMenu(menu);                      // dark or light, saved at once
+    menu->addAction(volumeView_->rotatingMip()->action()); // the PET cine in the 3D view
+    addRenderBackendMenu(menu, volumeView_);               // this computer or a render server
+    addThemeMenu(menu);                                    // dark or light, saved at once
     menu->addSeparator();
     for (QDockWidget* dock : findChildren<QDockWidget*>()) {
         menu->addAction(dock->toggleViewAction());
