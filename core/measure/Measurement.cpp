@@ -131,11 +131,31 @@ std::string measurementValueText(const Measurement& m) {
     case MeasurementKind::Ellipse: {
         const RoiStatistics& s = m.statistics;
         std::string unit = m.unit.empty() ? std::string() : " " + m.unit;
-        return format("Mean %.1f", s.mean) + unit +
+        const std::string suv = m.suv ? format("SUVmax %.2f SUVpeak %.2f SUVmean %.2f ", m.suv->max,
+                                               m.suv->peak, m.suv->mean)
+                                      : std::string();
+        return suv + format("Mean %.1f", s.mean) + unit +
                format(" SD %.1f Area %.1f mm\u00b2", s.standardDeviation, s.areaMm2);
     }
     }
     return {};
+}
+
+std::string measurementUnit(const Volume& volume) {
+    if (volume.pet) {
+        return volume.pet->unit();
+    }
+    return volume.modality == "CT" ? "HU" : "";
+}
+
+std::optional<SuvStatistics> measurementSuv(const Volume& volume, const Measurement& m) {
+    if (m.kind != MeasurementKind::Ellipse || !m.complete() || !volume.pet ||
+        !volume.pet->inSuv() || volume.empty()) {
+        return std::nullopt;
+    }
+    const std::vector<glm::ivec3> region =
+        ellipseSuvRegion(volume.geometry(), m.plane, measurementEllipse(m));
+    return suvStatistics(volume, region);
 }
 
 double distanceFromPlane(const Measurement& m, const SlicePlane& plane) {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -8,6 +9,7 @@
 
 #include "core/mpr/PlaneSampler.h"
 #include "core/mpr/RoiStatistics.h"
+#include "core/pet/SuvStatistics.h"
 
 namespace lucent {
 
@@ -50,8 +52,14 @@ struct Measurement {
     // The plane it was drawn on: the slice (acquired or oblique) and its screen axes.
     SlicePlane plane;
     RoiStatistics statistics; // Ellipse only
-    std::string unit;         // of the statistics: "HU" for CT, "" otherwise
-    bool readOnly = false;    // read from an SR that Lucent did not write
+    // Of the statistics: "HU" for CT, a PET series' unit ("SUVbw", "Bq/mL": PetDisplay::unit),
+    // "" otherwise.
+    std::string unit;
+    // Ellipse on a PET series shown in SUVbw: SUVmax, SUVmean and SUVpeak over the ellipsoid
+    // it spans (ellipseSuvRegion); read from an SR, the voxels are not known (maxVoxel and
+    // peakVoxel -1, voxels 0).
+    std::optional<SuvStatistics> suv;
+    bool readOnly = false; // read from an SR that Lucent did not write
     LesionTracking lesion;
 
     bool complete() const { return static_cast<int>(points.size()) == measurementPointCount(kind); }
@@ -69,8 +77,17 @@ EllipseRoi measurementEllipse(const Measurement& m); // Ellipse: centre and semi
 Measurement makeEllipseMeasurement(const SlicePlane& plane, const EllipseRoi& ellipse);
 
 // The text a list or an overlay shows for the value: "42.1 mm", "37.5°",
-// "23.0 x 11.2 mm", "Mean 40.2 HU SD 3.1 Area 120.4 mm²", the arrow's text.
+// "23.0 x 11.2 mm", "Mean 40.2 HU SD 3.1 Area 120.4 mm²", the arrow's text; an ellipse
+// in SUVbw leads with "SUVmax 5.12 SUVpeak 4.20 SUVmean 2.51 ".
 std::string measurementValueText(const Measurement& m);
+
+// The unit an ellipse's statistics are in on this volume: "HU" for CT, the PET unit for a
+// PET series loaded for display ("SUVbw", "Bq/mL"), "" otherwise.
+std::string measurementUnit(const Volume& volume);
+
+// An ellipse's SUVmax, SUVmean and SUVpeak on a volume shown in SUVbw (over
+// ellipseSuvRegion); nothing for other kinds, incomplete ellipses and other volumes.
+std::optional<SuvStatistics> measurementSuv(const Volume& volume, const Measurement& m);
 
 // The largest distance of any point from the plane (mm): 0 for points drawn on it.
 double distanceFromPlane(const Measurement& m, const SlicePlane& plane);

@@ -7,13 +7,14 @@
 
 #include "core/movie/MovieWriter.h"
 #include "core/scene/Renderer.h"
+#include "core/scene/Turntable.h"
 
 namespace lucent {
 
 RenderDescription turntableFrame(const RenderDescription& start, double degrees, int frames,
                                  int k) {
     RenderDescription d = start;
-    d.camera.azimuth += degrees * double(k) / double(std::max(frames, 1));
+    d.camera = turntableCamera(start.camera, degrees, frames, k);
     return d;
 }
 

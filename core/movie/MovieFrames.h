@@ -24,8 +24,8 @@ public:
     virtual ImageRGBA8 frame(int k) = 0;
 };
 
-// Frame k of n turns the start's azimuth (about the head-foot axis, the view's
-// up axis at elevation 0) by k * degrees / n: a full turn loops without a repeat.
+// Frame k of n: the start with turntableCamera (core/scene/Turntable.h), its azimuth
+// turned by k * degrees / n: a full turn loops without a repeat.
 RenderDescription turntableFrame(const RenderDescription& start, double degrees, int frames, int k);
 
 class TurntableFrames : public MovieFrames {

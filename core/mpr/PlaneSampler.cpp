@@ -5,6 +5,8 @@
 #include <cmath>
 #include <span>
 
+#include "core/pet/PetDisplay.h"
+
 namespace lucent {
 
 namespace {
@@ -244,6 +246,12 @@ std::uint8_t windowToGrey(double value, double center, double width) {
 WindowLevel defaultWindow(const Volume& volume) {
     WindowLevel window;
     if (volume.modality == "CT" || volume.empty()) {
+        return window;
+    }
+    if (volume.pet && volume.pet->inSuv()) {
+        window.width = kSuvWindowHigh - kSuvWindowLow;
+        window.center = 0.5 * (kSuvWindowLow + kSuvWindowHigh);
+        window.step = kSuvWindowStep;
         return window;
     }
     const std::size_t count = volume.geometry().voxelCount();

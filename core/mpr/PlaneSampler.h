@@ -82,8 +82,9 @@ struct WindowLevel {
 };
 
 // A starting window for a volume: soft tissue (L 40, W 400, 1 HU per pixel) for CT,
-// otherwise the 1st to 99th percentile of its values (from at most about a million
-// of them) with a step of a thousandth of that width.
+// 0 to 6 SUV for PET shown in SUVbw (core/pet/PetDisplay.h), otherwise the 1st to 99th
+// percentile of its values (from at most about a million of them) with a step of a
+// thousandth of that width.
 WindowLevel defaultWindow(const Volume& volume);
 
 // The patient direction letters of a vector (L/R, P/A, S/I), strongest component

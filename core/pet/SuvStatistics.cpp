@@ -1,7 +1,10 @@
 #include "core/pet/SuvStatistics.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+
+#include "core/pet/PetDisplay.h"
 
 namespace lucent {
 
@@ -65,20 +68,46 @@ Volume suvVolume(const Volume& activity, double factor) {
     return suv;
 }
 
+Volume petVolumeForDisplay(Volume stored, const SuvParameters& parameters) {
+    const PetDisplay display = petDisplayOf(parameters);
+    Volume shown = display.inSuv() && display.suvFactor != 1.0
+                       ? suvVolume(stored, display.suvFactor)
+                       : std::move(stored);
+    shown.pet = display;
+    return shown;
+}
+
 std::vector<glm::ivec3> ellipsoidVoxels(const VolumeGeometry& geometry, const glm::dvec3& centre,
-                                        const glm::dvec3& radiiMm) {
+                                        const glm::dmat3& axes, const glm::dvec3& radiiMm) {
     std::vector<glm::ivec3> voxels;
     if (!(radiiMm.x > 0.0 && radiiMm.y > 0.0 && radiiMm.z > 0.0)) {
         return voxels;
     }
+    // Index offsets per mm along each patient direction: the rows of the inverse of
+    // direction * diag(spacing). The box reaches sqrt(sum_n (r_n * row . axis_n)^2) along
+    // each index axis.
+    const glm::dmat3 toIndex = glm::inverse(
+        geometry.direction *
+        glm::dmat3(geometry.spacing.x, 0, 0, 0, geometry.spacing.y, 0, 0, 0, geometry.spacing.z));
     const glm::dvec3 c = geometry.toIndex(centre);
-    const glm::dvec3 reach = radiiMm / geometry.spacing;
-    const glm::ivec3 lo = glm::max(glm::ivec3(glm::ceil(c - reach)), glm::ivec3(0));
-    const glm::ivec3 hi = glm::min(glm::ivec3(glm::floor(c + reach)), geometry.dims - 1);
+    glm::dvec3 reach(0.0);
+    for (int a = 0; a < 3; ++a) {
+        const glm::dvec3 row(toIndex[0][a], toIndex[1][a], toIndex[2][a]);
+        for (int n = 0; n < 3; ++n) {
+            const double d = radiiMm[n] * glm::dot(row, axes[n]);
+            reach[a] += d * d;
+        }
+        reach[a] = std::sqrt(reach[a]);
+    }
+    const glm::ivec3 lo = glm::max(glm::ivec3(glm::ceil(c - reach - 1e-9)), glm::ivec3(0));
+    const glm::ivec3 hi = glm::min(glm::ivec3(glm::floor(c + reach + 1e-9)), geometry.dims - 1);
     for (int k = lo.z; k <= hi.z; ++k) {
         for (int j = lo.y; j <= hi.y; ++j) {
             for (int i = lo.x; i <= hi.x; ++i) {
-                const glm::dvec3 q = (glm::dvec3(i, j, k) - c) / reach;
+                const glm::dvec3 d = geometry.toPatient(glm::dvec3(i, j, k)) - centre;
+                const glm::dvec3 q(glm::dot(d, axes[0]) / radiiMm.x,
+                                   glm::dot(d, axes[1]) / radiiMm.y,
+                                   glm::dot(d, axes[2]) / radiiMm.z);
                 if (glm::dot(q, q) <= 1.0 + 1e-12) {
                     voxels.emplace_back(i, j, k);
                 }
@@ -86,6 +115,22 @@ std::vector<glm::ivec3> ellipsoidVoxels(const VolumeGeometry& geometry, const gl
         }
     }
     return voxels;
+}
+
+std::vector<glm::ivec3> ellipseSuvRegion(const VolumeGeometry& geometry, const SlicePlane& plane,
+                                         const EllipseRoi& ellipse) {
+    const glm::dvec3 u = glm::normalize(plane.u);
+    const glm::dvec3 v = glm::normalize(plane.v);
+    const glm::dvec3 n = glm::normalize(glm::cross(u, v));
+    const glm::dvec3 centre = ellipse.centre - n * glm::dot(ellipse.centre - plane.centre, n);
+    const double across = std::min(ellipse.radiusU, ellipse.radiusV);
+    return ellipsoidVoxels(geometry, centre, glm::dmat3(u, v, n),
+                           glm::dvec3(ellipse.radiusU, ellipse.radiusV, across));
+}
+
+std::vector<glm::ivec3> ellipsoidVoxels(const VolumeGeometry& geometry, const glm::dvec3& centre,
+                                        const glm::dvec3& radiiMm) {
+    return ellipsoidVoxels(geometry, centre, geometry.direction, radiiMm);
 }
 
 double sphereMean(const Volume& volume, const glm::ivec3& centre, double radiusMm) {

@@ -9,6 +9,8 @@
 
 #include <glm/glm.hpp>
 
+#include "core/mpr/RoiStatistics.h"
+#include "core/pet/SuvParameters.h"
 #include "core/volume/Volume.h"
 
 namespace lucent {
@@ -20,10 +22,27 @@ double suvPeakRadiusMm();
 // `factor` (suvBwFactor). Geometry and series description are kept.
 Volume suvVolume(const Volume& activity, double factor);
 
+// A PET volume as the workstation shows it: in SUVbw (suvVolume with petDisplayOf's factor;
+// Units GML as stored) when a factor can be had, else as stored; its `pet` says which, and
+// why not.
+Volume petVolumeForDisplay(Volume stored, const SuvParameters& parameters);
+
 // The voxels whose centres lie inside an ellipsoid: centred at `centre` (LPS mm), with
 // semi-axes `radiiMm` along the volume's i, j and k axes (boundary included).
 std::vector<glm::ivec3> ellipsoidVoxels(const VolumeGeometry& geometry, const glm::dvec3& centre,
                                         const glm::dvec3& radiiMm);
+// The same for an ellipsoid of any orientation: semi-axis n is radiiMm[n] along the unit
+// vector axes[n] (LPS; the columns of `axes`, orthogonal).
+std::vector<glm::ivec3> ellipsoidVoxels(const VolumeGeometry& geometry, const glm::dvec3& centre,
+                                        const glm::dmat3& axes, const glm::dvec3& radiiMm);
+
+// The region an ellipse ROI drawn on `plane` gives PET reading: the ellipsoid it spans, its
+// semi-axes the ellipse's along plane.u and plane.v and the shorter of the two along the
+// plane's normal. PERCIST reads SUVmax and SUVpeak per lesion in 3D, so the hottest voxel
+// and the hottest 1 mL sphere may lie on a neighbouring slice of the one drawn on; the
+// shorter axis keeps the region from reaching further along the normal than across.
+std::vector<glm::ivec3> ellipseSuvRegion(const VolumeGeometry& geometry, const SlicePlane& plane,
+                                         const EllipseRoi& ellipse);
 
 struct SuvStatistics {
     double max = std::numeric_limits<double>::quiet_NaN();

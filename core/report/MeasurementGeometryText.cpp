@@ -45,6 +45,10 @@ std::string encodeMeasurementGeometry(const Measurement& m) {
     out += " roi " + number(r.mean) + " " + number(r.standardDeviation) + " " + number(r.minimum) +
            " " + number(r.maximum) + " " + number(r.areaMm2) + " " + std::to_string(r.samples);
     out += " unit " + (m.unit.empty() ? std::string("-") : m.unit);
+    if (m.suv) {
+        out += " suv " + number(m.suv->max) + " " + number(m.suv->mean) + " " +
+               number(m.suv->peak) + " " + std::to_string(m.suv->voxels);
+    }
     return out;
 }
 
@@ -103,6 +107,17 @@ std::optional<DecodedGeometry> decodeMeasurementGeometry(const std::string& text
     }
     r.samples = static_cast<std::size_t>(samples);
     m.unit = t[i] == "-" ? std::string() : t[i];
+    ++i;
+    if (i < t.size()) { // SUVs, written since PET in SUV; older texts end at the unit
+        SuvStatistics suv;
+        long long voxels = 0;
+        if (!word("suv") || !num(suv.max) || !num(suv.mean) || !num(suv.peak) || !integer(voxels) ||
+            voxels < 0) {
+            return std::nullopt;
+        }
+        suv.voxels = static_cast<std::size_t>(voxels);
+        m.suv = suv;
+    }
     return g;
 }
 

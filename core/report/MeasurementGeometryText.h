@@ -1,7 +1,8 @@
 #pragma once
 // A measurement's exact geometry as a line of text, for the private TEXT item of
-// Lucent's SRs: kind, id, whether it has a label, points, plane, statistics and
-// unit, every number with 17 significant digits (a double read back is the same).
+// Lucent's SRs: kind, id, whether it has a label, points, plane, statistics, unit and
+// SUVs (when it has them), every number with 17 significant digits (a double read back is
+// the same).
 
 #include <optional>
 #include <string>

@@ -97,6 +97,24 @@ std::optional<ReportRegion> regionBelow(DSRDocumentTree& tree, const ReferencedS
     return region;
 }
 
+// The code of the Derivation (121401, DCM) below a NUM, or "". The tree's cursor is on the
+// NUM and comes back there.
+std::string derivationBelow(DSRDocumentTree& tree) {
+    if (tree.gotoChild() == 0) {
+        return {};
+    }
+    std::string derivation;
+    do {
+        DSRContentItem& item = tree.getCurrentContentItem();
+        if (item.getValueType() == DSRTypes::VT_Code && item.getCodeValuePtr() != nullptr &&
+            sameCode(item.getConceptName(), derivationCode())) {
+            derivation = item.getCodeValuePtr()->getCodeValue().c_str();
+        }
+    } while (derivation.empty() && tree.gotoNext() != 0);
+    tree.gotoParent();
+    return derivation;
+}
+
 std::string describeItem(DSRContentItem& item) {
     std::string out = meaningOf(item.getConceptName());
     const std::string value = item.getStringValue().c_str();
@@ -162,6 +180,7 @@ ReportGroup readGroup(DSRDocumentTree& tree, const ReferencedSeries* series) {
                           : std::strtod(v.getNumericValue().c_str(), nullptr);
             n.unit = v.getMeasurementUnit().getCodeValue().c_str();
             n.region = regionBelow(tree, series);
+            n.derivation = derivationBelow(tree);
             group.numbers.push_back(std::move(n));
         } else {
             group.otherItems.push_back(describeItem(item));

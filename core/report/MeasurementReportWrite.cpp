@@ -2,6 +2,7 @@
 // plus the items those classes have no call for (SCOORD3D, Lucent's geometry).
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <set>
 #include <system_error>
 
@@ -57,7 +58,29 @@ struct Value {
     std::vector<int> region; // indices of the points of its image region; empty: none
     DSRTypes::E_GraphicType graphic = DSRTypes::GT_Polyline;
     DSRTypes::E_GraphicType3D graphic3d = DSRTypes::GT3_Polyline;
+    std::optional<DSRBasicCodedEntry> derivation{}; // TID 300 row 4 (the SUVs)
 };
+
+// SUVmax, SUVmean and SUVpeak: the quantity SUVbw with its derivation, in {SUVbw}g/ml.
+void addSuvValues(const Measurement& m, std::vector<Value>& out) {
+    if (!m.suv) {
+        return;
+    }
+    const std::pair<DSRBasicCodedEntry, double> suvs[] = {{maximumCode(), m.suv->max},
+                                                          {meanCode(), m.suv->mean},
+                                                          {peakValueWithinRoiCode(), m.suv->peak}};
+    for (const auto& [derivation, v] : suvs) {
+        if (std::isfinite(v)) {
+            out.push_back({suvBwCode(),
+                           v,
+                           suvBwUnit(),
+                           {},
+                           DSRTypes::GT_Polyline,
+                           DSRTypes::GT3_Polyline,
+                           derivation});
+        }
+    }
+}
 
 std::vector<Value> valuesOf(const Measurement& m) {
     const auto line = [](std::vector<int> points) { return points; };
@@ -78,7 +101,7 @@ std::vector<Value> valuesOf(const Measurement& m) {
         std::vector<int> axes = e.radiusU >= e.radiusV ? line({0, 1, 2, 3}) : line({2, 3, 0, 1});
         std::vector<Value> out{{areaCode(), m.statistics.areaMm2, squareMillimetreUnit(), axes,
                                 DSRTypes::GT_Ellipse, DSRTypes::GT3_Ellipse}};
-        const DSRBasicCodedEntry unit = m.unit == "HU" ? hounsfieldUnit() : noUnit();
+        const DSRBasicCodedEntry unit = statisticsUnit(m.unit);
         const RoiStatistics& s = m.statistics;
         const std::pair<DSRBasicCodedEntry, double> stats[] = {
             {meanCode(), s.mean},
@@ -90,6 +113,7 @@ std::vector<Value> valuesOf(const Measurement& m) {
                 out.push_back({code, v, unit, {}});
             }
         }
+        addSuvValues(m, out);
         return out;
     }
     }
@@ -159,6 +183,11 @@ void addGroup(CMR_TID1500& report, const Measurement& m, const ReferencedSeries&
         check(group.addMeasurement(CMR_CID7469(DSRCodedEntryValue(v.code)),
                                    numeric(v.value, v.unit), OFTrue, OFFalse),
               file, what + ": " + v.code.CodeMeaning.c_str());
+        if (v.derivation) {
+            check(group.getMeasurement().setDerivation(
+                      CMR_CID7464(DSRCodedEntryValue(*v.derivation))),
+                  file, what + ": derivation " + v.derivation->CodeMeaning.c_str());
+        }
         addRegion(group, v, m, image, series.frameOfReferenceUid, file);
     }
     if (m.lesion.role != LesionRole::None) {

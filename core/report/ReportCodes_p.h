@@ -5,6 +5,8 @@
 #include <dcmtk/config/osconfig.h>
 #include <dcmtk/dcmsr/dsrcodvl.h>
 
+#include <string>
+
 namespace lucent::report {
 
 // Concepts of the TID 300 numeric measurements (CID 7469, CID 7464 for statistics).
@@ -37,6 +39,17 @@ inline DSRBasicCodedEntry minimumCode() {
 }
 inline DSRBasicCodedEntry maximumCode() {
     return {"56851009", "SCT", "Maximum"};
+}
+// A PET ellipse's SUVs (as TID 1419 and dcmqi write them): the quantity SUVbw, its
+// Derivation (TID 300 row 4, CID 7464) Maximum, Mean or Peak Value Within ROI.
+inline DSRBasicCodedEntry suvBwCode() {
+    return {"126401", "DCM", "SUVbw"};
+}
+inline DSRBasicCodedEntry derivationCode() {
+    return {"121401", "DCM", "Derivation"};
+}
+inline DSRBasicCodedEntry peakValueWithinRoiCode() {
+    return {"126031", "DCM", "Peak Value Within ROI"};
 }
 
 // Other content items.
@@ -107,6 +120,30 @@ inline DSRBasicCodedEntry hounsfieldUnit() {
 }
 inline DSRBasicCodedEntry noUnit() {
     return {"1", "UCUM", "no units"};
+}
+// SUVbw and Bq/mL as CID 85 and CID 84 name them.
+inline DSRBasicCodedEntry suvBwUnit() {
+    return {"{SUVbw}g/ml", "UCUM", "Standardized Uptake Value body weight"};
+}
+inline DSRBasicCodedEntry becquerelPerMillilitreUnit() {
+    return {"Bq/ml", "UCUM", "Becquerels/milliliter"};
+}
+// The UCUM unit of a measurement's statistics (Measurement::unit): HU, SUVbw, Bq/mL, none;
+// any other as a UCUM annotation ("{counts}").
+inline DSRBasicCodedEntry statisticsUnit(const std::string& unit) {
+    if (unit == "HU") {
+        return hounsfieldUnit();
+    }
+    if (unit == "SUVbw") {
+        return suvBwUnit();
+    }
+    if (unit == "Bq/mL") {
+        return becquerelPerMillilitreUnit();
+    }
+    if (unit.empty()) {
+        return noUnit();
+    }
+    return {("{" + unit + "}").c_str(), "UCUM", unit.c_str()};
 }
 
 inline bool sameCode(const DSRCodedEntryValue& a, const DSRBasicCodedEntry& b) {

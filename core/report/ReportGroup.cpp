@@ -20,6 +20,7 @@ enum class Concept {
     Sd,
     Min,
     Max,
+    SuvBw,
     None
 };
 
@@ -38,7 +39,7 @@ Concept conceptOf(const ReportNumber& n) {
         {"R-00317", Concept::Mean},        {"386136009", Concept::Sd},
         {"R-10047", Concept::Sd},          {"255605001", Concept::Min},
         {"R-404FB", Concept::Min},         {"56851009", Concept::Max},
-        {"G-A437", Concept::Max}};
+        {"G-A437", Concept::Max},          {"126401", Concept::SuvBw}};
     for (const Known& k : known) {
         if (n.code == k.code) {
             return k.meaning;
@@ -83,6 +84,62 @@ SlicePlane planeThrough(const ReportRegion& region) {
     return plane;
 }
 
+// Measurement::unit of a UCUM code: HU, SUVbw, Bq/mL, none, an annotation's text.
+std::string unitOfUcum(const std::string& ucum) {
+    if (ucum == "[hnsf'U]") {
+        return "HU";
+    }
+    if (ucum == "{SUVbw}g/ml") {
+        return "SUVbw";
+    }
+    if (ucum == "Bq/ml") {
+        return "Bq/mL";
+    }
+    if (ucum == "1") {
+        return {};
+    }
+    if (ucum.size() > 2 && ucum.front() == '{' && ucum.back() == '}') {
+        return ucum.substr(1, ucum.size() - 2);
+    }
+    return ucum;
+}
+
+// An ellipse's statistics (Area, Mean, SD, Min, Max) and SUVs (SUVbw by its derivation)
+// into m; what does not fit an ellipse goes to notShown.
+void readStatistics(Measurement& m, const std::vector<const ReportNumber*>& numbers,
+                    const std::string& name, std::vector<std::string>& notShown) {
+    for (const ReportNumber* n : numbers) {
+        const Concept c = conceptOf(*n);
+        if (m.kind != MeasurementKind::Ellipse) {
+            notShown.push_back(name + ": " + describe(*n));
+            continue;
+        }
+        if (c == Concept::SuvBw) {
+            SuvStatistics& suv = m.suv ? *m.suv : m.suv.emplace();
+            const std::string& d = n->derivation;
+            double* target = d == "56851009" || d == "G-A437"     ? &suv.max
+                             : d == "373098007" || d == "R-00317" ? &suv.mean
+                             : d == "126031"                      ? &suv.peak
+                                                                  : nullptr;
+            if (target == nullptr) {
+                notShown.push_back(name + ": " + describe(*n));
+            } else {
+                *target = n->value;
+            }
+            continue;
+        }
+        RoiStatistics& s = m.statistics;
+        (c == Concept::Area   ? s.areaMm2
+         : c == Concept::Mean ? s.mean
+         : c == Concept::Sd   ? s.standardDeviation
+         : c == Concept::Min  ? s.minimum
+                              : s.maximum) = n->value;
+        if (c != Concept::Area) {
+            m.unit = unitOfUcum(n->unit);
+        }
+    }
+}
+
 const ReportRegion* placedRegion(const ReportNumber& n, std::size_t points) {
     return n.region && n.region->points.size() == points ? &*n.region : nullptr;
 }
@@ -122,7 +179,7 @@ InterpretedGroup interpretGroup(const ReportGroup& group, bool lucentWrote) {
         const bool ellipse = n.region && n.region->shape == ReportRegion::Shape::Ellipse &&
                              n.region->points.size() == 4;
         const bool statistic = c == Concept::Area || c == Concept::Mean || c == Concept::Sd ||
-                               c == Concept::Min || c == Concept::Max;
+                               c == Concept::Min || c == Concept::Max || c == Concept::SuvBw;
         if (ellipse && !shape) {
             m.kind = MeasurementKind::Ellipse;
             shape = &n;
@@ -180,22 +237,7 @@ InterpretedGroup interpretGroup(const ReportGroup& group, bool lucentWrote) {
             m.plane.centre = 0.25 * (m.points[0] + m.points[1] + m.points[2] + m.points[3]);
         }
         m.text = group.comment.value_or(std::string());
-        for (const ReportNumber* n : statistics) {
-            const Concept c = conceptOf(*n);
-            if (m.kind != MeasurementKind::Ellipse) {
-                out.notShown.push_back(name + ": " + describe(*n));
-                continue;
-            }
-            RoiStatistics& s = m.statistics;
-            (c == Concept::Area   ? s.areaMm2
-             : c == Concept::Mean ? s.mean
-             : c == Concept::Sd   ? s.standardDeviation
-             : c == Concept::Min  ? s.minimum
-                                  : s.maximum) = n->value;
-            if (c != Concept::Area) {
-                m.unit = n->unit == "[hnsf'U]" ? "HU" : n->unit == "1" ? "" : n->unit;
-            }
-        }
+        readStatistics(m, statistics, name, out.notShown);
         out.measurement = std::move(m);
     }
     for (const std::string& item : group.otherItems) {

@@ -24,7 +24,8 @@ struct ReportNumber {
     std::string scheme; // "SCT"
     std::string meaning;
     double value = 0.0;
-    std::string unit; // UCUM code
+    std::string unit;       // UCUM code
+    std::string derivation; // the code of its Derivation (121401, DCM), "" when none
     std::optional<ReportRegion> region;
 };
 

@@ -1,6 +1,9 @@
 #pragma once
 
+#include <optional>
 #include <string>
+
+#include "core/pet/PetDisplay.h"
 
 namespace lucent {
 
@@ -16,6 +19,9 @@ struct SeriesInfo {
     std::string studyDate;
     // (0020,0052): series that share it share patient coordinates (linked views).
     std::string frameOfReferenceUid;
+    // A PET series as loaded for display (loadDisplayedSeries): in SUVbw, or in its stored
+    // units and why not; empty for other series and for what loadSeries alone returns.
+    std::optional<PetDisplay> pet{};
 };
 
 // A DICOM date YYYYMMDD as YYYY-MM-DD, for people; anything else as it is.

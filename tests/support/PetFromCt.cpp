@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 
 #include <dcmtk/dcmdata/dcdeftag.h>
@@ -91,6 +92,21 @@ PetSeries writePetFromCt(const std::filesystem::path& ctFolder, const std::files
         throw std::runtime_error(ctFolder.string() + ": no DICOM file to copy");
     }
     return pet;
+}
+
+double storedActivity(const PetSeries& pet, const std::filesystem::path& file, int i, int j) {
+    const auto n = std::find(pet.files.begin(), pet.files.end(), file) - pet.files.begin();
+    DcmFileFormat dicom;
+    const Uint16* pixels = nullptr;
+    Uint16 columns = 0;
+    if (n >= static_cast<long>(pet.files.size()) || dicom.loadFile(file.c_str()).bad() ||
+        dicom.getDataset()->findAndGetUint16(DCM_Columns, columns).bad() ||
+        dicom.getDataset()->findAndGetUint16Array(DCM_PixelData, pixels).bad()) {
+        return std::numeric_limits<double>::quiet_NaN();
+    }
+    const int stored =
+        pixels[static_cast<std::size_t>(j) * columns + static_cast<std::size_t>(i)] & 0x0fff;
+    return stored * pet.slopes[static_cast<std::size_t>(n)];
 }
 
 } // namespace lucent::test

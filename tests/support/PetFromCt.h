@@ -38,4 +38,9 @@ struct PetSeries {
 PetSeries writePetFromCt(const std::filesystem::path& ctFolder, const std::filesystem::path& target,
                          const PetHeader& header);
 
+// The activity (Bq/mL) the series holds at pixel (i, j) of `file` (one of pet.files): its
+// stored value (the CT's 12 bits, read with DCMTK) times that file's slope; NaN when the
+// file is not one of the series or cannot be read.
+double storedActivity(const PetSeries& pet, const std::filesystem::path& file, int i, int j);
+
 } // namespace lucent::test

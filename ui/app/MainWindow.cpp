@@ -18,6 +18,7 @@
 #include <QVBoxLayout>
 
 #include "core/pacs/PacsService.h"
+#include "core/pet/PetDisplay.h"
 #include "ui/app/MeasurementControls.h"
 #include "ui/app/MovieExportDialog.h"
 #include "ui/app/ScreenshotExport.h"
@@ -39,6 +40,7 @@
 #include "ui/viewports/ViewportLinks.h"
 #include "ui/viewports/ViewportWorkspace.h"
 #include "ui/volume/RenderServerSettings.h"
+#include "ui/volume/RotatingMip.h"
 #include "ui/volume/SurfacePanel.h"
 #include "ui/volume/VolumeView.h"
 #include "ui/volume/VolumeViewControls.h"
@@ -63,6 +65,9 @@ QString describe(const Volume& v) {
     }
     if (!v.studyDate.empty()) {
         parts << QString::fromStdString(v.studyDate);
+    }
+    if (v.pet) {
+        parts << QString::fromStdString(v.pet->unit());
     }
     parts << QStringLiteral("%1 x %2 x %3").arg(d.x).arg(d.y).arg(d.z);
     parts << QStringLiteral("%1 x %2 x %3 mm")
@@ -246,8 +251,9 @@ void MainWindow::addViewMenu() {
                             layout_->maximize(layout_->activeView());
                         }
                     });
-    addRenderBackendMenu(menu, volumeView_); // this computer or a render server
-    addThemeMenu(menu);                      // dark or light, saved at once
+    menu->addAction(volumeView_->rotatingMip()->action()); // the PET cine in the 3D view
+    addRenderBackendMenu(menu, volumeView_);               // this computer or a render server
+    addThemeMenu(menu);                                    // dark or light, saved at once
     menu->addSeparator();
     for (QDockWidget* dock : findChildren<QDockWidget*>()) {
         menu->addAction(dock->toggleViewAction());
@@ -400,7 +406,7 @@ void MainWindow::setVolume(std::shared_ptr<const Volume> volume) {
         centreOn(*cursor_, *volume_);
         info_->setText(describe(*volume_));
         info_->setToolTip(QString::fromStdString([&] {
-            std::string all;
+            std::string all = volume_->pet ? petDisplayNotice(*volume_->pet) : std::string();
             for (const std::string& w : volume_->warnings) {
                 all += (all.empty() ? "" : "\n") + w;
             }
@@ -420,6 +426,11 @@ void MainWindow::setVolume(std::shared_ptr<const Volume> volume) {
     showMeasurementsOf(volume_);
     volumeView_->setVolume(volume_); // picks ct-bone or mr-default and tells the editor
     tfEditor_->setVolume(volume_);   // the histogram
+    if (volume_ && volume_->pet && !volume_->pet->inSuv()) {
+        // Told once, as it opens (after what opening the measurements said); the corner
+        // text and the status line's tooltip keep it.
+        statusBar()->showMessage(QString::fromStdString(petDisplayNotice(*volume_->pet)), 15000);
+    }
 }
 
 } // namespace lucent

@@ -107,6 +107,11 @@ QString measurementOverlayText(const Measurement& m) {
     if (m.kind == MeasurementKind::Ellipse) {
         const RoiStatistics& s = m.statistics;
         const QString unit = m.unit.empty() ? QString() : " " + QString::fromStdString(m.unit);
+        if (m.suv) {
+            lines << QStringLiteral("SUVmax %1").arg(m.suv->max, 0, 'f', 2)
+                  << QStringLiteral("SUVpeak %1").arg(m.suv->peak, 0, 'f', 2)
+                  << QStringLiteral("SUVmean %1").arg(m.suv->mean, 0, 'f', 2);
+        }
         lines << QStringLiteral("Mean %1%2").arg(s.mean, 0, 'f', 1).arg(unit)
               << QStringLiteral("SD %1").arg(s.standardDeviation, 0, 'f', 1)
               << QStringLiteral("Area %1 mm\u00b2").arg(s.areaMm2, 0, 'f', 1);

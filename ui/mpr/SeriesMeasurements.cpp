@@ -25,7 +25,8 @@ void SeriesMeasurements::measure(Measurement& m) const {
     const glm::dvec3 s = volume->geometry().spacing;
     const double spacing = std::min(m.plane.pixelSize, 0.5 * std::min({s.x, s.y, s.z}));
     m.statistics = ellipseStatistics(*volume, m.plane, measurementEllipse(m), spacing);
-    m.unit = volume->modality == "CT" ? "HU" : "";
+    m.unit = measurementUnit(*volume);
+    m.suv = measurementSuv(*volume, m);
 }
 
 void SeriesMeasurements::edited() {

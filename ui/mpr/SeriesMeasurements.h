@@ -56,7 +56,8 @@ signals:
     void selectionChanged(std::uint64_t id);
 
 private:
-    // An ellipse's statistics and unit from the volume (nothing for other kinds).
+    // An ellipse's statistics and unit from the volume, and on a PET series in SUVbw its
+    // SUVmax, SUVmean and SUVpeak (measurementSuv); nothing for other kinds.
     void measure(Measurement& m) const;
     // After every edit: drops a selection that is gone and says changed().
     void edited();

@@ -52,6 +52,14 @@ QStringList seriesOverlayLines(const SeriesInfo& info) {
     if (!series.isEmpty()) {
         lines << series;
     }
+    if (info.pet) {
+        // The unit of every value shown (window, ROI); why not SUVbw is told once on opening.
+        const QString unit = QString::fromStdString(info.pet->unit());
+        lines << (info.pet->inSuv()
+                      ? unit
+                      : QStringLiteral("%1 (not SUVbw)")
+                            .arg(unit.isEmpty() ? QStringLiteral("stored units") : unit));
+    }
     return lines;
 }
 

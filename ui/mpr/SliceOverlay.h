@@ -48,8 +48,9 @@ void paintCurvedPath(QPainter& painter, const SlicePlane& plane,
 // spans at most maxPixels pixels of pixelSize mm.
 double scaleBarLengthMm(double pixelSize, double maxPixels);
 
-// Patient name, ID, study date (YYYY-MM-DD when given as YYYYMMDD) and series
-// description (with the modality), leaving out what is unknown.
+// Patient name, ID, study date (YYYY-MM-DD when given as YYYYMMDD), series
+// description (with the modality) and, for PET, the unit of its values ("SUVbw", or
+// "Bq/mL (not SUVbw)"), leaving out what is unknown.
 QStringList seriesOverlayLines(const SeriesInfo& info);
 
 } // namespace lucent

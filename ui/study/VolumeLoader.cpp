@@ -11,6 +11,7 @@
 #include <QWidget>
 
 #include "core/io/Catalog.h"
+#include "core/io/DisplayedSeries.h"
 
 namespace lucent {
 
@@ -96,7 +97,7 @@ void VolumeLoader::load(const QString& path, const QString& series) {
                                                      ? ": nothing loadable"
                                                      : ": no series with id or UID " + wanted));
             }
-            volume = std::make_shared<Volume>(loadSeries(*entry, control));
+            volume = std::make_shared<Volume>(loadDisplayedSeries(*entry, control));
         } catch (const LoadCancelled&) {
             cancelled = true;
         } catch (const std::exception& e) {

@@ -4,6 +4,8 @@
 
 #include "core/dicom/StackLoader.h"
 #include "core/io/Catalog.h"
+#include "core/io/DisplayedSeries.h"
+#include "core/pet/PetDisplay.h"
 #include "ui/viewports/SeriesSession.h"
 
 namespace lucent {
@@ -81,7 +83,7 @@ void SeriesLibrary::request(const QString& path, const QString& series) {
                 throw LoadError(path.toStdString() + ": no series " + series.toStdString());
             }
             if (entry->kind == SeriesKind::Volume) {
-                volume = std::make_shared<Volume>(loadSeries(*entry, control));
+                volume = std::make_shared<Volume>(loadDisplayedSeries(*entry, control));
             } else {
                 stack = std::make_shared<ImageStack>(loadStack(*entry, control));
             }
@@ -110,7 +112,12 @@ void SeriesLibrary::finish(const QString& path, const QString& series,
         }
     }
     if (volume) {
+        const QString told =
+            volume->pet ? QString::fromStdString(petDisplayNotice(*volume->pet)) : QString();
         emit ready(path, series, adopt(std::move(volume), path, series));
+        if (!told.isEmpty()) {
+            emit notice(told);
+        }
     } else if (stack) {
         auto* session = new SeriesSession(std::shared_ptr<const ImageStack>(std::move(stack)), path,
                                           series, this);

@@ -54,6 +54,9 @@ public:
 signals:
     void ready(const QString& path, const QString& series, lucent::SeriesSession* session);
     void failed(const QString& path, const QString& series, const QString& error);
+    // Once per load, what the reader should know about the values shown: a PET series that
+    // could not be shown in SUVbw, and why (petDisplayNotice).
+    void notice(const QString& text);
 
 private:
     struct Pending {

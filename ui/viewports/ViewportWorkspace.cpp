@@ -45,6 +45,8 @@ ViewportWorkspace::ViewportWorkspace(QWidget* parent)
             [this](const QString& text) { emit message(text, 0); });
     connect(registration_, &ViewportRegistration::finished, this,
             [this](bool, const QString& text) { emit message(text, 10000); });
+    connect(library_, &SeriesLibrary::notice, this,
+            [this](const QString& text) { emit message(text, 15000); });
     connect(library_, &SeriesLibrary::failed, this,
             [this](const QString& path, const QString&, const QString& error) {
                 emit message(tr("Could not load %1: %2").arg(path, error), 10000);

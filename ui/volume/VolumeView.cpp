@@ -12,8 +12,10 @@
 #include <QStackedLayout>
 #include <QWheelEvent>
 
+#include "core/pet/PetProjection.h"
 #include "core/scene/ViewFrame.h"
 #include "ui/fusion/FusionColourBar.h"
+#include "ui/volume/RotatingMip.h"
 #include "ui/volume/SurfaceColourBar.h"
 #include "ui/volume/TeachingMarksOverlay.h"
 #include "ui/volume/VolumeSurfaces.h"
@@ -53,6 +55,9 @@ QString glUnavailableReason() {
 }
 
 TransferFunction defaultTransferFunction(const Volume* volume) {
+    if (volume != nullptr && volume->modality == "PT" && !volume->empty()) {
+        return petMipTransferFunction(*volume); // PET opens in MIP, inverted grey
+    }
     const bool mr = volume != nullptr && volume->modality == "MR";
     try {
         return loadPreset(mr ? "mr-default" : "ct-bone");
@@ -72,7 +77,7 @@ TransferFunction defaultTransferFunction(const Volume* volume) {
 VolumeView::VolumeView(QWidget* parent, Backend preferred)
     : QWidget(parent), local_(std::make_unique<LocalRenderBackend>()),
       remote_(std::make_unique<RemoteRenderBackend>()),
-      transferFunction_(defaultTransferFunction(nullptr)) {
+      transferFunction_(defaultTransferFunction(nullptr)), rotatingMip_(new RotatingMip(this)) {
     setMinimumSize(120, 120);
     setFocusPolicy(Qt::StrongFocus);
     auto* layout = new QStackedLayout(this);
@@ -245,6 +250,9 @@ void VolumeView::setVolume(std::shared_ptr<const Volume> volume) {
     transferFunction_ = defaultTransferFunction(volume_.get());
     clip_ = ClipBox{};
     camera_ = Camera{};
+    if (volume_ && volume_->modality == "PT") {
+        setMode(RenderMode::Mip); // the classic PET display
+    }
     emit volumeChanged();
     emit transferFunctionChanged(transferFunction_);
     emit cameraChanged(camera_);
@@ -271,7 +279,10 @@ void VolumeView::resetCamera() {
 }
 
 void VolumeView::setMode(RenderMode mode) {
-    mode_ = mode;
+    if (mode != mode_) {
+        mode_ = mode;
+        emit modeChanged(mode_);
+    }
     requestRender();
 }
 
@@ -344,6 +355,7 @@ RenderDescription VolumeView::description(int width, int height) const {
     d.transferFunction = transferFunction_;
     d.camera = camera_;
     d.mode = mode_;
+    d.background = transferFunctionBackground(transferFunction_);
     d.isoValue = isoValue_;
     d.clip = clip_;
     d.sampling = sampling_;

@@ -24,6 +24,8 @@ class QPainter;
 
 namespace lucent {
 
+class RotatingMip;
+
 // The 3D view: the volume ray cast on the GPU (GpuRayCaster in a QOpenGLWidget's
 // context, each frame drawn straight into the widget's framebuffer) or, where
 // OpenGL 4.3 cannot be had, on the CPU (CpuRayCaster), with a one-line notice
@@ -39,7 +41,8 @@ namespace lucent {
 // volume). B shows the clip box with a handle on each face: a left-drag on a
 // handle moves that face. While a button is down frames use
 // interactiveDescription() scaled up to the view; on release one frame at full
-// quality follows.
+// quality follows. Ctrl+Shift+R: the rotating MIP (rotatingMip()). A PET series opens in
+// MIP, inverted grey on white (core/pet/PetProjection.h).
 class VolumeView : public QWidget {
     Q_OBJECT
 
@@ -66,6 +69,8 @@ public:
     const TransferFunction& transferFunction() const { return transferFunction_; }
     const Camera& camera() const { return camera_; }
     RenderMode mode() const { return mode_; }
+    // The rotating MIP (its action goes into menus and the controls).
+    RotatingMip* rotatingMip() const { return rotatingMip_; }
     double isoValue() const { return isoValue_; }
     const ClipBox& clipBox() const { return clip_; }
     const SamplingSettings& sampling() const { return sampling_; }
@@ -152,6 +157,7 @@ public:
 signals:
     void volumeChanged();
     void cameraChanged(const lucent::Camera& camera);
+    void modeChanged(lucent::RenderMode mode);
     void transferFunctionChanged(const lucent::TransferFunction& tf);
     // After each frame: its statistics and whether it was an interactive one.
     void renderedFrame(const lucent::RenderStats& stats, bool interactive);
@@ -218,6 +224,8 @@ private:
     bool lastFrameCurrent_ = false;
     bool frameInPlace_ = false; // the GL surface's framebuffer holds the last frame
     QSize frameSize_;           // the view's size in pixels when it came
+
+    RotatingMip* rotatingMip_; // a child
 
     Qt::MouseButton dragButton_ = Qt::NoButton;
     QPointF dragStart_;

@@ -13,6 +13,7 @@
 #include <QSpinBox>
 #include <QStandardPaths>
 #include <QThread>
+#include <QToolButton>
 
 #include <algorithm>
 #include <atomic>
@@ -20,6 +21,7 @@
 
 #include "core/quality/QualityChoice.h"
 #include "render/RenderDevice.h"
+#include "ui/volume/RotatingMip.h"
 #include "ui/volume/VolumeView.h"
 
 namespace lucent {
@@ -102,7 +104,13 @@ VolumeViewControls::VolumeViewControls(VolumeView* view, QWidget* parent)
     form->addRow(handles);
     connect(handles, &QCheckBox::toggled, view_, &VolumeView::setClipHandlesShown);
     connect(view_, &VolumeView::clipHandlesShownChanged, handles, &QCheckBox::setChecked);
-    form->addRow(reset);
+    auto* rotating = new QToolButton(this);
+    rotating->setDefaultAction(view_->rotatingMip()->action());
+    rotating->setToolButtonStyle(Qt::ToolButtonTextOnly);
+    auto* viewRow = new QHBoxLayout;
+    viewRow->addWidget(reset, 1);
+    viewRow->addWidget(rotating, 1);
+    form->addRow(viewRow);
 
     connect(presets_, &QComboBox::activated, this, [this](int index) {
         try {
@@ -120,6 +128,13 @@ VolumeViewControls::VolumeViewControls(VolumeView* view, QWidget* parent)
         iso_->setEnabled(mode == RenderMode::Isosurface);
         view_->setMode(mode);
         updateQuality(); // each mode has its own front
+    });
+    // The view's mode set elsewhere (the rotating MIP, a PET series opening in MIP).
+    connect(view_, &VolumeView::modeChanged, this, [this](RenderMode mode) {
+        const auto index = std::find(std::begin(kModes), std::end(kModes), mode) - kModes;
+        if (index != modes_->currentIndex()) {
+            modes_->setCurrentIndex(static_cast<int>(index)); // iso and quality follow
+        }
     });
     connect(quality_, &QComboBox::currentIndexChanged, this, [this](int index) {
         targetMs_->setEnabled(index == kTarget);

@@ -21,8 +21,9 @@ namespace lucent {
 class VolumeView;
 
 // A small panel for the 3D view: transfer-function preset, render mode (with the
-// iso value for isosurfaces), quality, a camera reset, and the clip box as two
-// sliders per volume axis (first and last voxel index kept on i, j and k).
+// iso value for isosurfaces; it follows the view's mode), quality, a camera reset, the
+// rotating MIP (the view's RotatingMip action), and the clip box as two sliders per
+// volume axis (first and last voxel index kept on i, j and k).
 //
 // Quality: Manual leaves the view's sampling alone; Fast, Balanced, Best (time
 // budgets, see core/raycast/QualityChoice.h) and Target (a time per frame)

@@ -3,8 +3,11 @@
 // isotropic and anisotropic voxels.
 #include <QTest>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <set>
+#include <tuple>
 #include <vector>
 
 #include "core/pet/SuvStatistics.h"
@@ -23,6 +26,16 @@ Volume uniform(const glm::ivec3& dims, const glm::dvec3& spacing, float value) {
         x = value;
     }
     return v;
+}
+
+using VoxelSet = std::set<std::tuple<int, int, int>>;
+
+VoxelSet toSet(const std::vector<glm::ivec3>& voxels) {
+    VoxelSet out;
+    for (const glm::ivec3& v : voxels) {
+        out.emplace(v.x, v.y, v.z);
+    }
+    return out;
 }
 
 void set(Volume& v, const glm::ivec3& ijk, float value) {
@@ -104,6 +117,50 @@ private slots:
         Volume w = uniform(glm::ivec3(8), glm::dvec3(2.0), 1.0f);
         set(w, glm::ivec3(0), 27.0f);
         QVERIFY(std::abs(sphereMean(w, glm::ivec3(0), suvPeakRadiusMm()) - 55.0 / 29.0) < 1e-12);
+    }
+
+    // An ellipsoid turned 45 degrees about k in 1 mm voxels: semi-axes 3.2 mm along
+    // (1, 1, 0)/sqrt2, 1.1 mm along (-1, 1, 0)/sqrt2 and 1.1 mm along k. A voxel offset
+    // (i, j, k) is inside when (i + j)^2 / 20.48 + (j - i)^2 / 2.42 + k^2 / 1.21 <= 1:
+    // k = 0 holds the centre, (+-1, +-1) and (+-2, +-2) along the long axis, the 4 face
+    // neighbours (0.46) and (2, 1), (1, 2), (-2, -1), (-1, -2) (0.85); k = +-1 the centre only.
+    void orientedEllipsoid() {
+        const Volume v = uniform(glm::ivec3(21), glm::dvec3(1.0), 1.0f);
+        const glm::dvec3 centre = v.geometry().toPatient(glm::dvec3(10.0));
+        const double h = std::sqrt(0.5);
+        const glm::dmat3 axes(glm::dvec3(h, h, 0.0), glm::dvec3(-h, h, 0.0), glm::dvec3(0, 0, 1));
+        const std::vector<glm::ivec3> voxels =
+            ellipsoidVoxels(v.geometry(), centre, axes, glm::dvec3(3.2, 1.1, 1.1));
+        QCOMPARE(voxels.size(), std::size_t(5 + 4 + 4 + 2));
+        for (const glm::ivec3 offset :
+             {glm::ivec3(2, 2, 0), glm::ivec3(-2, -2, 0), glm::ivec3(1, 0, 0), glm::ivec3(2, 1, 0),
+              glm::ivec3(0, 0, 1)}) {
+            QVERIFY(std::count(voxels.begin(), voxels.end(), glm::ivec3(10) + offset) == 1);
+        }
+        QVERIFY(std::count(voxels.begin(), voxels.end(), glm::ivec3(12, 8, 10)) == 0); // short axis
+        // Along the volume's axes it is the axis-aligned ellipsoid.
+        QCOMPARE(ellipsoidVoxels(v.geometry(), centre, glm::dmat3(1.0), glm::dvec3(3.0, 1.0, 2.0)),
+                 ellipsoidVoxels(v.geometry(), centre, glm::dvec3(3.0, 1.0, 2.0)));
+    }
+
+    // An ellipse on a coronal plane (u = L, v = I) of 2 mm voxels, semi-axes 5 mm along L and
+    // 3 mm along I: the ellipsoid reaches 3 mm (the shorter) along the normal (P), and is
+    // centred on the plane even when the ellipse's centre lies off it.
+    void ellipseRegionSpansAnEllipsoid() {
+        const Volume v = uniform(glm::ivec3(15), glm::dvec3(2.0), 1.0f);
+        SlicePlane plane;
+        plane.centre = v.geometry().toPatient(glm::dvec3(7.0));
+        plane.u = glm::dvec3(1, 0, 0);
+        plane.v = glm::dvec3(0, 0, -1);
+        const EllipseRoi ellipse{plane.centre + glm::dvec3(0.0, 0.7, 0.0), 5.0, 3.0};
+        const std::vector<glm::ivec3> region = ellipseSuvRegion(v.geometry(), plane, ellipse);
+        const std::vector<glm::ivec3> expected =
+            ellipsoidVoxels(v.geometry(), plane.centre, glm::dvec3(5.0, 3.0, 3.0));
+        QVERIFY(toSet(region) == toSet(expected));
+        // Offsets (i, j, k) in voxels: i^2 / 6.25 + (j^2 + k^2) / 2.25 <= 1: 5 voxels at
+        // j = k = 0 (|i| <= 2), and (0, +-1, 0), (0, 0, +-1), (+-1, +-1, 0), (+-1, 0, +-1),
+        // (0, +-1, +-1).
+        QCOMPARE(region.size(), std::size_t(5 + 4 + 8 + 4));
     }
 
     void suvVolumeScales() {

@@ -141,6 +141,16 @@ inline void compareMeasurements(const std::vector<Measurement>& read,
                          near(a.areaMm2, b.areaMm2, tolerance),
                      what);
             QCOMPARE(r.unit, w.unit);
+            // SUVmax, SUVmean and SUVpeak (a PET series in SUVbw), the voxels only where
+            // Lucent's own geometry item keeps them.
+            QVERIFY2(r.suv.has_value() == w.suv.has_value(), what + " SUVs");
+            if (w.suv) {
+                QVERIFY2(near(r.suv->max, w.suv->max, tolerance) &&
+                             near(r.suv->mean, w.suv->mean, tolerance) &&
+                             near(r.suv->peak, w.suv->peak, tolerance),
+                         what + " SUVs");
+                QVERIFY2(!sameIdsAndPlanes || r.suv->voxels == w.suv->voxels, what + " voxels");
+            }
         }
         if (sameIdsAndPlanes) {
             QCOMPARE(r.id, w.id);

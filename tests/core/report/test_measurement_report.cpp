@@ -13,6 +13,7 @@
 #include <dcmtk/dcmdata/dcfilefo.h>
 #include <dcmtk/dcmsr/dsrdoc.h>
 
+#include "core/pet/SuvStatistics.h"
 #include "core/report/MeasurementReport.h"
 #include "tests/core/report/ForeignReport.h"
 #include "tests/core/report/MeasuredSeries.h"
@@ -35,6 +36,39 @@ int countItems(const fs::path& file, DSRTypes::E_ValueType type) {
         n += tree.getCurrentContentItem().getValueType() == type ? 1 : 0;
     }
     return n;
+}
+
+// The UCUM codes of the SR's numbers, with the concept and derivation (if any) of each:
+// "SUVbw/Peak Value Within ROI {SUVbw}g/ml".
+QStringList numberUnits(const fs::path& file) {
+    DcmFileFormat f;
+    DSRDocument doc;
+    QStringList out;
+    if (f.loadFile(file.c_str()).bad() || doc.read(*f.getDataset()).bad()) {
+        return {"unreadable"};
+    }
+    DSRDocumentTree& tree = doc.getTree();
+    for (size_t node = tree.gotoRoot(); node != 0; node = tree.iterate()) {
+        DSRContentItem& item = tree.getCurrentContentItem();
+        if (item.getValueType() != DSRTypes::VT_Num || item.getNumericValuePtr() == nullptr) {
+            continue;
+        }
+        QString text = item.getConceptName().getCodeMeaning().c_str();
+        const std::string unit =
+            item.getNumericValuePtr()->getMeasurementUnit().getCodeValue().c_str();
+        if (tree.gotoChild() != 0) {
+            do {
+                DSRContentItem& child = tree.getCurrentContentItem();
+                if (child.getValueType() == DSRTypes::VT_Code &&
+                    child.getConceptName().getCodeValue() == "121401") {
+                    text += "/" + QString(child.getCodeValuePtr()->getCodeMeaning().c_str());
+                }
+            } while (tree.gotoNext() != 0);
+            tree.gotoParent();
+        }
+        out << text + " " + QString::fromStdString(unit);
+    }
+    return out;
 }
 
 // dciodvfy's error lines ("Error - ..."), or a line saying it could not run.
@@ -143,6 +177,35 @@ private slots:
         QVERIFY(series_.acquiredImageOf(m.front()) == nullptr);
         QVERIFY(m.back().statistics.samples > 100);
         roundTrip(m, false);
+    }
+
+    // An ellipse on a PET series in SUVbw: its statistics in {SUVbw}g/ml and SUVmax, SUVmean
+    // and SUVpeak as the quantity SUVbw with its derivation (CID 7464), read back by Lucent
+    // (exact) and from the numbers alone (another viewer's SR). The CT's values stand in
+    // for SUVs: what is written does not depend on where they came from.
+    void suvEllipseRoundTrip() {
+        std::vector<Measurement> m =
+            test::everyKind(volume_, test::acquiredPlane(series_, 9), "pet");
+        Measurement& ellipse = m.back();
+        ellipse.unit = "SUVbw";
+        ellipse.suv = suvStatistics(volume_, ellipseSuvRegion(volume_.geometry(), ellipse.plane,
+                                                              measurementEllipse(ellipse)));
+        QVERIFY(ellipse.suv->voxels > 100);
+        QVERIFY(ellipse.suv->peak < ellipse.suv->max);
+        roundTrip(m, true);
+        const fs::path file = fs::path(dir_.path().toStdString()) / "acq.dcm";
+        const QStringList units = numberUnits(file);
+        for (const char* expected : {"SUVbw/Maximum {SUVbw}g/ml", "SUVbw/Mean {SUVbw}g/ml",
+                                     "SUVbw/Peak Value Within ROI {SUVbw}g/ml", "Mean {SUVbw}g/ml",
+                                     "Standard Deviation {SUVbw}g/ml", "Area mm2"}) {
+            QVERIFY2(units.contains(expected), qPrintable(units.join('\n')));
+        }
+        // Stored units: Bq/mL as CID 84 writes it, no SUVs.
+        ellipse.unit = "Bq/mL";
+        ellipse.suv.reset();
+        roundTrip(m, true);
+        QVERIFY2(numberUnits(file).contains("Mean Bq/ml"),
+                 qPrintable(numberUnits(file).join('\n')));
     }
 
     // An Enhanced MR multi-frame object: no single-frame image to put a SCOORD on, so
