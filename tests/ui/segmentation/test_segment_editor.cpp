@@ -12,9 +12,12 @@
 
 #include <cmath>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "core/formats/NiftiWrite.h"
 #include "core/io/Catalog.h"
 #include "core/segmentation/SegmentEffects.h"
+#include "core/segmentation/SegmentSmoothing.h"
 #include "core/segmentation/SegmentStatistics.h"
 #include "tests/support/OffscreenPlatform.h"
 #include "tests/support/RealData.h"
@@ -289,7 +292,120 @@ private slots:
         QVERIFY(want.count() > 1000);
         QCOMPARE(maskOf(id).count(), want.count());
         QVERIFY(maskOf(id) == want);
+
+        // Corners clicked, a double-click ends it: the triangle's voxels on this slice.
+        QVERIFY(s->undo());
+        const QPoint a(cx - 40, cy - 40), b(cx + 50, cy - 10), c(cx - 10, cy + 45);
+        for (const QPoint& p : {a, b, c}) {
+            QTest::mouseClick(view_, Qt::LeftButton, Qt::NoModifier, p);
+        }
+        QCOMPARE(editor_->layerOf(view_)->outline().size(), std::size_t{3});
+        QVERIFY(!maskOf(id).any());
+        QTest::mouseDClick(view_, Qt::LeftButton, Qt::NoModifier, c);
+        QVERIFY(editor_->layerOf(view_)->outline().empty());
+        const auto side = [](QPoint p, QPoint q, glm::dvec2 r) {
+            return (q.x() - p.x()) * (r.y - p.y()) - (q.y() - p.y()) * (r.x - p.x());
+        };
+        SegmentMask triangle(g.dims);
+        for (int j = 0; j < g.dims.y; ++j) {
+            for (int i = 0; i < g.dims.x; ++i) {
+                const glm::dvec2 p = plane.pixelOf(g.toPatient(glm::dvec3(i, j, slice)));
+                const double s1 = side(a, b, p), s2 = side(b, c, p), s3 = side(c, a, p);
+                QVERIFY(std::abs(s1) > 1e-6 && std::abs(s2) > 1e-6 && std::abs(s3) > 1e-6);
+                if ((s1 > 0 && s2 > 0 && s3 > 0) || (s1 < 0 && s2 < 0 && s3 < 0)) {
+                    triangle.set(triangle.linearIndex(i, j, slice));
+                }
+            }
+        }
+        QVERIFY(triangle.count() > 1000);
+        QVERIFY(maskOf(id) == triangle);
         editor_->setTool(SegmentTool::None);
+    }
+
+    void panelEffectsAreTheCoreOnes() {
+        REQUIRE_DATA(kCt);
+        SegmentationSession* s = session();
+        const VolumeGeometry& g = ct_->geometry();
+        // After drawsAnOutline: the bone, then the triangle (active).
+        QCOMPARE(s->segmentation().segments().size(), std::size_t{2});
+        const std::uint32_t triangle = s->activeSegment();
+        const std::uint32_t id = s->segmentation().segments().front().id; // the bone
+        s->setActiveSegment(id);
+        const SegmentMask bone = maskOf(id);
+        // Another segment over part of the bone: 100 to 400 HU.
+        const std::uint32_t band = s->addSegment(QStringLiteral("Band"));
+        QVERIFY(s->apply(band, thresholdMask(*ct_, 100.0, 400.0), QStringLiteral("Band")));
+        s->setActiveSegment(id);
+        const std::uint64_t steps = s->segmentation().revision();
+        const auto check = [&](bool applied, const SegmentMask& want) {
+            QVERIFY(applied);
+            QVERIFY(maskOf(id) == want);
+            QVERIFY(s->undo());
+            QVERIFY(maskOf(id) == bone);
+        };
+        check(panel_->margin(2.0), marginMask(bone, g, 2.0));
+        check(panel_->margin(-1.0), marginMask(bone, g, -1.0));
+        check(panel_->hollow(1.0), hollowMask(bone, g, 1.0));
+        check(panel_->median(3.0), medianMask(bone, g, 3.0));
+        check(panel_->closing(2.0), closingMask(bone, g, 2.0));
+        SegmentMask sum = bone, difference = bone, common = bone;
+        sum |= maskOf(band);
+        difference.subtract(maskOf(band));
+        common &= maskOf(band);
+        check(panel_->combine(SegmentsPanel::Logical::Add, band), sum);
+        check(panel_->combine(SegmentsPanel::Logical::Subtract, band), difference);
+        check(panel_->combine(SegmentsPanel::Logical::Intersect, band), common);
+        QVERIFY(!panel_->combine(SegmentsPanel::Logical::Add, id)); // not with itself
+        QCOMPARE(s->segmentation().revision(), steps + 16);         // 8 effects, 8 undos
+        QVERIFY(s->removeSegment(band));
+        s->setActiveSegment(triangle);
+
+        // A name typed into the list: one step, undone by Ctrl+Z in the panel.
+        QTableWidget* table = panel_->segmentTable();
+        QTableWidgetItem* name = table->item(1, 2);
+        QVERIFY(name != nullptr);
+        name->setText(QStringLiteral("Tumour"));
+        QTRY_COMPARE(s->segmentation().find(triangle)->name, std::string("Tumour"));
+        QCOMPARE(table->item(1, 2)->text(), QStringLiteral("Tumour"));
+        QVERIFY(panel_->undo());
+        QCOMPARE(s->segmentation().find(triangle)->name, std::string("Segment 2"));
+        QCOMPARE(table->item(1, 2)->text(), QStringLiteral("Segment 2"));
+    }
+
+    void obliqueViewShowsTheNearestVoxels() {
+        REQUIRE_DATA(kCt);
+        SegmentationSession* s = session();
+        SegmentMask shown(ct_->dims()); // every segment is visible
+        for (const Segment& segment : s->segmentation().segments()) {
+            shown |= *segment.mask;
+        }
+        MprCursor* cursor = workspace_->grid()->viewports()[1]->session()->cursor();
+        cursor->setRotation(Orientation::Axial,
+                            glm::dmat3(glm::rotate(glm::dmat4(1.0), glm::radians(25.0),
+                                                   glm::normalize(glm::dvec3(1.0, 0.4, 0.0)))));
+        SliceSegments* layer = editor_->layerOf(view_);
+        layer->grab();
+        const QImage& overlay = layer->lastOverlay();
+        const SlicePlane plane = view_->plane();
+        QVERIFY(std::abs(plane.normal().z) < 0.95); // oblique
+        QCOMPARE(overlay.size(), QSize(plane.width, plane.height));
+        int inside = 0, outside = 0;
+        for (int y = 0; y < plane.height; y += 2) {
+            for (int x = 0; x < plane.width; x += 2) {
+                // The nearest voxel, by rounding the continuous index.
+                const glm::dvec3 ijk = ct_->geometry().toIndex(plane.pointAt(x, y));
+                const glm::ivec3 v(std::lround(ijk.x), std::lround(ijk.y), std::lround(ijk.z));
+                if (!shown.inside(v) ||
+                    glm::any(glm::lessThan(glm::abs(glm::fract(ijk) - 0.5), glm::dvec3(1e-6)))) {
+                    continue; // outside, or halfway between two voxels
+                }
+                const bool set = shown.at(v.x, v.y, v.z);
+                QCOMPARE(qAlpha(overlay.pixel(x, y)) > 0, set);
+                (set ? inside : outside) += 1;
+            }
+        }
+        QVERIFY(inside > 100 && outside > 1000);
+        cursor->resetRotations();
     }
 
     void statisticsCsv() {
