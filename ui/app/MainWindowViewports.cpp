@@ -150,6 +150,12 @@ void MainWindow::addSegmentsDock() {
     if (auto* volumeDock = findChild<QDockWidget*>(QStringLiteral("volumeDock"))) {
         volumeDock->raise();
     }
+    // A closed dock leaves the views' left button to them again.
+    connect(dock, &QDockWidget::visibilityChanged, segmentEditor_, [this](bool visible) {
+        if (!visible) {
+            segmentEditor_->setTool(SegmentTool::None);
+        }
+    });
     connect(segmentsPanel_, &SegmentsPanel::message, this,
             [this](const QString& text, int ms) { statusBar()->showMessage(text, ms); });
 }

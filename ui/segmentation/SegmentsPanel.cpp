@@ -6,9 +6,9 @@
 #include <QComboBox>
 #include <QHBoxLayout>
 #include <QHeaderView>
+#include <QKeyEvent>
 #include <QLabel>
 #include <QPushButton>
-#include <QShortcut>
 #include <QSlider>
 #include <QTabWidget>
 #include <QTableWidget>
@@ -44,16 +44,6 @@ SegmentsPanel::SegmentsPanel(SegmentEditor* editor, QWidget* parent)
     column->addWidget(makeEffects(), 1);
     column->addWidget(makeDataControls());
 
-    // Undo and redo of the segments while the focus is in the panel.
-    const auto shortcut = [this](const QKeySequence& keys, void (SegmentsPanel::*action)()) {
-        auto* made = new QShortcut(keys, this);
-        made->setContext(Qt::WidgetWithChildrenShortcut);
-        connect(made, &QShortcut::activated, this, action);
-    };
-    shortcut(QKeySequence::Undo, &SegmentsPanel::undoStep);
-    // Not QKeySequence::Redo: on X11 it holds Ctrl+Y too, and a key twice fires neither.
-    shortcut(QKeySequence(tr("Ctrl+Y")), &SegmentsPanel::redoStep);
-    shortcut(QKeySequence(tr("Ctrl+Shift+Z")), &SegmentsPanel::redoStep);
     previewTimer_->setSingleShot(true);
     previewTimer_->setInterval(150); // a threshold for every spin step would lag
     connect(previewTimer_, &QTimer::timeout, this, &SegmentsPanel::updateThresholdPreview);
@@ -258,6 +248,42 @@ void SegmentsPanel::rowChosen() {
 void SegmentsPanel::say(const QString& text) {
     message_ = text;
     emit message(text, 6000);
+}
+
+namespace {
+
+// Ctrl+Z undoes, Ctrl+Y and Ctrl+Shift+Z redo: 0 for another key.
+int undoKey(const QKeyEvent* key) {
+    const QKeyCombination combination = key->keyCombination();
+    if (combination == QKeyCombination(Qt::ControlModifier, Qt::Key_Z)) {
+        return -1;
+    }
+    if (combination == QKeyCombination(Qt::ControlModifier, Qt::Key_Y) ||
+        combination == QKeyCombination(Qt::ControlModifier | Qt::ShiftModifier, Qt::Key_Z)) {
+        return 1;
+    }
+    return 0;
+}
+
+} // namespace
+
+bool SegmentsPanel::event(QEvent* event) {
+    // Within the panel the keys are the segments' (the window's Edit > Undo would otherwise
+    // take them): the shortcut is overridden, and the key comes here as a key press.
+    if (event->type() == QEvent::ShortcutOverride && undoKey(static_cast<QKeyEvent*>(event)) != 0) {
+        event->accept();
+        return true;
+    }
+    return QWidget::event(event);
+}
+
+void SegmentsPanel::keyPressEvent(QKeyEvent* event) {
+    if (const int key = undoKey(event); key != 0) {
+        key < 0 ? undo() : redo();
+        event->accept();
+        return;
+    }
+    QWidget::keyPressEvent(event);
 }
 
 bool SegmentsPanel::addSegment() {

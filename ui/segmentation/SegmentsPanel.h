@@ -19,6 +19,7 @@
 class QButtonGroup;
 class QCheckBox;
 class QComboBox;
+class QKeyEvent;
 class QDoubleSpinBox;
 class QLabel;
 class QPushButton;
@@ -81,6 +82,10 @@ public:
 signals:
     void message(const QString& text, int timeoutMs);
 
+protected:
+    bool event(QEvent* event) override;
+    void keyPressEvent(QKeyEvent* event) override;
+
 private:
     QWidget* makeListControls();
     QWidget* makeEffects();
@@ -97,8 +102,6 @@ private:
     void rowChosen();
     void updateThresholdPreview();
     void say(const QString& text);
-    void undoStep() { undo(); }
-    void redoStep() { redo(); }
 
     SegmentEditor* editor_;
     QPointer<SegmentationSession> session_;

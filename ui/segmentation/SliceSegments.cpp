@@ -210,7 +210,10 @@ bool SliceSegments::eventFilter(QObject* watched, QEvent* event) {
     case QEvent::MouseMove: {
         auto* mouse = static_cast<QMouseEvent*>(event);
         hover_ = mouse->position();
-        update();
+        // Only what follows the cursor repaints: the brush, the outline's next edge.
+        if (tool == SegmentTool::Paint || tool == SegmentTool::Erase || !outline_.empty()) {
+            update();
+        }
         if (usable && leftDown_ && (stroke_ || !outline_.empty())) {
             mouseDrag(mouse->position());
             return true;
@@ -231,7 +234,9 @@ bool SliceSegments::eventFilter(QObject* watched, QEvent* event) {
     }
     case QEvent::Leave:
         hover_.reset();
-        update();
+        if (tool == SegmentTool::Paint || tool == SegmentTool::Erase) {
+            update();
+        }
         return false;
     case QEvent::KeyPress: {
         const int key = static_cast<QKeyEvent*>(event)->key();

@@ -4,6 +4,7 @@
 // redo (Ctrl+Z and Ctrl+Y in the panel), an outline dragged and filled on the slice, the
 // fill drawn in the view, the statistics CSV against SegmentStatistics, and labelmap NIfTI
 // export and import through the panel (bad files named in the message). Offscreen.
+#include <QAction>
 #include <QApplication>
 #include <QFile>
 #include <QTableWidget>
@@ -225,7 +226,13 @@ private slots:
         }
         QVERIFY(inside > 20 && outside > 1000);
 
-        // Ctrl+Z and Ctrl+Y within the panel.
+        // Ctrl+Z and Ctrl+Y within the panel, though its window has an Undo of its own (the
+        // main window's Edit > Undo).
+        QAction windowUndo;
+        windowUndo.setShortcuts({QKeySequence::Undo, QKeySequence(QStringLiteral("Ctrl+Y"))});
+        int windowUndos = 0;
+        connect(&windowUndo, &QAction::triggered, this, [&] { ++windowUndos; });
+        panel_->addAction(&windowUndo);
         panel_->activateWindow();
         panel_->segmentTable()->setFocus();
         QVERIFY(QTest::qWaitForWindowActive(panel_.get()));
@@ -233,6 +240,8 @@ private slots:
         QVERIFY(maskOf(id) == afterPaint_);
         QTest::keyClick(panel_->segmentTable(), Qt::Key_Y, Qt::ControlModifier);
         QVERIFY(maskOf(id) == want);
+        QCOMPARE(windowUndos, 0);
+        panel_->removeAction(&windowUndo);
     }
 
     void effectsOnTheActiveSegment() {
