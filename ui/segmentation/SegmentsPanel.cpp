@@ -121,7 +121,7 @@ void SegmentsPanel::showSession(SegmentationSession* session) {
     if (session_) {
         connect(session_, &SegmentationSession::segmentsChanged, this, &SegmentsPanel::fillTable);
         connect(session_, &SegmentationSession::activeSegmentChanged, this,
-                &SegmentsPanel::fillTable);
+                &SegmentsPanel::selectActive);
         const Volume& volume = *session_->volume();
         series_->setText(QString::fromStdString(volume.modality + " " + volume.description));
         histogram_->setHistogram(computeHistogram(volume, 256));
@@ -201,6 +201,18 @@ void SegmentsPanel::fillTable() {
                                : QString());
     redo_->setToolTip(session_ ? QString::fromStdString(session_->segmentation().redoText())
                                : QString());
+    updating_ = false;
+}
+
+void SegmentsPanel::selectActive() {
+    updating_ = true;
+    for (int row = 0; row < segments_->rowCount(); ++row) {
+        const QTableWidgetItem* item = segments_->item(row, Name);
+        if (session_ && item != nullptr &&
+            item->data(Qt::UserRole).value<std::uint32_t>() == session_->activeSegment()) {
+            segments_->selectRow(row);
+        }
+    }
     updating_ = false;
 }
 

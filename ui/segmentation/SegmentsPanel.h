@@ -31,7 +31,6 @@ class QVBoxLayout;
 namespace lucent {
 
 class SegmentEditor;
-struct Segment;
 class ThresholdHistogram;
 
 class SegmentsPanel : public QWidget {
@@ -97,6 +96,7 @@ private:
     QWidget* makeDataControls();
     void showSession(SegmentationSession* session);
     void fillTable();
+    void selectActive(); // the active segment's row, without rebuilding the list
     void fillRow(int row, const Segment& segment);
     void cellEdited(int row, int column);
     void rowChosen();

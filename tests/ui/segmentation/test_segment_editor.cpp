@@ -7,6 +7,7 @@
 #include <QAction>
 #include <QApplication>
 #include <QFile>
+#include <QPushButton>
 #include <QTableWidget>
 #include <QTemporaryDir>
 #include <QTest>
@@ -183,7 +184,20 @@ private slots:
         QCOMPARE(s->segmentation().revision(), revision);
         QVERIFY(editor_->lastMessage().contains(QStringLiteral("locked")));
         QVERIFY(!panel_->margin(2.0));
+        // A tool added by another room gets the session and the segment, unless locked.
+        std::uint32_t handed = 0;
+        QPushButton* more =
+            panel_->addEffectButton(QStringLiteral("Scissors"), QString(),
+                                    [&](SegmentationSession& session, std::uint32_t segment) {
+                                        QCOMPARE(&session, s);
+                                        handed = segment;
+                                    });
+        more->click();
+        QCOMPARE(handed, std::uint32_t{0});
+        QVERIFY(panel_->lastMessage().contains(QStringLiteral("locked")));
         s->setLocked(id, false);
+        more->click();
+        QCOMPARE(handed, id);
         editor_->setTool(SegmentTool::None);
     }
 
@@ -379,6 +393,11 @@ private slots:
         QVERIFY(panel_->undo());
         QCOMPARE(s->segmentation().find(triangle)->name, std::string("Segment 2"));
         QCOMPARE(table->item(1, 2)->text(), QStringLiteral("Segment 2"));
+        // A row chosen in the list is the segment the effects act on.
+        table->selectRow(0);
+        QCOMPARE(s->activeSegment(), id);
+        table->selectRow(1);
+        QCOMPARE(s->activeSegment(), triangle);
     }
 
     void obliqueViewShowsTheNearestVoxels() {
