@@ -124,10 +124,14 @@ void SegmentsPanel::showSession(SegmentationSession* session) {
                 &SegmentsPanel::selectActive);
         const Volume& volume = *session_->volume();
         series_->setText(QString::fromStdString(volume.modality + " " + volume.description));
-        histogram_->setHistogram(computeHistogram(volume, 256));
+        if (histogramOf_ != &volume) { // the same series in another viewport: kept
+            histogram_->setHistogram(computeHistogram(volume, 256));
+            histogramOf_ = &volume;
+        }
     } else {
         series_->setText(tr("The active viewport shows no volume"));
         histogram_->setHistogram({});
+        histogramOf_ = nullptr;
     }
     fillTable();
 }

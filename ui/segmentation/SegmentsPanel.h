@@ -121,6 +121,7 @@ private:
     QVBoxLayout* more_;
     QTableWidget* statistics_;
     QString message_;
+    const Volume* histogramOf_ = nullptr; // whose values the histogram shows
     bool updating_ = false;
 };
 
