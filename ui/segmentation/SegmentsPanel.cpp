@@ -59,6 +59,7 @@ QWidget* SegmentsPanel::makeListControls() {
     segments_ = new QTableWidget(0, Columns, box);
     segments_->setHorizontalHeaderLabels(
         {tr("Shown"), tr("Colour"), tr("Name"), tr("Kind"), tr("Locked")});
+    segments_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
     segments_->horizontalHeader()->setSectionResizeMode(Name, QHeaderView::Stretch);
     segments_->verticalHeader()->hide();
     segments_->setSelectionBehavior(QAbstractItemView::SelectRows);
