@@ -52,8 +52,9 @@ struct WrittenSegmentation {
 };
 
 // Writes the segments of `segmentation` (on the grid of the volume `source` was loaded into:
-// each slice k must be one of its images) as a new SEG at `file`, whole or not at all. With no
-// voxel in any segment, one empty frame keeps the segments described. Throws
+// each slice k must be one of its images) as a new SEG at `file`, whole or not at all. With
+// fewer frames than segments (dcmseg 3.6.7 refuses that), each empty segment gets one empty
+// frame on the first slice. Throws
 // SegmentationDicomError naming the file (or the source image) and what is wrong.
 WrittenSegmentation writeSegmentationDicom(const std::filesystem::path& file,
                                            const Segmentation& segmentation,

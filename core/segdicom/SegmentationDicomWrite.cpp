@@ -2,7 +2,9 @@
 // the bit masks, one slice at a time; the per-slice functional groups are built once and
 // shared by every segment's frame on that slice (dcmseg copies them per frame).
 #include <algorithm>
+#include <bit>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 
 #include <dcmtk/config/osconfig.h>
@@ -179,34 +181,62 @@ SliceGroups sliceGroups(const VolumeGeometry& grid, int k, const ReferencedImage
     return g;
 }
 
-// Slice k of the mask, one byte per pixel (nonzero: set); false when the slice is empty.
-bool sliceBytes(const SegmentMask& mask, int k, std::vector<Uint8>& bytes) {
+// True when slice k of the mask holds a voxel.
+bool sliceAny(const SegmentMask& mask, int k) {
     const std::size_t plane = static_cast<std::size_t>(mask.dims().x) * mask.dims().y;
     const std::size_t first = plane * static_cast<std::size_t>(k);
     const std::span<const std::uint64_t> words = mask.words();
-    bool any = false;
-    bytes.assign(plane, 0);
     for (std::size_t n = 0; n < plane;) {
         const std::size_t index = first + n;
-        const std::uint64_t word = words[index >> 6] >> (index & 63);
         const std::size_t take = std::min<std::size_t>(64 - (index & 63), plane - n);
-        if (word != 0) {
-            for (std::size_t b = 0; b < take; ++b) {
-                bytes[n + b] = static_cast<Uint8>((word >> b) & 1u);
-            }
-            any = true;
+        const std::uint64_t bits = words[index >> 6] >> (index & 63);
+        if ((take == 64 ? bits : bits & ((std::uint64_t{1} << take) - 1)) != 0) {
+            return true;
         }
         n += take;
     }
-    return any;
+    return false;
 }
 
-// The frames of every segment on every slice where it has a voxel, by segment then slice.
+// The BINARY Pixel Data: frames of 1 bit per pixel, the low bit first, packed with no padding
+// between frames. A mask's bits lie in the same order (i fastest, then j), so a slice whose
+// first bit falls on a byte is copied as bytes.
+struct PackedFrames {
+    std::vector<Uint8> bytes;
+    std::size_t bits = 0;
+
+    void append(const SegmentMask& mask, int k) {
+        const std::size_t plane = static_cast<std::size_t>(mask.dims().x) * mask.dims().y;
+        const std::size_t first = plane * static_cast<std::size_t>(k);
+        bytes.resize((bits + plane + 7) / 8, 0);
+        std::size_t done = 0;
+        if constexpr (std::endian::native == std::endian::little) {
+            if ((bits & 7) == 0 && (first & 7) == 0) {
+                const auto* source = reinterpret_cast<const Uint8*>(mask.words().data());
+                std::memcpy(bytes.data() + bits / 8, source + first / 8, plane / 8);
+                done = plane / 8 * 8;
+            }
+        }
+        for (; done < plane; ++done) {
+            if (mask.get(first + done)) {
+                const std::size_t b = bits + done;
+                bytes[b >> 3] = static_cast<Uint8>(bytes[b >> 3] | (1u << (b & 7)));
+            }
+        }
+        bits += plane;
+    }
+};
+
+// The frames of every segment on every slice where it has a voxel, by segment then slice:
+// their functional groups go to dcmseg, their pixels to `packed`. dcmseg's frames stay one
+// pixel each: 3.6.7 takes a frame one byte per pixel and packs it pixel by pixel, most of the
+// writing time; the packed frames replace its Pixel Data afterwards.
 std::size_t addFrames(DcmSegmentation& seg, const Segmentation& segmentation,
-                      const std::vector<const ReferencedImage*>& slices, const fs::path& file) {
+                      const std::vector<const ReferencedImage*>& slices, PackedFrames& packed,
+                      const fs::path& file) {
     const VolumeGeometry& grid = segmentation.geometry();
     std::vector<SliceGroups> groups(slices.size());
-    std::vector<Uint8> bytes;
+    Uint8 onePixel = 0;
     std::size_t frames = 0;
     const auto addFrame = [&](std::size_t s, int k) {
         SliceGroups& g = groups[static_cast<std::size_t>(k)];
@@ -220,23 +250,51 @@ std::size_t addFrames(DcmSegmentation& seg, const Segmentation& segmentation,
         perFrame.push_back(g.position.get());
         perFrame.push_back(g.derivation.get());
         perFrame.push_back(&content);
-        check(seg.addFrame(bytes.data(), static_cast<Uint16>(s + 1), perFrame), file,
+        check(seg.addFrame(&onePixel, static_cast<Uint16>(s + 1), perFrame), file,
               "frame of segment " + std::to_string(s + 1) + " on slice " + std::to_string(k));
+        packed.append(*segmentation.segments()[s].mask, k);
         ++frames;
     };
     const std::vector<Segment>& segments = segmentation.segments();
+    std::vector<std::pair<std::size_t, int>> placed; // (segment, slice), in frame order
+    std::vector<bool> hasFrame(segments.size(), false);
     for (std::size_t s = 0; s < segments.size(); ++s) {
         for (int k = 0; k < grid.dims.z; ++k) {
-            if (sliceBytes(*segments[s].mask, k, bytes)) {
-                addFrame(s, k);
+            if (sliceAny(*segments[s].mask, k)) {
+                placed.emplace_back(s, k);
+                hasFrame[s] = true;
             }
         }
     }
-    if (frames == 0) { // a SEG needs a frame: an empty one keeps the segments described
-        bytes.assign(static_cast<std::size_t>(grid.dims.x) * grid.dims.y, 0);
-        addFrame(0, 0);
+    // dcmseg 3.6.7 refuses fewer frames than segments: then each empty segment gets one empty
+    // frame on the first slice (else empty frames are left out).
+    if (placed.size() < segments.size()) {
+        for (std::size_t s = 0; s < segments.size(); ++s) {
+            if (!hasFrame[s]) {
+                placed.emplace_back(s, 0);
+            }
+        }
+        std::sort(placed.begin(), placed.end());
+    }
+    for (const auto& [s, k] : placed) {
+        addFrame(s, k);
     }
     return frames;
+}
+
+// The frames' real size and pixels into the written dataset (see addFrames).
+void setPixelData(DcmDataset& dataset, const VolumeGeometry& grid, const PackedFrames& packed,
+                  const fs::path& file) {
+    check(dataset.putAndInsertUint16(DCM_Rows, static_cast<Uint16>(grid.dims.y)), file, "rows");
+    check(dataset.putAndInsertUint16(DCM_Columns, static_cast<Uint16>(grid.dims.x)), file,
+          "columns");
+    if (packed.bytes.size() >= 0xFFFFFFFEu) {
+        throw SegmentationDicomError(file.string() + ": more than 4 GB of frames");
+    }
+    // Even length, as DICOM wants: dcmdata pads odd OB values with a zero byte itself.
+    check(dataset.putAndInsertUint8Array(DCM_PixelData, packed.bytes.data(),
+                                         static_cast<unsigned long>(packed.bytes.size())),
+          file, "pixel data");
 }
 
 // The source series as the Common Instance Reference module names it.
@@ -320,12 +378,17 @@ WrittenSegmentation writeSegmentationDicom(const fs::path& file, const Segmentat
     }
     DcmSegmentation* created = nullptr;
     check(DcmSegmentation::createBinarySegmentation(
-              created, static_cast<Uint16>(grid.dims.y), static_cast<Uint16>(grid.dims.x),
+              created, 1, 1, // frames of one pixel: see addFrames
               IODGeneralEquipmentModule::EquipmentInfo(kLucentManufacturer, "Lucent", "1",
                                                        identity.softwareVersion.c_str()),
               ContentIdentificationMacro("1", "SEGMENTATION", "Lucent segmentation", "")),
           file, "new segmentation");
     const std::unique_ptr<DcmSegmentation> seg(created);
+    // Its check of every frame's groups walks a map per frame per group (a fifth of the
+    // writing); the groups are built here the same way for every frame, and the tests check
+    // the files with dciodvfy. Its dimension check runs before the per-frame groups exist.
+    seg->setCheckFGOnWrite(OFFalse);
+    seg->setCheckDimensionsOnWrite(OFFalse);
     check(seg->importFromSourceImage(*first.getDataset()), file,
           "patient and study of " + firstFile.string());
     const std::string seriesUid = identity.seriesUid.empty() ? newUid() : identity.seriesUid;
@@ -342,7 +405,8 @@ WrittenSegmentation writeSegmentationDicom(const fs::path& file, const Segmentat
     }
     addSharedGroups(*seg, grid, file);
     WrittenSegmentation written;
-    written.frames = addFrames(*seg, segmentation, slices, file);
+    PackedFrames packed;
+    written.frames = addFrames(*seg, segmentation, slices, packed, file);
     OFString patientId;
     first.getDataset()->findAndGetOFString(DCM_PatientID, patientId);
     addReferences(*seg, source, slices, patientId.c_str());
@@ -351,6 +415,7 @@ WrittenSegmentation writeSegmentationDicom(const fs::path& file, const Segmentat
     DcmDataset& dataset = *out.getDataset();
     check(seg->writeDataset(dataset), file, "SEG dataset");
     setTexts(dataset, segmentation.segments(), file);
+    setPixelData(dataset, grid, packed, file);
     if (utf8) {
         check(dataset.putAndInsertString(DCM_SpecificCharacterSet, "ISO_IR 192"), file,
               "character set");

@@ -59,11 +59,27 @@ private slots:
         const WrittenSegmentation w = writeSegmentationDicom(written_, seg, series_);
         QCOMPARE(w.frames, test::nonEmptySlices(seg));
         QVERIFY(!fs::exists(written_.string() + ".part"));
-        const QStringList errors = test::dciodvfyErrors(written_);
-        QVERIFY2(errors.isEmpty(), qPrintable(errors.join('\n')));
+        const QStringList complaints = test::dciodvfyComplaints(written_);
+        QVERIFY2(complaints.isEmpty(), qPrintable(complaints.join('\n')));
         // What the file says, read here with dcmdata, not with Lucent's reader.
         test::checkSegFile(written_, seg, series_, ct_.geometry());
         QVERIFY(!QTest::currentTestFailed());
+    }
+
+    // No voxel at all: an empty frame per segment keeps them described and the SEG valid
+    // (dcmseg 3.6.7 wants no fewer frames than segments).
+    void writesSegmentsWithNoVoxel() {
+        Segmentation seg(ct_.geometry());
+        seg.add("Liver, to do", findSegmentKind("liver"));
+        seg.add("Spleen, to do", findSegmentKind("spleen"));
+        const fs::path file = fs::path(dir_.path().toStdString()) / "empty.dcm";
+        QCOMPARE(writeSegmentationDicom(file, seg, series_).frames, std::size_t(2));
+        const QStringList complaints = test::dciodvfyComplaints(file);
+        QVERIFY2(complaints.isEmpty(), qPrintable(complaints.join('\n')));
+        const ReadSegmentationDicom read = readSegmentationDicom(file, series_, ct_.geometry());
+        QCOMPARE(read.segments.size(), std::size_t(2));
+        QCOMPARE(read.segments[1].name, std::string("Spleen, to do"));
+        QVERIFY(!read.segments[0].mask->any() && !read.segments[1].mask->any());
     }
 
     void readsBackEqual() {
