@@ -195,7 +195,7 @@ int runSegmentStats(const QStringList& args) {
                                            "DICOM SEG that refers to the series");
     parser.addOption({"series", "Series id or UID (default: the largest volume).", "UID"});
     parser.addHelpOption();
-    return guarded("segment-stats", parser, args, [&](QTextStream& out, QTextStream&) {
+    return guarded("segment-stats", parser, args, [&](QTextStream& out, QTextStream& err) {
         const QStringList positional = parser.positionalArguments();
         if (positional.size() != 2) {
             throw UsageError("expected PATH and LABELS");
@@ -206,6 +206,10 @@ int runSegmentStats(const QStringList& args) {
                 loadDicomSeries(positional[0].toStdString(), parser.value("series").toStdString());
             const ReadSegmentationDicom read =
                 readSegmentationDicom(labelsFile, series.images, series.volume.geometry());
+            for (const std::string& note : read.notes) {
+                err << "lucent-cli segment-stats: " << positional[1] << ": "
+                    << QString::fromStdString(note) << "\n";
+            }
             for (std::size_t i = 0; i < read.segments.size(); ++i) {
                 const Segment& s = read.segments[i];
                 out << "number=" << read.segmentNumbers[i] << " label=\""
