@@ -1,6 +1,7 @@
 #include "core/segdicom/SegmentationDicomItems_p.h"
 
 #include <algorithm>
+#include <mutex>
 
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcrledrg.h>
@@ -150,7 +151,8 @@ PixelFrames pixelFramesOf(DcmDataset& d, const fs::path& file) {
     d.findAndGetUint16(DCM_MaximumFractionalValue, maximum);
     f.threshold = (std::max<unsigned>(maximum, 1) + 1) / 2;
     if (DcmXfer(d.getOriginalXfer()).isEncapsulated()) {
-        DcmRLEDecoderRegistration::registerCodecs(); // DCMTK's own; idempotent
+        static std::once_flag rle; // DCMTK's own codec, registered once for every thread
+        std::call_once(rle, [] { DcmRLEDecoderRegistration::registerCodecs(); });
         if (d.chooseRepresentation(EXS_LittleEndianExplicit, nullptr).bad()) {
             throw SegmentationDicomError(file.string() + ": compressed pixel data (" +
                                          DcmXfer(d.getOriginalXfer()).getXferName() +
