@@ -1,5 +1,6 @@
-// lucent-cli segment PATH --threshold LO,HI [...] -o labels.nii.gz [--stats]: a segment by
-// threshold, islands and margin, written as a NIfTI labelmap; lucent-cli segment-stats
+// lucent-cli segment PATH --threshold LO,HI [...] -o labels.nii.gz [--stats] [--surface
+// MESH]: a segment by threshold, islands and margin, written as a NIfTI labelmap (and its
+// surface as STL, PLY or OBJ); lucent-cli segment-stats
 // PATH LABELS.nii[.gz]: the statistics of each label of a labelmap on PATH's series.
 #include <QCommandLineParser>
 #include <QTextStream>
@@ -9,12 +10,14 @@
 #include <functional>
 
 #include "CliCommand.h"
+#include "core/formats/MeshFiles.h"
 #include "core/formats/Nifti.h"
 #include "core/formats/NiftiWrite.h"
 #include "core/io/Catalog.h"
 #include "core/segmentation/Labelmap.h"
 #include "core/segmentation/SegmentEffects.h"
 #include "core/segmentation/SegmentStatistics.h"
+#include "core/segmentation/SegmentSurface.h"
 
 namespace lucent::cli {
 namespace {
@@ -105,6 +108,10 @@ int runSegment(const QStringList& args) {
     parser.addOption({"name", "The segment's name.", "NAME", "Segment"});
     parser.addOption({{"o", "output"}, "The labelmap: .nii or .nii.gz.", "OUT"});
     parser.addOption({"stats", "Print the statistics as key=value."});
+    parser.addOption({"surface",
+                      "Also write the segment's surface (closed, smoothed) for "
+                      "printing: .stl, .ply or .obj.",
+                      "MESH"});
     parser.addHelpOption();
     return guarded("segment", parser, args, [&](QTextStream& out, QTextStream& err) {
         const QStringList positional = parser.positionalArguments();
@@ -118,6 +125,14 @@ int runSegment(const QStringList& args) {
         if (parser.isSet("keep-largest") && parser.isSet("min-island-mm3")) {
             throw UsageError("--keep-largest and --min-island-mm3 exclude each other");
         }
+        const std::filesystem::path surfaceFile = parser.value("surface").toStdString();
+        if (parser.isSet("surface")) {
+            try {
+                meshFormatOf(surfaceFile);
+            } catch (const std::invalid_argument& e) {
+                throw UsageError(std::string("--surface: ") + e.what());
+            }
+        }
         const Volume volume =
             loadPath(positional[0].toStdString(), parser.value("series").toStdString());
         SegmentMask mask = maskOf(parser, volume);
@@ -130,6 +145,14 @@ int runSegment(const QStringList& args) {
         const std::uint32_t id = segmentation.add(parser.value("name").toStdString());
         segmentation.setMask(id, std::move(mask), "Threshold", "Lucent threshold");
         writeNifti(parser.value("output").toStdString(), labelmapOf(segmentation));
+        if (parser.isSet("surface")) {
+            const Segment& segment = *segmentation.find(id);
+            const SurfaceResult surface =
+                segmentSurface(*segment.mask, volume.geometry(), {}, segment.name);
+            MeshFileContent content;
+            content.description = "Lucent segment " + segment.name;
+            writeMesh(surface.mesh, surfaceFile, meshFormatOf(surfaceFile), content);
+        }
         if (parser.isSet("stats")) {
             out << QString::fromStdString(
                        statsLine(segmentStatistics(*segmentation.find(id)->mask, volume)))
