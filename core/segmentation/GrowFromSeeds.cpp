@@ -15,6 +15,9 @@ constexpr std::uint32_t kUnreached = std::numeric_limits<std::uint32_t>::max();
 constexpr std::size_t kMaxSegments = 254;
 constexpr std::uint8_t kNoLabel = 0xff;
 constexpr double kFloatLevels = 4095.0; // float volumes are mapped onto 0..this
+// The queue's ring holds (levels) x segments buckets: past this many, intensities are mapped
+// onto fewer levels (more than 256 segments' worth of CT's 4096 levels).
+constexpr double kMaxBuckets = double(1 << 20);
 
 // The box of every seed voxel (empty hi == lo when there is none).
 VoxelBox seedBounds(std::span<const SegmentMask> seeds) {
@@ -90,7 +93,11 @@ void SeedGrower::prepare(const VoxelBox& box, std::size_t segments) {
         }
         using T = std::remove_cvref_t<decltype(voxels[0])>;
         const bool isFloat = std::is_floating_point_v<T>;
-        const double scale = isFloat ? (hi > lo ? kFloatLevels / (hi - lo) : 0.0) : 1.0;
+        double scale = isFloat ? (hi > lo ? kFloatLevels / (hi - lo) : 0.0) : 1.0;
+        const double levels = std::floor(kMaxBuckets / double(segments)) - 1.0;
+        if ((hi - lo) * scale > levels) {
+            scale = levels / (hi - lo);
+        }
         maxStep_ = std::uint32_t(std::lround((hi - lo) * scale));
         for (int k = box.lo.z; k < box.hi.z; ++k) {
             for (int j = box.lo.y; j < box.hi.y; ++j) {

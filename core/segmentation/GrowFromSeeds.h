@@ -18,7 +18,8 @@
 // the seeds voxel for voxel (tests/core/segmentation/test_grow_from_seeds.cpp checks it).
 // Intensities are integers (CT's HU) and distances integer sums, so the queue is a bucket
 // queue (Dial's algorithm) with no floating-point ties; float volumes are first mapped onto
-// 0..4095 linearly.
+// 0..4095 linearly, and any volume onto fewer levels when levels x segments would pass 2^20
+// buckets (CT's 4096 levels: beyond 256 segments). Cells lie in bricks of 8^3 for the cache.
 
 #include <cstdint>
 #include <span>

@@ -23,6 +23,7 @@ public:
             hi = glm::max(hi, p);
         }
         cell_ = std::max(1.0, std::max(hi.x - lo.x, hi.y - lo.y) / 2048.0);
+        perCell_ = 1.0 / cell_;
         lo_ = lo - cell_;
         nx_ = int(std::floor((hi.x + cell_ - lo_.x) / cell_)) + 1;
         ny_ = int(std::floor((hi.y + cell_ - lo_.y) / cell_)) + 1;
@@ -34,7 +35,10 @@ public:
     }
 
     bool contains(const glm::dvec2& p) const {
-        const double fx = std::floor((p.x - lo_.x) / cell_), fy = std::floor((p.y - lo_.y) / cell_);
+        // A point on a cell's side may be looked up in either cell: both are near-edge
+        // cells, or lie on the same side, as edges mark the cells round theirs too.
+        const double fx = std::floor((p.x - lo_.x) * perCell_);
+        const double fy = std::floor((p.y - lo_.y) * perCell_);
         if (!(fx >= 0.0 && fy >= 0.0 && fx < nx_ && fy < ny_)) {
             return false; // more than a cell away from the bounding box
         }
@@ -94,7 +98,7 @@ private:
 
     const ScreenShape& shape_;
     glm::dvec2 lo_{0.0};
-    double cell_ = 1.0;
+    double cell_ = 1.0, perCell_ = 1.0;
     int nx_ = 0, ny_ = 0;
     std::vector<std::uint8_t> cells_;
 };
