@@ -14,7 +14,8 @@ namespace {
 constexpr std::uint32_t kUnreached = std::numeric_limits<std::uint32_t>::max();
 constexpr std::size_t kMaxSegments = 254;
 constexpr std::uint8_t kNoLabel = 0xff;
-constexpr double kFloatLevels = 4095.0; // float volumes are mapped onto 0..this
+constexpr std::size_t kPrefetchAhead = 16; // queue entries
+constexpr double kFloatLevels = 4095.0;    // float volumes are mapped onto 0..this
 // The queue's ring holds (levels) x segments buckets: past this many, intensities are mapped
 // onto fewer levels (more than 256 segments' worth of CT's 4096 levels).
 constexpr double kMaxBuckets = double(1 << 20);
@@ -152,6 +153,14 @@ std::size_t SeedGrower::propagate(std::span<const SegmentMask> seeds) {
         // Entries pushed at the current key (a zero step) join this same bucket.
         for (std::size_t n = 0; n < bucket.size(); ++n) {
             const std::size_t p = bucket[n];
+            // The visits jump round the box: ask for a later entry's cell and the lines of
+            // its neighbours now (measured: about a third off the whole CT's first result).
+            if (n + kPrefetchAhead < bucket.size()) {
+                const Cell* ahead = cells + bucket[n + kPrefetchAhead];
+                for (const std::ptrdiff_t line : {0, 8, -8, 64, -64}) {
+                    __builtin_prefetch(ahead + line);
+                }
+            }
             --queued;
             const Cell here = cells[p];
             if (here.key != current) {
