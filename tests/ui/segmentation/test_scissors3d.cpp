@@ -1,7 +1,8 @@
 // Segments in the 3D view on the real head CT (512 x 512 x 140), CPU backend, offscreen: a
 // rectangle drawn with the mouse over the lower part of the rendering (the skull base) cuts
 // exactly the voxels whose centre projects into it (each projected here on its own), as one
-// undo step; the rendering masked by the segment; the segment's surface in its colour.
+// undo step; a freehand outline filled in, Escape dropping a drawing; the rendering masked by
+// the segment; the segment's surface in its colour.
 #include <QApplication>
 #include <QSignalSpy>
 #include <QTest>
@@ -25,9 +26,10 @@ namespace {
 
 constexpr const char* kHeadCt = "dcm_qa_ct/Philips_S21570/S2020";
 
-// The voxels whose centre a w x h view with `camera` shows inside [a, b] (pixels).
-SegmentMask projectingInto(const VolumeGeometry& g, const Camera& camera, int w, int h, QPointF a,
-                           QPointF b) {
+// The voxels whose centre a w x h view with `camera` shows at a pixel position `inside` says.
+template <class Inside>
+SegmentMask projectingInto(const VolumeGeometry& g, const Camera& camera, int w, int h,
+                           Inside inside) {
     const ViewFrame f = makeViewFrame(g, camera, w, h);
     SegmentMask out(g.dims);
     for (int k = 0; k < g.dims.z; ++k) {
@@ -41,7 +43,7 @@ SegmentMask projectingInto(const VolumeGeometry& g, const Camera& camera, int w,
                 const double x =
                     (glm::dot(rel, f.right) / (z * f.tanHalfFov * f.aspect) + 1.0) * 0.5 * w;
                 const double y = (1.0 - glm::dot(rel, f.up) / (z * f.tanHalfFov)) * 0.5 * h;
-                if (x >= a.x() && x <= b.x() && y >= a.y() && y <= b.y()) {
+                if (inside(QPointF(x, y))) {
                     out.set(out.linearIndex(i, j, k));
                 }
             }
@@ -95,7 +97,10 @@ private slots:
         QCOMPARE(view_->camera().elevation, camera.elevation);
 
         QCOMPARE(cuts.size(), 1);
-        const SegmentMask inRectangle = projectingInto(ct_->geometry(), camera, 200, 160, from, to);
+        const SegmentMask inRectangle =
+            projectingInto(ct_->geometry(), camera, 200, 160, [&](QPointF p) {
+                return p.x() >= from.x() && p.x() <= to.x() && p.y() >= from.y() && p.y() <= to.y();
+            });
         SegmentMask expected = all;
         expected.subtract(inRectangle);
         const std::size_t removed = all.count() - expected.count();
@@ -117,6 +122,46 @@ private slots:
         QCOMPARE(cuts.size(), 1);
         QVERIFY(view_->camera().azimuth != camera.azimuth);
         view_->setCamera(camera);
+    }
+
+    // A freehand outline filled into an empty segment: the voxels whose centre projects
+    // inside the polygon the mouse drew (even-odd, as written here); Escape drops a drawing.
+    void freehandFillsInside() {
+        Segmentation segments(ct_->geometry());
+        const std::uint32_t cut = segments.add("Cut");
+        Scissors3d scissors(view_.get(), &segments, cut);
+        scissors.setShape(Scissors3d::Shape::Freehand);
+        scissors.setOperation(ScissorsOperation::FillInside);
+        scissors.setEnabled(true);
+        const std::vector<QPoint> outline{{60, 40}, {150, 50}, {130, 120}, {100, 70}, {70, 110}};
+        QTest::mousePress(view_.get(), Qt::LeftButton, {}, outline[0]);
+        for (std::size_t n = 1; n < outline.size(); ++n) {
+            QTest::mouseMove(view_.get(), outline[n]);
+        }
+        QTest::mouseRelease(view_.get(), Qt::LeftButton, {}, outline.back());
+        const SegmentMask expected =
+            projectingInto(ct_->geometry(), view_->camera(), 200, 160, [&](QPointF p) {
+                bool in = false;
+                for (std::size_t i = 0, j = outline.size() - 1; i < outline.size(); j = i++) {
+                    const QPointF a = outline[i], b = outline[j];
+                    if ((a.y() > p.y()) != (b.y() > p.y()) &&
+                        p.x() < (b.x() - a.x()) * (p.y() - a.y()) / (b.y() - a.y()) + a.x()) {
+                        in = !in;
+                    }
+                }
+                return in;
+            });
+        QVERIFY(expected.count() > 100000);
+        QVERIFY(segments.find(cut)->mask != nullptr);
+        QVERIFY(*segments.find(cut)->mask == expected);
+
+        QTest::mousePress(view_.get(), Qt::LeftButton, {}, QPoint(10, 10));
+        QTest::mouseMove(view_.get(), QPoint(190, 10));
+        QTest::mouseMove(view_.get(), QPoint(190, 150));
+        QTest::keyClick(view_.get(), Qt::Key_Escape);
+        QVERIFY(!scissors.drawing());
+        QTest::mouseRelease(view_.get(), Qt::LeftButton, {}, QPoint(190, 150));
+        QVERIFY(*segments.find(cut)->mask == expected); // nothing more cut
     }
 
     void maskedRenderingAndSurface() {
