@@ -33,6 +33,36 @@ VoxelBox seedBounds(std::span<const SegmentMask> seeds) {
     return lo.x > hi.x ? VoxelBox{} : VoxelBox{lo, hi};
 }
 
+// Calls f(cell, voxel) for every cell of the bricks in storage order, voxel being the volume
+// index of the voxel it holds or -1 on the padding.
+template <class F>
+void forEachCell(const glm::ivec3& bricks, const VoxelBox& box, const Volume& volume, F&& f) {
+    const glm::ivec3 size = box.hi - box.lo;
+    std::size_t cell = 0;
+    for (int bz = 0; bz < bricks.z; ++bz) {
+        for (int by = 0; by < bricks.y; ++by) {
+            for (int bx = 0; bx < bricks.x; ++bx) {
+                for (int lz = 0; lz < 8; ++lz) {
+                    for (int ly = 0; ly < 8; ++ly) {
+                        const int gz = bz * 8 + lz, gy = by * 8 + ly;
+                        const bool row = gz >= 1 && gz <= size.z && gy >= 1 && gy <= size.y;
+                        // The volume index of the (padding) cell at gx = 0: gx adds on.
+                        std::ptrdiff_t first = 0;
+                        if (row) {
+                            first = std::ptrdiff_t(volume.linearIndex(box.lo.x, box.lo.y + gy - 1,
+                                                                      box.lo.z + gz - 1)) -
+                                    1;
+                        }
+                        for (int gx = bx * 8; gx < bx * 8 + 8; ++gx, ++cell) {
+                            f(cell, row && gx >= 1 && gx <= size.x ? first + gx : -1);
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
 } // namespace
 
 std::size_t VoxelBox::voxelCount() const {
@@ -82,33 +112,37 @@ void SeedGrower::prepare(const VoxelBox& box, std::size_t segments) {
         std::size_t(bricks_.x) * std::size_t(bricks_.y) * std::size_t(bricks_.z) * 512;
     cells_.assign(n, Cell{0, 0, 0});
     visitVoxels(volume_, [&](auto voxels) {
-        double lo = std::numeric_limits<double>::max(), hi = std::numeric_limits<double>::lowest();
-        for (int k = box.lo.z; k < box.hi.z; ++k) {
-            for (int j = box.lo.y; j < box.hi.y; ++j) {
-                for (int i = box.lo.x; i < box.hi.x; ++i) {
-                    const double v = double(voxels[volume_.linearIndex(i, j, k)]);
-                    lo = std::min(lo, v);
-                    hi = std::max(hi, v);
-                }
-            }
-        }
         using T = std::remove_cvref_t<decltype(voxels[0])>;
-        const bool isFloat = std::is_floating_point_v<T>;
-        double scale = isFloat ? (hi > lo ? kFloatLevels / (hi - lo) : 0.0) : 1.0;
-        const double levels = std::floor(kMaxBuckets / double(segments)) - 1.0;
-        if ((hi - lo) * scale > levels) {
-            scale = levels / (hi - lo);
-        }
-        maxStep_ = std::uint32_t(std::lround((hi - lo) * scale));
+        T lo = std::numeric_limits<T>::max(), hi = std::numeric_limits<T>::lowest();
         for (int k = box.lo.z; k < box.hi.z; ++k) {
             for (int j = box.lo.y; j < box.hi.y; ++j) {
-                for (int i = box.lo.x; i < box.hi.x; ++i) {
-                    const double v = double(voxels[volume_.linearIndex(i, j, k)]);
-                    cells_[padded({i, j, k})] = {
-                        kUnreached, std::uint16_t(std::lround((v - lo) * scale)), kNoLabel};
+                const std::size_t row = volume_.linearIndex(box.lo.x, j, k);
+                for (std::size_t i = row; i < row + std::size_t(box.hi.x - box.lo.x); ++i) {
+                    lo = std::min(lo, voxels[i]);
+                    hi = std::max(hi, voxels[i]);
                 }
             }
         }
+        const double range = double(hi) - double(lo);
+        double scale =
+            std::is_floating_point_v<T> ? (range > 0.0 ? kFloatLevels / range : 0.0) : 1.0;
+        const double levels = std::floor(kMaxBuckets / double(segments)) - 1.0;
+        if (range * scale > levels) {
+            scale = levels / range;
+        }
+        maxStep_ = std::uint32_t(std::lround(range * scale));
+        // Integers kept as they are take the exact path: the intensity minus the minimum.
+        const bool exact = !std::is_floating_point_v<T> && scale == 1.0;
+        Cell* const cells = cells_.data();
+        forEachCell(bricks_, box, volume_, [&](std::size_t cell, std::ptrdiff_t voxel) {
+            if (voxel >= 0) {
+                const T v = voxels[std::size_t(voxel)];
+                const std::uint16_t value =
+                    exact ? std::uint16_t(int(v) - int(lo))
+                          : std::uint16_t(std::lround((double(v) - double(lo)) * scale));
+                cells[cell] = {kUnreached, value, kNoLabel};
+            }
+        });
     });
 }
 
@@ -251,17 +285,11 @@ glm::ivec3 SeedGrower::voxelOfCell(std::size_t cell) const {
 
 void SeedGrower::rebuildMasks() {
     masks_.assign(segments_, SegmentMask(volume_.dims()));
-    for (int k = box_.lo.z; k < box_.hi.z; ++k) {
-        for (int j = box_.lo.y; j < box_.hi.y; ++j) {
-            std::size_t v = volume_.linearIndex(box_.lo.x, j, k);
-            for (int i = box_.lo.x; i < box_.hi.x; ++i, ++v) {
-                const Cell& c = cells_[padded({i, j, k})];
-                if (c.label != kNoLabel) {
-                    masks_[c.label].set(v);
-                }
-            }
+    forEachCell(bricks_, box_, volume_, [&](std::size_t cell, std::ptrdiff_t voxel) {
+        if (voxel >= 0 && cells_[cell].label != kNoLabel) {
+            masks_[cells_[cell].label].set(std::size_t(voxel));
         }
-    }
+    });
 }
 
 std::vector<SegmentMask> growFromSeeds(const Volume& volume, std::span<const SegmentMask> seeds,
