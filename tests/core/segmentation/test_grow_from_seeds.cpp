@@ -106,6 +106,19 @@ private slots:
         QVERIFY(!grower.grow(seeds).incremental);
         QVERIFY(grower.masks() == growFromSeeds(volume, seeds));
 
+        // In a box round the seeds (3 mm): a stroke outside it computes afresh in a larger box.
+        std::vector<SegmentMask> near(2, SegmentMask(g.dims));
+        stroke(near[0], {28, 32, 32}, {36, 32, 32});
+        stroke(near[1], {8, 32, 32}, {10, 32, 32});
+        SeedGrower boxed(volume, GrowOptions{3.0});
+        boxed.grow(near);
+        QCOMPARE(boxed.box(), (VoxelBox{{5, 29, 29}, {40, 36, 36}}));
+        stroke(near[1], {60, 32, 32}, {62, 32, 32});
+        QVERIFY(!boxed.grow(near).incremental);
+        QCOMPARE(boxed.box(), (VoxelBox{{5, 29, 29}, {64, 36, 36}}));
+        QVERIFY(boxed.masks() == growFromSeeds(volume, near, GrowOptions{3.0}));
+        QCOMPARE(boxed.masks()[0].count() + boxed.masks()[1].count(), boxed.box().voxelCount());
+
         // The same volume in float (mapped onto 4096 levels: every step scaled alike, then
         // rounded) grows nearly the same segments.
         Volume floats(g, VoxelType::Float32);
