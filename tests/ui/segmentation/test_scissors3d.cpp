@@ -4,6 +4,7 @@
 // undo step; a freehand outline filled in, Escape dropping a drawing; the rendering masked by
 // the segment; the segment's surface in its colour.
 #include <QApplication>
+#include <QPointer>
 #include <QSignalSpy>
 #include <QTest>
 
@@ -162,6 +163,18 @@ private slots:
         QVERIFY(!scissors.drawing());
         QTest::mouseRelease(view_.get(), Qt::LeftButton, {}, QPoint(190, 150));
         QVERIFY(*segments.find(cut)->mask == expected); // nothing more cut
+    }
+
+    // Owned by the view: the view may go first, taking the scissors and their overlay along.
+    void goesWithItsView() {
+        Segmentation segments(ct_->geometry());
+        auto view = std::make_unique<VolumeView>(nullptr, VolumeView::Backend::Cpu);
+        QPointer<Scissors3d> scissors = new Scissors3d(view.get(), &segments, segments.add("A"));
+        scissors->setEnabled(true);
+        QTest::mousePress(view.get(), Qt::LeftButton, {}, QPoint(5, 5));
+        QVERIFY(scissors->drawing());
+        view.reset();
+        QVERIFY(scissors.isNull());
     }
 
     void maskedRenderingAndSurface() {
