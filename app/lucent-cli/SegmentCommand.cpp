@@ -1,7 +1,8 @@
-// lucent-cli segment PATH --threshold LO,HI [...] -o labels.nii.gz|seg.dcm [--stats]: a segment
-// by threshold, islands and margin, written as a NIfTI labelmap or a DICOM SEG; lucent-cli
-// segment-stats PATH LABELS.nii[.gz]|SEG: the statistics of each label of a labelmap, or each
-// segment of a DICOM SEG, on PATH's series.
+// lucent-cli segment PATH --threshold LO,HI [...] -o labels.nii.gz|seg.dcm [--stats]
+// [--surface MESH]: a segment by threshold, islands and margin, written as a NIfTI labelmap or
+// a DICOM SEG (and its surface as STL, PLY or OBJ); lucent-cli segment-stats PATH
+// LABELS.nii[.gz]|SEG: the statistics of each label of a labelmap, or each segment of a DICOM
+// SEG, on PATH's series.
 #include <QCommandLineParser>
 #include <QTextStream>
 
@@ -10,6 +11,7 @@
 #include <functional>
 
 #include "CliCommand.h"
+#include "core/formats/MeshFiles.h"
 #include "core/formats/Nifti.h"
 #include "core/formats/NiftiWrite.h"
 #include "core/io/Catalog.h"
@@ -17,6 +19,7 @@
 #include "core/segmentation/Labelmap.h"
 #include "core/segmentation/SegmentEffects.h"
 #include "core/segmentation/SegmentStatistics.h"
+#include "core/segmentation/SegmentSurface.h"
 
 namespace lucent::cli {
 namespace {
@@ -137,6 +140,10 @@ int runSegment(const QStringList& args) {
     parser.addOption({"name", "The segment's name.", "NAME", "Segment"});
     parser.addOption({{"o", "output"}, "The labelmap (.nii, .nii.gz) or DICOM SEG (.dcm).", "OUT"});
     parser.addOption({"stats", "Print the statistics as key=value."});
+    parser.addOption({"surface",
+                      "Also write the segment's surface (closed, smoothed) for "
+                      "printing: .stl, .ply or .obj.",
+                      "MESH"});
     parser.addHelpOption();
     return guarded("segment", parser, args, [&](QTextStream& out, QTextStream& err) {
         const QStringList positional = parser.positionalArguments();
@@ -150,6 +157,14 @@ int runSegment(const QStringList& args) {
         }
         if (parser.isSet("keep-largest") && parser.isSet("min-island-mm3")) {
             throw UsageError("--keep-largest and --min-island-mm3 exclude each other");
+        }
+        const std::filesystem::path surfaceFile = parser.value("surface").toStdString();
+        if (parser.isSet("surface")) {
+            try {
+                meshFormatOf(surfaceFile);
+            } catch (const std::invalid_argument& e) {
+                throw UsageError(std::string("--surface: ") + e.what());
+            }
         }
         DicomSeries series;
         if (seg) {
@@ -174,6 +189,14 @@ int runSegment(const QStringList& args) {
                                    series.images);
         } else {
             writeNifti(parser.value("output").toStdString(), labelmapOf(segmentation));
+        }
+        if (parser.isSet("surface")) {
+            const Segment& segment = *segmentation.find(id);
+            const SurfaceResult surface =
+                segmentSurface(*segment.mask, volume.geometry(), {}, segment.name);
+            MeshFileContent content;
+            content.description = "Lucent segment " + segment.name;
+            writeMesh(surface.mesh, surfaceFile, meshFormatOf(surfaceFile), content);
         }
         if (parser.isSet("stats")) {
             out << QString::fromStdString(
