@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs every Debian 12 package that building, running and testing Lucent need.
+# Installs every Debian 12 package that building, running and testing Lucent need, and the
+# npm packages of the tests (dcmjs, a foreign DICOM SEG writer: tests/segdicom/dcmjs).
 # Idempotent: when everything is present it prints nothing and exits 0.
 set -euo pipefail
 
@@ -32,8 +33,11 @@ packages=(
   # systemd-analyze for the unit, mmdebstrap and curl for packaging/try-packages.sh
   dpkg-dev lintian systemd mmdebstrap curl
   clang libfuzzer-14-dev libomp-14-dev  # fuzzing: LUCENT_FUZZ=ON, packaging/fuzz.sh (OpenMP for clang)
-  # reading tools: dciodvfy checks the measurement SR files
+  # reading tools: dciodvfy checks the measurement SR and segmentation SEG files
   dicom3tools
+  # node runs dcmjs (OHIF's DICOM library), the SEG tests' foreign writer (its npm ships with
+  # Debian's nodejs only through the npm package; NodeSource's nodejs carries its own)
+  nodejs
   # teaching: QR codes for invite links; movies through FFmpeg's libraries (ffprobe checks them)
   libqrencode-dev libavcodec-dev libavformat-dev libavutil-dev libswscale-dev ffmpeg
   # the invite test reads the QR codes back with a real decoder (zbarimg)
@@ -50,11 +54,19 @@ for p in "${packages[@]}"; do
     missing+=("$p")
   fi
 done
-[ ${#missing[@]} -eq 0 ] && exit 0
-
 SUDO=""
 [ "$(id -u)" -ne 0 ] && SUDO="sudo"
-echo "install-deps: installing ${missing[*]}"
-export DEBIAN_FRONTEND=noninteractive
-$SUDO apt-get update -qq
-$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+if [ ${#missing[@]} -ne 0 ]; then
+  echo "install-deps: installing ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+command -v npm >/dev/null || $SUDO apt-get install -y -qq --no-install-recommends npm >/dev/null
+
+# The tests' npm packages, pinned by their package-lock.json.
+dcmjs_dir="$(cd "$(dirname "$0")/.." && pwd)/tests/segdicom/dcmjs"
+if [ ! -d "$dcmjs_dir/node_modules/dcmjs" ]; then
+  echo "install-deps: npm ci in $dcmjs_dir"
+  (cd "$dcmjs_dir" && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
+fi

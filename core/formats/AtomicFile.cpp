@@ -18,7 +18,10 @@ std::filesystem::path tempNameFor(const std::filesystem::path& target) {
 } // namespace
 
 AtomicFileWriter::AtomicFileWriter(std::filesystem::path target)
-    : target_(std::move(target)), temp_(tempNameFor(target_)) {
+    : AtomicFileWriter(target, tempNameFor(target)) {}
+
+AtomicFileWriter::AtomicFileWriter(std::filesystem::path target, std::filesystem::path temporary)
+    : target_(std::move(target)), temp_(std::move(temporary)) {
     out_.open(temp_, std::ios::binary | std::ios::trunc);
     if (!out_) {
         throw std::runtime_error(target_.string() + ": cannot create " + temp_.string());

@@ -12,6 +12,9 @@ namespace lucent::formats {
 class AtomicFileWriter {
 public:
     explicit AtomicFileWriter(std::filesystem::path target);
+    // With the temporary file named by the caller (e.g. one whose name a study store keeps
+    // while its writer runs: the target's name and ".part").
+    AtomicFileWriter(std::filesystem::path target, std::filesystem::path temporary);
     ~AtomicFileWriter();
     AtomicFileWriter(const AtomicFileWriter&) = delete;
     AtomicFileWriter& operator=(const AtomicFileWriter&) = delete;

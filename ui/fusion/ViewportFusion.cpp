@@ -22,7 +22,12 @@ namespace lucent {
 namespace {
 
 // What the overlay's values are in, for its colour bar.
+// The unit of the overlay's values as loaded: HU, SUVbw (or a PET's stored unit when it
+// could not be shown in SUV), else none.
 QString overlayUnit(const Volume& overlay) {
+    if (overlay.pet) {
+        return QString::fromStdString(overlay.pet->unit());
+    }
     return overlay.modality == "CT" ? QStringLiteral("HU") : QString();
 }
 

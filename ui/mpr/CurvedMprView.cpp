@@ -191,8 +191,9 @@ QImage CurvedMprView::toGrey(const std::vector<float>& values, int width, int he
     for (int y = 0; y < height; ++y) {
         uchar* line = image.scanLine(y);
         for (int x = 0; x < width; ++x) {
-            line[x] = windowToGrey(values[std::size_t(y) * width + x], cursor_->windowCenter(),
-                                   cursor_->windowWidth());
+            const std::uint8_t grey = windowToGrey(values[std::size_t(y) * width + x],
+                                                   cursor_->windowCenter(), cursor_->windowWidth());
+            line[x] = cursor_->invertedGrey() ? static_cast<uchar>(255 - grey) : grey;
         }
     }
     return image;

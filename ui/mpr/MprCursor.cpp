@@ -24,6 +24,14 @@ void MprCursor::setWindow(double center, double width) {
     emit windowChanged();
 }
 
+void MprCursor::setInvertedGrey(bool inverted) {
+    if (inverted == invertedGrey_) {
+        return;
+    }
+    invertedGrey_ = inverted;
+    emit windowChanged();
+}
+
 const glm::dmat3& MprCursor::rotation(Orientation orientation) const {
     return rotations_[static_cast<std::size_t>(orientation)];
 }
@@ -64,6 +72,7 @@ void centreOn(MprCursor& cursor, const Volume& volume) {
     const WindowLevel window = defaultWindow(volume);
     cursor.setWindowStep(window.step);
     cursor.setWindow(window.center, window.width);
+    cursor.setInvertedGrey(volume.modality == "PT");
 }
 
 } // namespace lucent

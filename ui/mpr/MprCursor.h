@@ -30,6 +30,9 @@ public:
     // How much window or level one pixel of mouse drag changes (1 HU for CT).
     double windowStep() const { return windowStep_; }
     void setWindowStep(double step) { windowStep_ = step; }
+    // Grey drawn inverted (high values dark): how PET is read, uptake black on white.
+    bool invertedGrey() const { return invertedGrey_; }
+    void setInvertedGrey(bool inverted);
 
     // The rotation applied to the standard plane of an orientation (identity: not oblique).
     const glm::dmat3& rotation(Orientation orientation) const;
@@ -51,11 +54,12 @@ private:
     double center_ = 40.0;
     double width_ = 400.0;
     double windowStep_ = 1.0;
+    bool invertedGrey_ = false;
     std::array<glm::dmat3, 3> rotations_{glm::dmat3(1.0), glm::dmat3(1.0), glm::dmat3(1.0)};
 };
 
 // Where a cursor starts on a volume: the middle voxel (thin slices fall on voxel
-// centres), the volume's default window, no rotation.
+// centres), the volume's default window, no rotation; grey inverted for PET (modality PT).
 void centreOn(MprCursor& cursor, const Volume& volume);
 
 } // namespace lucent

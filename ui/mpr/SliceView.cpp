@@ -193,9 +193,16 @@ QImage SliceView::image() {
     }
     const double center = cursor_->windowCenter();
     const double width = cursor_->windowWidth();
+    const bool inverted = cursor_->invertedGrey();
     if (!imageValid_ || center != imageCenter_ || width != imageWidth_ ||
-        image_.size() != QSize(p.width, p.height) || image_.devicePixelRatio() != ratio) {
-        const std::vector<std::uint8_t> grey = windowedGrey(samples_, center, width);
+        inverted != imageInverted_ || image_.size() != QSize(p.width, p.height) ||
+        image_.devicePixelRatio() != ratio) {
+        std::vector<std::uint8_t> grey = windowedGrey(samples_, center, width);
+        if (inverted) {
+            for (std::uint8_t& g : grey) {
+                g = static_cast<std::uint8_t>(255 - g);
+            }
+        }
         image_ = QImage(p.width, p.height, QImage::Format_Grayscale8);
         for (int y = 0; y < p.height; ++y) {
             std::copy_n(grey.data() + static_cast<std::size_t>(y) * p.width, p.width,
@@ -204,6 +211,7 @@ QImage SliceView::image() {
         image_.setDevicePixelRatio(ratio);
         imageCenter_ = center;
         imageWidth_ = width;
+        imageInverted_ = inverted;
         imageValid_ = true;
     }
     return image_;

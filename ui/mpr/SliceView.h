@@ -165,6 +165,7 @@ private:
     QImage image_;
     double imageCenter_ = 0.0;
     double imageWidth_ = 0.0;
+    bool imageInverted_ = false;
     bool imageValid_ = false;
     SliceFusion fusion_;
 

@@ -164,6 +164,11 @@ void SliceView::fillContextMenu(QMenu& menu) {
         const int index = static_cast<int>(n);
         connect(action, &QAction::triggered, this, [this, index] { applyWindowPreset(index); });
     }
+    window->addSeparator();
+    QAction* inverted = window->addAction(QStringLiteral("Inverted grey"));
+    inverted->setCheckable(true);
+    inverted->setChecked(cursor_->invertedGrey());
+    connect(inverted, &QAction::toggled, cursor_, &MprCursor::setInvertedGrey);
 
     QMenu* slab = menu.addMenu(QStringLiteral("Slab"));
     auto* modes = new QActionGroup(slab);

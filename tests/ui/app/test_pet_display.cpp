@@ -20,18 +20,24 @@
 #include <tuple>
 
 #include "core/io/Catalog.h"
+#include "core/io/DisplayedSeries.h"
 #include "core/pet/SuvStatistics.h"
 #include "tests/support/OffscreenPlatform.h"
 #include "tests/support/PetFromCt.h"
 #include "tests/support/RealData.h"
 #include "ui/app/MainWindow.h"
+#include "ui/fusion/SliceFusion.h"
+#include "ui/fusion/ViewportFusion.h"
 #include "ui/mpr/MeasurementPainter.h"
 #include "ui/mpr/MprCursor.h"
 #include "ui/mpr/SeriesMeasurements.h"
 #include "ui/mpr/SliceOverlay.h"
 #include "ui/mpr/SliceView.h"
+#include "ui/viewports/GridShape.h"
 #include "ui/viewports/SeriesLibrary.h"
 #include "ui/viewports/SeriesSession.h"
+#include "ui/viewports/Viewport.h"
+#include "ui/viewports/ViewportGrid.h"
 #include "ui/viewports/ViewportWorkspace.h"
 
 using namespace lucent;
@@ -192,12 +198,46 @@ private slots:
                                                                  .arg(want)));
         }
 
+        // PET is read in inverted grey: the image's pixel is the window's grey turned over.
+        QVERIFY(window_->cursor()->invertedGrey());
+        const QImage image = axial->image();
+        QCOMPARE(image.devicePixelRatio(), 1.0);
+        for (const glm::dvec2 offset : {glm::dvec2(0, 0), glm::dvec2(-23, 11)}) {
+            const glm::dvec2 px = centre + offset;
+            const double value = axial->valueAt(QPointF(px.x + 0.5, px.y + 0.5));
+            QCOMPARE(qGray(image.pixel(int(px.x), int(px.y))), 255 - windowToGrey(value, 3.0, 6.0));
+        }
+
         // The grid loads it the same way.
         SeriesSession* s = session(suvDir_.path());
         QVERIFY(s != nullptr && s->volume());
         QVERIFY(s->volume()->pet && s->volume()->pet->inSuv());
         checkVoxels(*s->volume(), suv_, handFactor());
         QCOMPARE(s->cursor()->windowWidth(), 6.0);
+        QVERIFY(s->cursor()->invertedGrey());
+    }
+
+    // Fused over the CT in the grid, the PET's colour bar is in SUVbw.
+    void fusedOverCtIsInSuvbw() {
+        ViewportWorkspace workspace;
+        workspace.resize(900, 500);
+        workspace.grid()->setShape(*gridShape(QStringLiteral("1x2")));
+        workspace.show();
+        ViewportFusion fusion(&workspace);
+        Viewport* left = workspace.grid()->viewports()[0];
+        Viewport* right = workspace.grid()->viewports()[1];
+        auto pet = std::make_shared<Volume>(
+            loadDisplayedSeries(scanPath(suvDir_.path().toStdString()).series.front()));
+        QVERIFY(pet->pet && pet->pet->inSuv());
+        workspace.grid()->setActiveViewport(right);
+        workspace.showVolume(pet, QStringLiteral("pet"), QString());
+        workspace.grid()->setActiveViewport(left);
+        workspace.showVolume(std::make_shared<Volume>(loadPath(kRealData / kCt)),
+                             QStringLiteral("ct"), QString());
+        QVERIFY(QTest::qWaitForWindowExposed(&workspace));
+        QString why;
+        QVERIFY2(fusion.fuse(left, right->session(), &why), qPrintable(why));
+        QCOMPARE(left->sliceView()->fusion().layer()->unit, QStringLiteral("SUVbw"));
     }
 
     // An ellipse on the axial view: SUVmax, SUVmean and SUVpeak over the ellipsoid it spans,

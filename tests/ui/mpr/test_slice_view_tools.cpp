@@ -161,11 +161,26 @@ void TestSliceViewTools::presetFromContextMenu() {
         }
     }
     QVERIFY(presets);
-    QCOMPARE(presets->actions().size(), 8);
+    // The eight presets, a separator, and the inverted grey switch (off for a CT).
+    QCOMPARE(presets->actions().size(), 10);
     QVERIFY(presets->actions()[4]->text().startsWith(QStringLiteral("Mediastinum")));
     presets->actions()[4]->trigger();
     QCOMPARE(cursor_->windowWidth(), 350.0);
     QCOMPARE(cursor_->windowCenter(), 50.0);
+
+    QAction* inverted = presets->actions()[9];
+    QCOMPARE(inverted->text(), QStringLiteral("Inverted grey"));
+    QVERIFY(inverted->isCheckable() && !inverted->isChecked());
+    SliceView* v = view(Orientation::Coronal);
+    const QImage normal = v->image().copy();
+    inverted->trigger();
+    QVERIFY(cursor_->invertedGrey());
+    const QImage turned = v->image();
+    QCOMPARE(turned.size(), normal.size());
+    for (const QPoint p : {QPoint(10, 10), QPoint(normal.width() / 2, normal.height() / 2)}) {
+        QCOMPARE(qGray(turned.pixel(p)), 255 - qGray(normal.pixel(p)));
+    }
+    cursor_->setInvertedGrey(false);
 }
 
 void TestSliceViewTools::rightClickOpensMenuAndKeepsWindow() {
