@@ -45,7 +45,9 @@ public:
 
     // A button in the "More" tab that runs `action` on the active series' segments and its
     // active segment (a locked or missing segment is refused before): the hook for the 3D
-    // scissors, grow from seeds, surfaces, masked rendering.
+    // scissors, grow from seeds, surfaces, masked rendering. An action that edits
+    // session.segmentation() directly calls session.notifyChanged() after (the views and
+    // the list follow); session.apply() does that itself.
     using SegmentAction = std::function<void(SegmentationSession& session, std::uint32_t segment)>;
     QPushButton* addEffectButton(const QString& text, const QString& toolTip, SegmentAction action);
 

@@ -44,7 +44,7 @@ QWidget* SegmentsPanel::makeEffects() {
     tabs->addTab(makePaintTab(), tr("Paint"));
     tabs->addTab(makeThresholdTab(), tr("Threshold"));
     tabs->addTab(makeIslandsTab(), tr("Islands"));
-    tabs->addTab(makeMarginTab(), tr("Margin"));
+    tabs->addTab(makeMarginTab(), tr("Margin, smooth"));
     tabs->addTab(makeLogicalTab(), tr("Logical"));
     auto* more = new QWidget(tabs);
     more_ = new QVBoxLayout(more);
