@@ -35,6 +35,8 @@ class PriorsForStudy;
 class PriorTimeline;
 class FusionPanel;
 class ViewportFusion;
+class SegmentEditor;
+class SegmentsPanel;
 class PacsService;
 class VolumeLoader;
 class VolumeView;
@@ -96,6 +98,10 @@ public:
     // The Fusion dock and what it drives: a second series over the active viewport's.
     FusionPanel* fusionPanel() const { return fusionPanel_; }
     ViewportFusion* viewportFusion() const { return fusion_; }
+    // The Segments dock and the Segment Editor it drives over the grid's MPR views
+    // (segmentEditor()->sessions(): the segments of each series, for the SEG autosave).
+    SegmentsPanel* segmentsPanel() const { return segmentsPanel_; }
+    SegmentEditor* segmentEditor() const { return segmentEditor_; }
     // Help > Keyboard Shortcuts: opens (or raises) the dialog and returns it.
     ShortcutsDialog* showShortcuts();
 
@@ -137,6 +143,7 @@ private:
     void addFollowUpDock(const QString& storeFolder);
     void addPriorsDock(PriorsForStudy& priors);
     void addFusionDock();
+    void addSegmentsDock();
     void viewportContentChanged(Viewport* viewport);
     void goToLesion(const std::vector<LesionLocation>& where);
 
@@ -162,6 +169,8 @@ private:
     PriorTimeline* priorTimeline_ = nullptr;
     FusionPanel* fusionPanel_ = nullptr;
     ViewportFusion* fusion_ = nullptr;
+    SegmentEditor* segmentEditor_ = nullptr;
+    SegmentsPanel* segmentsPanel_ = nullptr;
     StudyHanging* hanging_ = nullptr;
     QString storeFolder_;
 };

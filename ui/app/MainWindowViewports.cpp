@@ -1,7 +1,7 @@
 // MainWindow: what the viewport grid's viewports share with the MPR layout (the series'
 // measurements, curved MPR, the measurement list following the active viewport) and the
-// RECIST follow-up dock, whose lesions open in the grid, the priors timeline and the Fusion
-// dock.
+// RECIST follow-up dock, whose lesions open in the grid, the priors timeline, the Fusion
+// dock and the Segments dock.
 #include "ui/app/MainWindow.h"
 
 #include <QDockWidget>
@@ -10,6 +10,7 @@
 #include <QFileInfo>
 #include <QInputDialog>
 #include <QMenu>
+#include <QScrollArea>
 #include <QStandardPaths>
 
 #include "core/hanging/HangingProtocolJson.h"
@@ -23,6 +24,8 @@
 #include "ui/mpr/SeriesMeasurements.h"
 #include "ui/mpr/SliceView.h"
 #include "ui/priors/PriorTimeline.h"
+#include "ui/segmentation/SegmentEditor.h"
+#include "ui/segmentation/SegmentsPanel.h"
 #include "ui/viewports/SeriesSession.h"
 #include "ui/viewports/StudyHanging.h"
 #include "ui/viewports/Viewport.h"
@@ -127,6 +130,36 @@ void MainWindow::addFusionDock() {
             [this](const QString& text, int ms) { statusBar()->showMessage(text, ms); });
 }
 
+void MainWindow::addSegmentsDock() {
+    segmentEditor_ = new SegmentEditor(workspace_, this);
+    segmentsPanel_ = new SegmentsPanel(segmentEditor_);
+    auto* dock = new QDockWidget(tr("Segments"), this);
+    dock->setObjectName(QStringLiteral("segmentsDock"));
+    // Scrolled: its list, effects and statistics would otherwise set the window's minimum.
+    auto* scroll = new QScrollArea;
+    scroll->setWidget(segmentsPanel_);
+    scroll->setWidgetResizable(true);
+    scroll->setFrameShape(QFrame::NoFrame);
+    dock->setWidget(scroll);
+    addDockWidget(Qt::RightDockWidgetArea, dock);
+    if (auto* fusionDock = findChild<QDockWidget*>(QStringLiteral("fusionDock"))) {
+        tabifyDockWidget(fusionDock, dock);
+    }
+    // Closed until View > Segments opens it: a sixth tab would widen the dock area.
+    dock->hide();
+    if (auto* volumeDock = findChild<QDockWidget*>(QStringLiteral("volumeDock"))) {
+        volumeDock->raise();
+    }
+    // A closed dock leaves the views' left button to them again.
+    connect(dock, &QDockWidget::visibilityChanged, segmentEditor_, [this](bool visible) {
+        if (!visible) {
+            segmentEditor_->setTool(SegmentTool::None);
+        }
+    });
+    connect(segmentsPanel_, &SegmentsPanel::message, this,
+            [this](const QString& text, int ms) { statusBar()->showMessage(text, ms); });
+}
+
 void MainWindow::goToLesion(const std::vector<LesionLocation>& where) {
     std::vector<ViewportWorkspace::SeriesPoint> points;
     try {
@@ -214,6 +247,7 @@ void MainWindow::wireViewports(PacsService* service) {
         addPriorsDock(*hanging_->priors());
     }
     addFusionDock();
+    addSegmentsDock();
     ViewportGrid* grid = workspace_->grid();
     connect(grid, &ViewportGrid::viewportContentChanged, this, &MainWindow::viewportContentChanged);
     // The measurement list, its tools and the follow-up show the active viewport's series.
