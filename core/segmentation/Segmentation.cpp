@@ -134,6 +134,32 @@ bool Segmentation::setMask(std::uint32_t id, SegmentMask mask, const std::string
     return true;
 }
 
+bool Segmentation::setMasks(std::vector<std::pair<std::uint32_t, SegmentMask>> masks,
+                            const std::string& what, const std::string& algorithm, bool automatic) {
+    for (const auto& [id, mask] : masks) {
+        if (mask.dims() != grid_.dims) {
+            throw std::invalid_argument("Segmentation: a mask of other dimensions than the series");
+        }
+        const Segment* s = find(id);
+        if (s == nullptr || s->locked) {
+            return false;
+        }
+    }
+    if (masks.empty()) {
+        return false;
+    }
+    record(what);
+    for (auto& [id, mask] : masks) {
+        Segment* m = locate(id);
+        m->mask = std::make_shared<const SegmentMask>(std::move(mask));
+        if (!algorithm.empty()) {
+            m->algorithmType = automatic ? "AUTOMATIC" : "SEMIAUTOMATIC";
+            m->algorithmName = algorithm;
+        }
+    }
+    return true;
+}
+
 bool Segmentation::undo() {
     const std::vector<Segment> now = segments_;
     if (!history_.undo(segments_)) {

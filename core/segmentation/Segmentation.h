@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/history/SnapshotHistory.h"
@@ -58,12 +59,20 @@ public:
     bool setMask(std::uint32_t id, SegmentMask mask, const std::string& what,
                  const std::string& algorithm = {}, bool automatic = false);
 
+    // Several segments' results as one undo step (grow from seeds): false, nothing changed,
+    // when any segment is unknown or locked; std::invalid_argument for a mask of other
+    // dimensions. `algorithm` as for setMask.
+    bool setMasks(std::vector<std::pair<std::uint32_t, SegmentMask>> masks, const std::string& what,
+                  const std::string& algorithm = {}, bool automatic = false);
+
     bool canUndo() const { return history_.canUndo(); }
     bool canRedo() const { return history_.canRedo(); }
     std::string undoText() const { return history_.undoText(); }
     std::string redoText() const { return history_.redoText(); }
     bool undo();
     bool redo();
+    // Forgets every undo and redo step: what was loaded (a stored SEG) is where undo stops.
+    void clearHistory() { history_.clear(); }
 
     // Changes with every edit, undo and redo: what to save has changed.
     std::uint64_t revision() const { return revision_; }

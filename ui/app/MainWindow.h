@@ -37,6 +37,8 @@ class FusionPanel;
 class ViewportFusion;
 class SegmentEditor;
 class SegmentsPanel;
+class SegmentationAutosave;
+class SegmentTools3d;
 class PacsService;
 class VolumeLoader;
 class VolumeView;
@@ -102,6 +104,7 @@ public:
     // (segmentEditor()->sessions(): the segments of each series, for the SEG autosave).
     SegmentsPanel* segmentsPanel() const { return segmentsPanel_; }
     SegmentEditor* segmentEditor() const { return segmentEditor_; }
+    SegmentTools3d* segmentTools3d() const { return segmentTools3d_; }
     // Help > Keyboard Shortcuts: opens (or raises) the dialog and returns it.
     ShortcutsDialog* showShortcuts();
 
@@ -144,6 +147,8 @@ private:
     void addPriorsDock(PriorsForStudy& priors);
     void addFusionDock();
     void addSegmentsDock();
+    // The 3D view showing the series: a grid viewport's, else the main page's; nullptr.
+    VolumeView* volumeViewOf(const Volume& series) const;
     void viewportContentChanged(Viewport* viewport);
     void goToLesion(const std::vector<LesionLocation>& where);
 
@@ -171,6 +176,8 @@ private:
     ViewportFusion* fusion_ = nullptr;
     SegmentEditor* segmentEditor_ = nullptr;
     SegmentsPanel* segmentsPanel_ = nullptr;
+    SegmentationAutosave* segmentAutosave_ = nullptr;
+    SegmentTools3d* segmentTools3d_ = nullptr;
     StudyHanging* hanging_ = nullptr;
     QString storeFolder_;
 };

@@ -25,6 +25,9 @@
 #include "ui/mpr/SliceView.h"
 #include "ui/priors/PriorTimeline.h"
 #include "ui/segmentation/SegmentEditor.h"
+#include "ui/segmentation/SegmentTools3d.h"
+#include "ui/segmentation/SegmentationAutosave.h"
+#include "ui/segmentation/SegmentationStoreSync.h"
 #include "ui/segmentation/SegmentsPanel.h"
 #include "ui/viewports/SeriesSession.h"
 #include "ui/viewports/StudyHanging.h"
@@ -131,8 +134,19 @@ void MainWindow::addFusionDock() {
 }
 
 void MainWindow::addSegmentsDock() {
+    // Segments of stored series are kept there as DICOM SEG as the reader works. Made before
+    // the editor: children go in the order they came, so its last save finds the sessions.
+    segmentAutosave_ = new SegmentationAutosave(storeFolder_, this);
     segmentEditor_ = new SegmentEditor(workspace_, this);
     segmentsPanel_ = new SegmentsPanel(segmentEditor_);
+    auto* storeSync = new SegmentationStoreSync(segmentEditor_->sessions(), segmentAutosave_, this);
+    connect(storeSync, &SegmentationStoreSync::message, this,
+            [this](const QString& text, int ms) { statusBar()->showMessage(text, ms); });
+    segmentTools3d_ = new SegmentTools3d(
+        segmentsPanel_, [this](const Volume& series) { return volumeViewOf(series); });
+    segmentsPanel_->addEffectWidget(segmentTools3d_);
+    connect(segmentTools3d_, &SegmentTools3d::message, this,
+            [this](const QString& text, int ms) { statusBar()->showMessage(text, ms); });
     auto* dock = new QDockWidget(tr("Segments"), this);
     dock->setObjectName(QStringLiteral("segmentsDock"));
     // Scrolled: its list, effects and statistics would otherwise set the window's minimum.
@@ -158,6 +172,18 @@ void MainWindow::addSegmentsDock() {
     });
     connect(segmentsPanel_, &SegmentsPanel::message, this,
             [this](const QString& text, int ms) { statusBar()->showMessage(text, ms); });
+}
+
+VolumeView* MainWindow::volumeViewOf(const Volume& series) const {
+    for (Viewport* viewport : workspace_->grid()->viewports()) {
+        if (viewport->volumeView() != nullptr && viewport->session() != nullptr &&
+            viewport->session()->volume() &&
+            viewport->session()->volume()->seriesUid == series.seriesUid) {
+            return viewport->volumeView();
+        }
+    }
+    const bool mainPage = volume_ && volume_->seriesUid == series.seriesUid;
+    return mainPage ? volumeView_ : nullptr;
 }
 
 void MainWindow::goToLesion(const std::vector<LesionLocation>& where) {

@@ -50,6 +50,8 @@ public:
     // the list follow); session.apply() does that itself.
     using SegmentAction = std::function<void(SegmentationSession& session, std::uint32_t segment)>;
     QPushButton* addEffectButton(const QString& text, const QString& toolTip, SegmentAction action);
+    // A group of controls of its own on the "More" tab (the 3D tools, grow from seeds).
+    void addEffectWidget(QWidget* widget);
 
     // What the controls do (for tests and shortcuts); false with lastMessage() saying why.
     bool addSegment();

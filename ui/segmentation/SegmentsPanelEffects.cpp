@@ -216,6 +216,10 @@ QPushButton* SegmentsPanel::addEffectButton(const QString& text, const QString& 
     return b;
 }
 
+void SegmentsPanel::addEffectWidget(QWidget* widget) {
+    more_->insertWidget(more_->count() - 1, widget);
+}
+
 void SegmentsPanel::setThresholdRange(double lo, double hi) {
     lower_->setValue(std::min(lo, hi));
     upper_->setValue(std::max(lo, hi));
