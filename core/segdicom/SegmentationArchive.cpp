@@ -72,15 +72,7 @@ std::string SegmentationArchive::save(const std::string& seriesUid,
         return {};
     }
     const ReferencedSeries& series = referencedSeries(seriesUid);
-    InstanceRecord record;
-    for (const StoredSeries& s : store_.listSeries()) {
-        if (s.info.seriesUid == seriesUid) {
-            record.series = s.info;
-            record.studyDescription = s.studyDescription;
-            record.accessionNumber = s.accessionNumber;
-            record.patientBirthDate = s.patientBirthDate;
-        }
-    }
+    InstanceRecord record = store_.recordBeside(seriesUid);
     SegmentationIdentity identity;
     identity.seriesUid = segSeries;
     identity.softwareVersion = softwareVersion_;

@@ -350,6 +350,19 @@ void StudyStore::upsertStudy(const InstanceRecord& r) {
     run(study, root_);
 }
 
+InstanceRecord StudyStore::recordBeside(const std::string& seriesUid) const {
+    InstanceRecord record;
+    for (const StoredSeries& s : listSeries()) {
+        if (s.info.seriesUid == seriesUid) {
+            record.series = s.info;
+            record.studyDescription = s.studyDescription;
+            record.accessionNumber = s.accessionNumber;
+            record.patientBirthDate = s.patientBirthDate;
+        }
+    }
+    return record;
+}
+
 std::vector<StoredSeries> StudyStore::listSeries() const {
     QSqlQuery query = prepared(
         connection_,

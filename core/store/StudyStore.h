@@ -110,6 +110,10 @@ public:
     // Every series of the index (patients, studies, series with their
     // completeness), ordered by patient name, study date, study, series number.
     std::vector<StoredSeries> listSeries() const;
+    // A record for an object derived from the series (an SR, a SEG) to store in its study:
+    // the series' patient, study and series facts, to be given the object's own series,
+    // modality and SOP instance. Empty facts when the series is not in the index.
+    InstanceRecord recordBeside(const std::string& seriesUid) const;
 
     // The offset "link here" set between two series in different Frames of Reference
     // (linked viewports): a point in b is the point in a plus the offset, LPS mm. One

@@ -23,13 +23,25 @@ void SegmentationStoreSync::track(SegmentationSession* session) {
     Segmentation& segmentation = session->segmentation();
     const SegmentationArchive::LoadResult held = autosave_->load(uid, segmentation.geometry());
     int segments = 0;
+    int locked = 0;
     for (const SegmentationArchive::Loaded& seg : held.loaded) {
-        segments += static_cast<int>(addSegments(segmentation, seg.segmentation.segments).size());
+        const std::vector<std::uint32_t> ids = addSegments(segmentation, seg.segmentation.segments);
+        segments += static_cast<int>(ids.size());
+        // What Lucent would not write back as it was (FRACTIONAL) opens locked: effects
+        // leave it alone until the reader unlocks it and makes it a binary segment.
+        for (const std::uint32_t id :
+             seg.segmentation.readOnly ? ids : std::vector<std::uint32_t>{}) {
+            segmentation.setLocked(id, true);
+            ++locked;
+        }
     }
     if (segments > 0) {
         segmentation.clearHistory();
         session->notifyChanged();
-        emit message(tr("%n stored segment(s) opened on the series", nullptr, segments), 5000);
+        emit message(tr("%n stored segment(s) opened on the series", nullptr, segments) +
+                         (locked > 0 ? tr(", %n locked (read-only in their SEG)", nullptr, locked)
+                                     : QString()),
+                     5000);
     }
     // Saved from now on (attach() starts after what was loaded). A series outside the store
     // keeps its segments for this session only: said at its first edit, not each time it is

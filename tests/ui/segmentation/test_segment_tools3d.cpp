@@ -17,10 +17,12 @@
 
 #include "core/io/Catalog.h"
 #include "core/scene/SurfaceDisplay.h"
+#include "core/segdicom/SegmentationArchive.h"
 #include "core/segmentation/GrowFromSeeds.h"
 #include "core/segmentation/SegmentEffects.h"
 #include "core/store/StudyStore.h"
 #include "tests/core/report/StoredCopies.h"
+#include "tests/core/segdicom/SegFileChecks.h"
 #include "tests/support/OffscreenPlatform.h"
 #include "tests/support/RealData.h"
 #include "ui/segmentation/GrowFromSeedsEffect.h"
@@ -211,6 +213,35 @@ private slots:
         QVERIFY(*read.segments()[0].mask == maskOf(bone_));
         QVERIFY(*read.segments()[1].mask == maskOf(inside_));
         QVERIFY(!read.canUndo());
+        sync.detachAll();
+    }
+
+    // A SEG Lucent reads but would not write back as it was (FRACTIONAL) opens locked.
+    void fractionalSegOpensLocked() {
+        REQUIRE_DATA(kCt);
+        autosave_->flush();
+        const QTemporaryDir here;
+        const fs::path fractional = fs::path(here.path().toStdString()) / "fractional.dcm";
+        {
+            StudyStore store(store_.path().toStdString());
+            SegmentationArchive archive(store);
+            const std::vector<SegmentationArchive::Stored> held = archive.find(ct_->seriesUid);
+            QCOMPARE(held.size(), std::size_t(1));
+            test::toFractional(held.front().file, fractional);
+            store.remove(held.front().header.sopInstanceUid);
+            QVERIFY(test::storeCopy(store, fractional, "SEG"));
+        }
+        SegmentationAutosave again(store_.path());
+        SegmentationSessions sessions;
+        SegmentationStoreSync sync(&sessions, &again);
+        QSignalSpy said(&sync, &SegmentationStoreSync::message);
+        SegmentationSession* reopened = sessions.sessionFor(ct_);
+        QVERIFY(reopened != nullptr);
+        const Segmentation& read = reopened->segmentation();
+        QCOMPARE(read.segments().size(), std::size_t(2));
+        QVERIFY(read.segments()[0].locked && read.segments()[1].locked);
+        QVERIFY(*read.segments()[1].mask == maskOf(inside_));
+        QVERIFY(said.last().at(0).toString().contains(QStringLiteral("2 locked")));
         sync.detachAll();
     }
 
