@@ -1,5 +1,6 @@
 #include "core/segmentation/Labelmap.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <stdexcept>
@@ -9,6 +10,7 @@ namespace lucent {
 Volume labelmapOf(const Segmentation& segmentation) {
     Volume labels(segmentation.geometry(), VoxelType::UInt16);
     const std::span<std::uint16_t> out = labels.voxels<std::uint16_t>();
+    std::fill(out.begin(), out.end(), std::uint16_t{0}); // a new Volume is not cleared
     std::uint16_t label = 0;
     for (const Segment& s : segmentation.segments()) {
         ++label;

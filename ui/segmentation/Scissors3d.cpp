@@ -58,7 +58,7 @@ private:
 };
 
 Scissors3d::Scissors3d(VolumeView* view, Segmentation* segmentation, std::uint32_t segment)
-    : QObject(view), view_(view), segmentation_(segmentation), segment_(segment),
+    : QObject(view), view_(view), watched_(view), segmentation_(segmentation), segment_(segment),
       overlay_(std::make_unique<ScissorsOverlay>(view, *this)) {
     view->installEventFilter(this);
 }
@@ -107,7 +107,7 @@ void Scissors3d::cancel() {
 }
 
 bool Scissors3d::eventFilter(QObject* watched, QEvent* event) {
-    if (!enabled_ || watched != view_) {
+    if (!enabled_ || watched != watched_) {
         return false;
     }
     switch (event->type()) {

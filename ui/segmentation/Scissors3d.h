@@ -59,6 +59,7 @@ private:
     void cancel();
 
     QPointer<VolumeView> view_;
+    const QObject* watched_; // the view, compared by address alone (no cast while it goes)
     Segmentation* segmentation_;
     std::uint32_t segment_;
     std::unique_ptr<ScissorsOverlay> overlay_;

@@ -60,6 +60,12 @@ void SegmentEditor::repaintLayers() {
     }
 }
 
+SegmentEditor::~SegmentEditor() {
+    for (const auto& [view, layer] : layers_) {
+        delete layer.data(); // null when its view went first
+    }
+}
+
 SliceSegments* SegmentEditor::layerOf(const SliceView* view) const {
     const auto it = layers_.find(view);
     return it == layers_.end() ? nullptr : it->second.data();

@@ -63,6 +63,8 @@ public:
 
     // The layer drawn over an MPR view of the grid (nullptr for another view).
     SliceSegments* layerOf(const SliceView* view) const;
+    // The layers go with the editor: they ask it for the tool at every event of their view.
+    ~SegmentEditor() override;
     const QString& lastMessage() const { return message_; }
     void say(const QString& text);
 

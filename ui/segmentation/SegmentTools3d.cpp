@@ -8,6 +8,7 @@
 #include <QGroupBox>
 #include <QHBoxLayout>
 #include <QPushButton>
+#include <QSignalBlocker>
 #include <QVBoxLayout>
 
 #include "ui/segmentation/GrowFromSeedsEffect.h"
@@ -31,7 +32,13 @@ SegmentTools3d::SegmentTools3d(SegmentsPanel* panel, ViewFor viewFor, QWidget* p
     connect(grow_, &GrowFromSeedsEffect::message, this, &SegmentTools3d::message);
 }
 
-SegmentTools3d::~SegmentTools3d() = default;
+SegmentTools3d::~SegmentTools3d() {
+    delete scissors_.data();
+}
+
+Scissors3d* SegmentTools3d::scissors() const {
+    return scissors_.data();
+}
 
 QWidget* SegmentTools3d::makeScissorsBox() {
     auto* box = new QGroupBox(tr("Scissors in the 3D view"), this);
@@ -139,8 +146,11 @@ VolumeView* SegmentTools3d::viewOfActive(const QString& what, bool needVoxels) {
 }
 
 bool SegmentTools3d::setScissors(bool on) {
+    if (scissors_) {
+        scissors_->disconnect(); // its going now is no news for the button
+        delete scissors_.data();
+    }
     if (!on) {
-        scissors_.reset();
         return true;
     }
     VolumeView* view = viewOfActive(tr("Scissors"), false);
@@ -152,21 +162,25 @@ bool SegmentTools3d::setScissors(bool on) {
         emit message(tr("Scissors: the segment is locked"), 8000);
         return false;
     }
-    scissors_ =
-        std::make_unique<Scissors3d>(view, &session->segmentation(), session->activeSegment());
+    scissors_ = new Scissors3d(view, &session->segmentation(), session->activeSegment());
+    // The view going (its viewport turned to MPR) takes the scissors with it.
+    connect(scissors_, &QObject::destroyed, scissorsOn_, [button = scissorsOn_] {
+        const QSignalBlocker quiet(button);
+        button->setChecked(false);
+    });
     scissors_->setShape(Scissors3d::Shape(shape_->currentData().toInt()));
     scissors_->setOperation(ScissorsOperation(operation_->currentData().toInt()));
     scissorsSession_ = session;
-    connect(scissors_.get(), &Scissors3d::cut, this, [this](std::size_t voxels) {
+    connect(scissors_.data(), &Scissors3d::cut, this, [this](std::size_t voxels) {
         if (scissorsSession_ && voxels > 0) {
             scissorsSession_->notifyChanged();
         }
         emit message(tr("Scissors: %n voxel(s) changed", nullptr, int(voxels)), 4000);
     });
-    connect(scissors_.get(), &Scissors3d::refused, this,
+    connect(scissors_.data(), &Scissors3d::refused, this,
             [this](const QString& why) { emit message(tr("Scissors: %1").arg(why), 8000); });
     // The segment cut follows the one chosen in the panel.
-    connect(session, &SegmentationSession::activeSegmentChanged, scissors_.get(),
+    connect(session, &SegmentationSession::activeSegmentChanged, scissors_.data(),
             &Scissors3d::setSegment);
     scissors_->setEnabled(true);
     return true;

@@ -39,7 +39,7 @@ public:
     QPushButton* scissorsButton() const { return scissorsOn_; }
     QComboBox* scissorsShape() const { return shape_; }
     QComboBox* scissorsOperation() const { return operation_; }
-    Scissors3d* scissors() const { return scissors_.get(); }
+    Scissors3d* scissors() const; // while they are on
     GrowFromSeedsEffect* grow() const { return grow_; }
     QCheckBox* growAfterStrokes() const { return growAfterStrokes_; }
 
@@ -65,7 +65,7 @@ private:
     SegmentsPanel* panel_;
     ViewFor viewFor_;
     GrowFromSeedsEffect* grow_;
-    std::unique_ptr<Scissors3d> scissors_;
+    QPointer<Scissors3d> scissors_; // a child of its view, which may go first
     QPointer<SegmentationSession> scissorsSession_;
     std::unique_ptr<MaskedRendering> masked_;
     QPointer<VolumeView> maskedView_;

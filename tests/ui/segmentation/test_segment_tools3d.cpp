@@ -298,6 +298,14 @@ private slots:
         QVERIFY(session()->undo());
         tools_->scissorsButton()->setChecked(false);
         QVERIFY(tools_->scissors() == nullptr);
+
+        // The 3D view going (the viewport turned to MPR) takes the scissors with it.
+        tools_->scissorsButton()->setChecked(true);
+        QVERIFY(tools_->scissors() != nullptr);
+        left->show(workspace_->grid()->viewports()[1]->session(), ViewportView::Axial);
+        QTRY_VERIFY(tools_->scissors() == nullptr);
+        QVERIFY(!tools_->scissorsButton()->isChecked());
+        QVERIFY(!tools_->showMasked(true)); // and no 3D view is left to mask
     }
 };
 
