@@ -58,16 +58,18 @@ private:
 };
 
 Scissors3d::Scissors3d(VolumeView* view, Segmentation* segmentation, std::uint32_t segment)
-    : QObject(view), view_(view), watched_(view), segmentation_(segmentation), segment_(segment),
-      overlay_(std::make_unique<ScissorsOverlay>(view, *this)) {
+    : QObject(view), view_(view), watched_(view), watchedObject_(view), segmentation_(segmentation),
+      segment_(segment), overlay_(std::make_unique<ScissorsOverlay>(view, *this)) {
     view->installEventFilter(this);
 }
 
 Scissors3d::~Scissors3d() {
-    if (view_) {
-        view_->removeEventFilter(this);
-    } else {
+    // isNull() and the QObject pointer: no cast to VolumeView, which may be going (this is
+    // then deleted as its child, before the overlay, a later child).
+    if (view_.isNull()) {
         (void)overlay_.release(); // the view took its children with it
+    } else if (QObject* watched = watchedObject_.data()) {
+        watched->removeEventFilter(this);
     }
 }
 

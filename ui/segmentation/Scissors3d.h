@@ -60,6 +60,7 @@ private:
 
     QPointer<VolumeView> view_;
     const QObject* watched_; // the view, compared by address alone (no cast while it goes)
+    QPointer<QObject> watchedObject_;
     Segmentation* segmentation_;
     std::uint32_t segment_;
     std::unique_ptr<ScissorsOverlay> overlay_;
