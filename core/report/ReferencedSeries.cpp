@@ -6,6 +6,8 @@
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcfilefo.h>
 
+#include "core/report/DicomItemValues.h"
+
 namespace lucent {
 
 namespace fs = std::filesystem;
@@ -64,25 +66,8 @@ const ReferencedImage* ReferencedSeries::find(const std::string& sopInstanceUid)
     return nullptr;
 }
 
-namespace {
-
-std::string text(DcmItem& d, const DcmTagKey& tag) {
-    OFString v;
-    return d.findAndGetOFStringArray(tag, v).good() ? std::string(v.c_str()) : std::string();
-}
-
-bool numbers(DcmItem& d, const DcmTagKey& tag, double* out, unsigned long count) {
-    for (unsigned long i = 0; i < count; ++i) {
-        Float64 v = 0.0;
-        if (d.findAndGetFloat64(tag, v, i).bad()) {
-            return false;
-        }
-        out[i] = v;
-    }
-    return true;
-}
-
-} // namespace
+using dicomitem::numbers;
+using dicomitem::text;
 
 ReferencedSeries readReferencedSeries(const std::vector<fs::path>& files) {
     ReferencedSeries series;

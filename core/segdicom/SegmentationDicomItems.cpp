@@ -13,22 +13,6 @@ namespace lucent::segdicom {
 
 namespace fs = std::filesystem;
 
-std::string text(DcmItem& d, const DcmTagKey& tag) {
-    OFString v;
-    return d.findAndGetOFStringArray(tag, v).good() ? std::string(v.c_str()) : std::string();
-}
-
-bool numbers(DcmItem& d, const DcmTagKey& tag, double* out, unsigned long count) {
-    for (unsigned long i = 0; i < count; ++i) {
-        Float64 v = 0.0;
-        if (d.findAndGetFloat64(tag, v, i).bad()) {
-            return false;
-        }
-        out[i] = v;
-    }
-    return true;
-}
-
 DcmItem* item(DcmItem& d, const DcmTagKey& sequence) {
     DcmItem* found = nullptr;
     return d.findAndGetSequenceItem(sequence, found, 0).good() ? found : nullptr;

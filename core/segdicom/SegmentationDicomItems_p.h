@@ -9,12 +9,13 @@
 #include <dcmtk/config/osconfig.h>
 #include <dcmtk/dcmdata/dcfilefo.h>
 
+#include "core/report/DicomItemValues.h"
 #include "core/segdicom/SegmentationDicom.h"
 
 namespace lucent::segdicom {
 
-std::string text(DcmItem& d, const DcmTagKey& tag);
-bool numbers(DcmItem& d, const DcmTagKey& tag, double* out, unsigned long count);
+using dicomitem::numbers;
+using dicomitem::text;
 // The first item of a sequence (nullptr when absent or empty), and all of them.
 DcmItem* item(DcmItem& d, const DcmTagKey& sequence);
 std::vector<DcmItem*> items(DcmItem& d, const DcmTagKey& sequence);

@@ -102,12 +102,7 @@ SegmentMask marginMask(const SegmentMask& mask, const VolumeGeometry& grid, doub
     if (mm == 0.0 || !mask.any()) {
         return mask;
     }
-    glm::ivec3 lo = mask.dims(), hi(-1);
-    mask.forEachSet([&](std::size_t i) {
-        const glm::ivec3 v = mask.voxelOf(i);
-        lo = glm::min(lo, v);
-        hi = glm::max(hi, v);
-    });
+    auto [lo, hi] = mask.bounds();
     const double r2 = mm * mm * (1.0 + 1e-9);
     SegmentMask out(mask.dims());
     if (mm > 0.0) {

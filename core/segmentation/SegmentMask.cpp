@@ -29,6 +29,16 @@ std::size_t SegmentMask::count() const {
     return n;
 }
 
+SegmentMask::Bounds SegmentMask::bounds() const {
+    Bounds b{dims_, glm::ivec3(-1)};
+    forEachSet([&](std::size_t i) {
+        const glm::ivec3 v = voxelOf(i);
+        b.lo = glm::min(b.lo, v);
+        b.hi = glm::max(b.hi, v);
+    });
+    return b;
+}
+
 bool SegmentMask::any() const {
     for (const std::uint64_t w : words_) {
         if (w != 0) {

@@ -39,6 +39,14 @@ public:
 
     std::size_t count() const;
     bool any() const;
+    // The smallest box of voxels holding every voxel set, corners inclusive; hi < lo on
+    // every axis when none is set.
+    struct Bounds {
+        glm::ivec3 lo;
+        glm::ivec3 hi;
+        bool empty() const { return hi.x < lo.x; }
+    };
+    Bounds bounds() const;
 
     // Logical operators; both masks must have the same dims (std::invalid_argument).
     SegmentMask& operator|=(const SegmentMask& other); // add

@@ -69,12 +69,7 @@ SegmentMask medianMask(const SegmentMask& mask, const VolumeGeometry& grid, doub
         return mask;
     }
     // Only voxels within the kernel's reach of a set voxel can be set.
-    glm::ivec3 lo = mask.dims(), hi(-1);
-    mask.forEachSet([&](std::size_t i) {
-        const glm::ivec3 v = mask.voxelOf(i);
-        lo = glm::min(lo, v);
-        hi = glm::max(hi, v);
-    });
+    auto [lo, hi] = mask.bounds();
     lo = glm::max(lo - radius, glm::ivec3(0));
     hi = glm::min(hi + radius + 1, mask.dims());
     // Sums clipped to this box miss nothing: every set voxel lies inside it.

@@ -1,6 +1,5 @@
 #include "core/segmentation/SegmentSurface.h"
 
-#include <climits>
 #include <cmath>
 #include <stdexcept>
 
@@ -17,12 +16,7 @@ SurfaceResult segmentSurface(const SegmentMask& mask, const VolumeGeometry& grid
         throw std::invalid_argument("segment surface: the mask of '" + name +
                                     "' lies on another grid");
     }
-    glm::ivec3 lo(INT_MAX), hi(INT_MIN);
-    mask.forEachSet([&](std::size_t i) {
-        const glm::ivec3 v = mask.voxelOf(i);
-        lo = glm::min(lo, v);
-        hi = glm::max(hi, v);
-    });
+    auto [lo, hi] = mask.bounds();
     if (lo.x > hi.x) {
         throw std::runtime_error("segment '" + name + "' is empty: no surface");
     }

@@ -117,21 +117,9 @@ bool Segmentation::setLocked(std::uint32_t id, bool locked) {
 
 bool Segmentation::setMask(std::uint32_t id, SegmentMask mask, const std::string& what,
                            const std::string& algorithm, bool automatic) {
-    if (mask.dims() != grid_.dims) {
-        throw std::invalid_argument("Segmentation: a mask of other dimensions than the series");
-    }
-    const Segment* s = find(id);
-    if (s == nullptr || s->locked) {
-        return false;
-    }
-    record(what);
-    Segment* m = locate(id);
-    m->mask = std::make_shared<const SegmentMask>(std::move(mask));
-    if (!algorithm.empty()) {
-        m->algorithmType = automatic ? "AUTOMATIC" : "SEMIAUTOMATIC";
-        m->algorithmName = algorithm;
-    }
-    return true;
+    std::vector<std::pair<std::uint32_t, SegmentMask>> one;
+    one.emplace_back(id, std::move(mask));
+    return setMasks(std::move(one), what, algorithm, automatic);
 }
 
 bool Segmentation::setMasks(std::vector<std::pair<std::uint32_t, SegmentMask>> masks,
