@@ -15,13 +15,17 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
+#include "core/raycast/BrickVisibility.h"
 #include "core/volume/BrickBoxes.h"
 #include "core/volume/BrickLevels.h"
 #include "core/volume/LodPyramid.h"
+#include "render/BrickPlacement.h"
 #include "render/BrickPool.h"
 #include "render/BrickTable.h"
 
@@ -35,6 +39,10 @@ struct BrickRequest {
     bool gradientCache = true; // keep them in the pool when they fit (not cubic)
     double gradientUnit = 1.0; // value units of a cached gradient component of 1 (int16)
     std::function<bool(double, double)> visible;
+    // What `visible` answers from (equal keys, equal answers): the cell masks
+    // and boxes built for one request serve the next with the same key, clip
+    // box, filter and page size.
+    VisibilityKey visibilityKey;
     bool decides = true;         // DVR, iso: visibility decides what is leapt
     bool withNeighbours = false; // pre-integration, iso: rays read next to visible cells
     ClipBox clip;                // level-0 indices
@@ -60,7 +68,14 @@ struct BrickFrameStats {
     int finestLevel = 0, coarsestLevel = 0;
     bool gradientsCached = false;
     std::string lodReason;
+    // What this frame built anew: the levels whose cell masks and boxes it
+    // classified (0: all cached), and whether it planned the octree, the level
+    // choice and the page table (false: the last frame's held, only the camera moved).
+    int levelsClassified = 0;
+    bool planned = false;
 };
+
+class BrickOctree;
 
 class BrickStreamer {
 public:
@@ -75,6 +90,8 @@ public:
     const BrickTable& update(const BrickRequest& request, BrickFrameStats& stats);
 
     const BrickPool& pool() const { return *pool_; }
+    // Counts the page tables built: equal counts, the same table.
+    std::uint64_t tableGeneration() const { return tableGeneration_; }
     // Each level's dimensions (at most 8 levels).
     std::vector<glm::ivec3> levelDims();
     // The value range the tables cover: the voxels', or the spline coefficients'.
@@ -83,9 +100,50 @@ public:
     TexelFormat format(bool cubic, bool halfFloat) const;
 
 private:
+    using LevelBoxList = std::vector<std::optional<SampleBox>>;
+    // What the cell masks and boxes depend on (not the camera).
+    struct BoxKey {
+        VisibilityKey visibility;
+        ClipBox clip;
+        int pageSize = 0;
+        bool cubic = false, withNeighbours = false;
+        bool operator==(const BoxKey&) const = default;
+    };
+    struct LevelBoxes {
+        std::vector<std::uint8_t> cells; // per level-0 cell: visible at this level
+        LevelBoxList boxes;              // per page, before the view culls them
+    };
+    // What a frame's plan depends on besides the camera's pages in view.
+    struct FrameKey {
+        std::uint64_t boxes = 0; // boxGeneration_
+        std::vector<char> inView;
+        std::size_t budget = 0;
+        LodPolicy policy = LodPolicy::PerBrick;
+        std::size_t uploadCap = 0;
+        bool shaded = false, gradientCache = false, halfFloat = false, decides = false,
+             gradientsRefused = false;
+        int brickSize = 0;
+        double gradientUnit = 0.0;
+        bool tight = true;
+        bool operator==(const FrameKey&) const = default;
+    };
+
     // update() with the boxes' bytes limited to `budget`.
     const BrickTable& updateWithin(const BrickRequest& r, BrickFrameStats& stats,
                                    std::size_t budget);
+    // Builds a level's cell masks and boxes unless cached for r's key; 1 when built.
+    int classify(const BrickRequest& r, int level);
+    std::vector<double> pageContents(const BrickRequest& r, const std::vector<std::uint8_t>& cells);
+    LevelBoxList boxesInView(const BrickRequest& r, int level) const;
+    FrameKey frameKey(const BrickRequest& r, std::size_t budget, const LevelBoxList& inView) const;
+    std::vector<Shown> showNodes(const BrickOctree& tree, const LevelChoice& choice,
+                                 FilterReach reach, bool gradients, std::size_t uploadCap,
+                                 BrickFrameStats& st) const;
+    void upload(const std::vector<Shown>& shown, const BrickRequest& r, BrickFrameStats& st);
+    void makeTable(const BrickOctree& tree, const std::vector<Shown>& shown,
+                   const std::vector<LevelBoxList>& perLevel, const BrickRequest& r,
+                   BrickFrameStats& st);
+    void countResident(BrickFrameStats& st) const;
     const Volume& source(int level, bool cubic);
     const BrickGrid& grid(int brickSize, bool cubic, int level, int overlap = 3);
     const std::vector<std::uint32_t>& levelCells(bool cubic, int level);
@@ -106,6 +164,18 @@ private:
     bool gradientsRefused_ = false;
     std::uint64_t frame_ = 0;
     BrickTable table_;
+    std::uint64_t tableGeneration_ = 0;
+    // Cached for the transfer function, clip box and filter (boxKey_): per
+    // level, built when first needed; per page, what it shows.
+    std::optional<BoxKey> boxKey_;
+    std::vector<std::optional<LevelBoxes>> levelBoxes_;
+    std::vector<double> pageContent_;
+    std::uint64_t boxGeneration_ = 0;
+    // The last frame's key where its plan holds for any camera with that key,
+    // the nodes it showed and its statistics.
+    std::optional<FrameKey> reusable_;
+    std::vector<std::pair<int, std::uint32_t>> lastShown_;
+    BrickFrameStats lastStats_;
 };
 
 } // namespace lucent

@@ -19,6 +19,8 @@
 #include "render/GlObjects_p.h"
 #include "render/GpuBudget.h"
 #include "render/OverlayTextures.h"
+#include "render/PartFrame_p.h"
+#include "render/RayCastSetup_p.h"
 #include "render/RenderTarget.h"
 #include "render/SceneTextures.h"
 #include "render/SurfaceRenderer.h"
@@ -26,32 +28,6 @@
 namespace lucent {
 
 namespace {
-
-constexpr int kTableSize = 4096; // as the CPU ray caster's float path
-constexpr int kPreintegrationSize = 256;
-constexpr int kCellSize = 8; // the finer leaping level, as on the CPU (BrickStreamer's cells)
-
-// The specular power when it is a whole number the shader can multiply out, else 0.
-int integerPower(const Shading& s) {
-    const double p = s.specularPower;
-    return p >= 1.0 && p <= 64.0 && p == std::floor(p) ? int(p) : 0;
-}
-
-int shaderMode(RenderMode m) {
-    switch (m) {
-    case RenderMode::Dvr:
-        return 0;
-    case RenderMode::Mip:
-        return 1;
-    case RenderMode::MinIp:
-        return 2;
-    case RenderMode::Average:
-        return 3;
-    case RenderMode::Isosurface:
-        break;
-    }
-    return 4;
-}
 
 // What refining a brick is worth before its content: the projected size of a
 // level-0 voxel at its nearest point to the eye, in pixels, weighed by how
@@ -69,44 +45,6 @@ double brickWorth(const VolumeGeometry& g, const ViewFrame& frame, int height, c
     const double x = glm::dot(toCentre, frame.right) / (along * frame.tanHalfFov * frame.aspect);
     const double y = glm::dot(toCentre, frame.up) / (along * frame.tanHalfFov);
     return pixels / (1.0 + x * x + y * y);
-}
-
-} // namespace
-
-namespace {
-
-// What a part of a volume changes in a render (nothing for a whole volume):
-// the description in the part's indices, the whole volume's box that anchors
-// the lattice, the open faces, the description's clip box.
-struct PartFrame {
-    RenderDescription local;
-    glm::dvec3 boxLo{0.0}, boxHi{0.0};
-    glm::ivec3 openHi{0};
-    glm::dvec3 sceneClipLo{0.0}, sceneClipHi{0.0};
-    bool empty = false; // the clip box leaves the part nothing
-};
-
-PartFrame partFrame(const std::optional<VolumePart>& part, const Volume& volume,
-                    const RenderDescription& asked) {
-    PartFrame f{asked};
-    f.boxHi = glm::dvec3(volume.dims() - 1);
-    if (!part) {
-        return f;
-    }
-    const glm::dvec3 offset(part->offset), wholeHi(part->whole.dims - 1);
-    f.boxLo = -offset;
-    f.boxHi = wholeHi - offset;
-    f.sceneClipLo = glm::max(asked.clip.lo, glm::dvec3(0.0)) - offset;
-    f.sceneClipHi = glm::min(asked.clip.hi, wholeHi) - offset;
-    f.local.clip.lo = glm::max(f.sceneClipLo, glm::dvec3(part->owned.lo) - offset);
-    f.local.clip.hi = glm::min(f.sceneClipHi, glm::dvec3(part->owned.hi) - offset);
-    f.local.background = glm::dvec3(0.0);
-    f.local.volume = &volume;
-    for (int a = 0; a < 3; ++a) {
-        f.openHi[a] = part->sharedHi(a) && asked.clip.hi[a] >= double(part->owned.hi[a]) ? 1 : 0;
-    }
-    f.empty = glm::any(glm::lessThan(f.local.clip.hi, f.local.clip.lo));
-    return f;
 }
 
 } // namespace
@@ -135,6 +73,30 @@ struct GpuRayCaster::State {
     std::unique_ptr<SurfaceRenderer> surfaceRenderer;
 
     State(const Volume& v, GpuOptions o) : volume(v), options(o) {}
+
+    // The classification tables' range: the voxels', or the coefficients'
+    // (a spline overshoots its samples).
+    std::pair<double, double> tableRangeFor(const RenderDescription& d) {
+        if (d.sampling.interpolation != Interpolation::Cubic) {
+            return tableRange(valueLo, valueHi);
+        }
+        const auto [lo, hi] = streamer->valueRange(true, d.sampling.brickSize);
+        return tableRange(lo, hi);
+    }
+
+    double gradientUnit() const { return std::max(valueHi - valueLo, 1e-30) / 2.0 / 32767.0; }
+
+    const BrickTable& updateBricks(const RenderDescription& d, const ViewFrame& view, double tLo,
+                                   double tHi, GpuRenderResult& out);
+    const ShaderProgram& program(const std::string& defines) {
+        auto& p = programs[defines];
+        if (!p) {
+            p = std::make_unique<ShaderProgram>("raycast.vert", "raycast.frag", defines);
+        }
+        return *p;
+    }
+    void bindTextures(const ShaderProgram& p, bool preintegrate, bool withOverlay);
+    GpuRenderResult castSurfaceAlone(const RenderDescription& d, bool countRows);
 
     std::size_t drawSurface(const RenderDescription& d) {
         if (!surfaceRenderer) {
@@ -238,7 +200,9 @@ FrameDetails GpuRayCaster::frameDetails() const {
             {"pool_mib", mib(g.poolBytes)},
             {"cast_ms", fixed(g.castMs)},
             {"read_ms", fixed(g.readMs)},
-            {"convert_ms", fixed(g.convertMs)}};
+            {"convert_ms", fixed(g.convertMs)},
+            {"prepare_ms", fixed(g.prepareMs)},
+            {"bricks_planned", g.bricksPlanned ? "yes" : "no"}};
 }
 
 GpuRenderResult GpuRayCaster::renderWithGpuStats(const RenderDescription& desc) {
@@ -362,7 +326,109 @@ void clearFramebuffer(const FramebufferTarget& target, const glm::dvec3& colour)
     checkGl("clearing the framebuffer");
 }
 
+const BrickTable& GpuRayCaster::State::updateBricks(const RenderDescription& d,
+                                                    const ViewFrame& view, double tLo, double tHi,
+                                                    GpuRenderResult& out) {
+    const SamplingSettings& sampling = d.sampling;
+    const bool preintegrate = sampling.preintegrate && d.mode == RenderMode::Dvr;
+    const bool shadedMode = d.mode == RenderMode::Dvr || d.mode == RenderMode::Isosurface;
+    const VolumeGeometry& g = volume.geometry();
+    BrickRequest request;
+    request.brickSize = sampling.brickSize;
+    request.cubic = sampling.interpolation == Interpolation::Cubic;
+    request.halfFloat = options.halfFloatCoefficients;
+    request.shaded = shadedMode && d.transferFunction.shading.enabled;
+    request.gradientCache = options.gradientCache;
+    request.gradientUnit = gradientUnit();
+    request.visibilityKey =
+        visibilityKey(d, tLo, tHi, preintegrate ? kRayPreintegrationSize : kRayTableSize);
+    request.visible = valueVisibility(request.visibilityKey);
+    request.decides = shadedMode;
+    request.withNeighbours = preintegrate || d.mode == RenderMode::Isosurface;
+    request.clip = d.clip;
+    request.inView = [&](const glm::dvec3& lo, const glm::dvec3& hi) {
+        return boxInView(g, view, lo, hi);
+    };
+    request.worth = [&](const glm::dvec3& lo, const glm::dvec3& hi, double content) {
+        return brickWorth(g, view, d.height, lo, hi) * content;
+    };
+    request.policy = options.lodPolicy;
+    request.uploadCap = options.uploadBytesPerFrame;
+    request.tight = options.tightBricks;
+    BrickFrameStats bricks;
+    const BrickTable& table = streamer->update(request, bricks);
+    const BrickPool& pool = streamer->pool();
+    GpuFrameStats& gpu = out.gpu;
+    gpu.bricksUploaded = bricks.bricksUploaded;
+    gpu.bytesUploaded = bricks.bytesUploaded;
+    gpu.gradientsCached = bricks.gradientsCached;
+    gpu.bricksResident = pool.residentCount();
+    gpu.valueBytes = bricks.valueBytes;
+    gpu.gradientBytes = bricks.gradientBytes;
+    gpu.tableBytes = bricks.tableBytes;
+    gpu.residentBytes = bricks.valueBytes + bricks.gradientBytes;
+    gpu.poolBytes = pool.bytes();
+    gpu.budgetBytes = budget;
+    gpu.budgetSource = budgetSource;
+    gpu.bricksPerLevel = bricks.perLevel;
+    gpu.levelOfBrick = bricks.levelOfBrick;
+    gpu.pageSize = bricks.brickSize;
+    gpu.pagesShown = bricks.bricksShown;
+    gpu.pending = bricks.pending;
+    gpu.lodReason = bricks.lodReason;
+    gpu.levelsClassified = bricks.levelsClassified;
+    gpu.bricksPlanned = bricks.planned;
+    RenderStats& stats = out.frame.stats;
+    stats.bricksTotal = bricks.bricksTotal;
+    stats.bricksUsed = bricks.bricksUsed;
+    stats.lod = bricks.coarsestLevel;
+    stats.lodReason = bricks.lodReason;
+    stats.bricksPending = bricks.pending;
+    return table;
+}
+
+void GpuRayCaster::State::bindTextures(const ShaderProgram& p, bool preintegrate,
+                                       bool withOverlay) {
+    const BrickPool& pool = streamer->pool();
+    // Texture units, in the order of the samplers' names.
+    const std::pair<const char*, GLuint> units[] = {
+        {"uPageTable", scene.pageTable()},
+        {"uPageBox", scene.pageBox()},
+        {"uCellCode", scene.cellCode()},
+        {"uCellRange", scene.cellRange()},
+        {"uPool", pool.texture()},
+        {"uTable", scene.table()},
+        {"uPreTable", preintegrate ? scene.preintegrationTable() : scene.table()},
+        {"uGradientPool", pool.hasGradients() ? pool.gradientTexture() : pool.texture()},
+        {"uSurfaceColour", surface ? surfaceRenderer->colour() : 0},
+        {"uSurfaceDistance", surface ? surfaceRenderer->distance() : 0},
+        {"uOverlay", withOverlay ? overlay.volume() : 0},
+        {"uOverlayTable", withOverlay ? overlay.table() : 0},
+        {"uOverlayEmptyCells", withOverlay ? overlay.emptyCells() : 0},
+        {"uOverlayEmptyBricks", withOverlay ? overlay.emptyBricks() : 0},
+    };
+    for (int u = 0; u < int(std::size(units)); ++u) {
+        glBindTextureUnit(GLuint(u), units[u].second);
+        p.set(units[u].first, u);
+    }
+}
+
+GpuRenderResult GpuRayCaster::State::castSurfaceAlone(const RenderDescription& d, bool countRows) {
+    // The surface alone: no bricks, no rays.
+    inTarget.reset();
+    GpuRenderResult out;
+    out.gpu.surfaceBytesUploaded = drawSurface(d);
+    target.resize(d.width, d.height);
+    target.bindAndClear(countRows);
+    surfaceRenderer->copyColourTo(target.colour());
+    inTarget = d;
+    inTarget->volume = &volume;
+    last = out.gpu;
+    return out;
+}
+
 GpuRenderResult GpuRayCaster::cast(const RenderDescription& asked, bool countRows) {
+    const auto started = std::chrono::steady_clock::now();
     asked.validate();
     State& s = *state_;
     // A part draws its owned box (in its own indices) over transparent black.
@@ -383,210 +449,66 @@ GpuRenderResult GpuRayCaster::cast(const RenderDescription& asked, bool countRow
         throw std::invalid_argument(s.part ? "a part of a distributed render draws no overlay"
                                            : "the overlay's grid is not this caster's volume's");
     }
-    if (s.surface && !s.surface->showVolume) { // the surface alone: no bricks, no rays
-        s.inTarget.reset();
-        GpuRenderResult out;
-        out.gpu.surfaceBytesUploaded = s.drawSurface(desc);
-        s.target.resize(desc.width, desc.height);
-        s.target.bindAndClear(countRows);
-        s.surfaceRenderer->copyColourTo(s.target.colour());
-        s.inTarget = desc;
-        s.inTarget->volume = &s.volume;
-        s.last = out.gpu;
-        return out;
+    if (s.surface && !s.surface->showVolume) {
+        return s.castSurfaceAlone(desc, countRows);
     }
     const SamplingSettings& sampling = desc.sampling;
-    const bool cubic = sampling.interpolation == Interpolation::Cubic;
     const bool preintegrate = sampling.preintegrate && desc.mode == RenderMode::Dvr;
-    const int brickSize = sampling.brickSize;
-    GpuRenderResult out;
     if (!s.streamer) {
         s.streamer = std::make_unique<BrickStreamer>(s.volume, s.budget);
     }
-    BrickStreamer& streamer = *s.streamer;
-
-    // Table range: the voxels', or the coefficients' (a spline overshoots its samples).
-    double tLo = s.valueLo, tHi = s.valueHi;
-    if (cubic) {
-        std::tie(tLo, tHi) = streamer.valueRange(true, brickSize);
-    }
-    std::tie(tLo, tHi) = tableRange(tLo, tHi);
-    const auto visible =
-        valueVisibility(desc, tLo, tHi, preintegrate ? kPreintegrationSize : kTableSize);
-
+    GpuRenderResult out;
+    const auto [tLo, tHi] = s.tableRangeFor(desc);
     // The bricks in view, each at the finest level the budget allows for it.
     const VolumeGeometry& g = s.volume.geometry();
-    const ViewFrame frame =
+    const ViewFrame view =
         makeViewFrame(s.part ? s.part->whole : g, desc.camera, desc.width, desc.height);
-    const bool shadedMode = desc.mode == RenderMode::Dvr || desc.mode == RenderMode::Isosurface;
-    BrickRequest request;
-    request.brickSize = brickSize;
-    request.cubic = cubic;
-    request.halfFloat = s.options.halfFloatCoefficients;
-    request.shaded = shadedMode && desc.transferFunction.shading.enabled;
-    request.gradientCache = s.options.gradientCache;
-    request.gradientUnit = std::max(s.valueHi - s.valueLo, 1e-30) / 2.0 / 32767.0;
-    request.visible = visible;
-    request.decides = shadedMode;
-    request.withNeighbours = preintegrate || desc.mode == RenderMode::Isosurface;
-    request.clip = desc.clip;
-    request.inView = [&](const glm::dvec3& lo, const glm::dvec3& hi) {
-        return boxInView(g, frame, lo, hi);
-    };
-    request.worth = [&](const glm::dvec3& lo, const glm::dvec3& hi, double content) {
-        return brickWorth(g, frame, desc.height, lo, hi) * content;
-    };
-    request.policy = s.options.lodPolicy;
-    request.uploadCap = s.options.uploadBytesPerFrame;
-    request.tight = s.options.tightBricks;
-    BrickFrameStats bricks;
-    const BrickTable& table = streamer.update(request, bricks);
-    const BrickPool& pool = streamer.pool();
-    const TexelFormat format = pool.format();
-    out.gpu.bricksUploaded = bricks.bricksUploaded;
-    out.gpu.bytesUploaded = bricks.bytesUploaded;
-    out.gpu.gradientsCached = bricks.gradientsCached;
-    out.gpu.bricksResident = pool.residentCount();
-    out.gpu.valueBytes = bricks.valueBytes;
-    out.gpu.gradientBytes = bricks.gradientBytes;
-    out.gpu.tableBytes = bricks.tableBytes;
-    out.gpu.residentBytes = bricks.valueBytes + bricks.gradientBytes;
-    out.gpu.poolBytes = pool.bytes();
-    out.gpu.budgetBytes = s.budget;
-    out.gpu.budgetSource = s.budgetSource;
-    out.gpu.bricksPerLevel = bricks.perLevel;
-    out.gpu.levelOfBrick = bricks.levelOfBrick;
-    out.gpu.pageSize = bricks.brickSize;
-    out.gpu.pagesShown = bricks.bricksShown;
-    out.gpu.pending = bricks.pending;
-    out.gpu.lodReason = bricks.lodReason;
-
-    s.scene.updateBricks(table);
-    s.scene.updateTables(desc.transferFunction, tLo, tHi, sampling.step, preintegrate, kTableSize,
-                         kPreintegrationSize);
-    const glm::ivec3 per = table.bricksPerAxis;
-    const glm::ivec3 cellsPer = table.cellsPerAxis;
-    std::vector<glm::ivec3> levelDims = streamer.levelDims();
-    levelDims.resize(8, levelDims.back());
-
-    // Uniforms: the CPU ray caster's setup; each brick's level is in its page entry.
-    const glm::dmat3 linear(g.direction[0] * g.spacing.x, g.direction[1] * g.spacing.y,
-                            g.direction[2] * g.spacing.z);
-    const double dt = sampling.step * std::min({g.spacing.x, g.spacing.y, g.spacing.z});
-    const glm::dvec3 boxLo = part.boxLo, boxHi = part.boxHi;
-    const double tableCell = (tHi - tLo) / double(kTableSize - 1);
-    const auto [visLo, visHi] = visibleValueRange(desc.transferFunction, tableCell);
-    const auto flag = [](bool b) { return b ? "true" : "false"; };
-    const std::string defines =
-        "#define LUCENT_MODE " + std::to_string(shaderMode(desc.mode)) +
-        "\n#define LUCENT_INTERP " +
-        std::to_string(sampling.interpolation == Interpolation::Nearest ? 0
-                       : cubic                                          ? 2
-                                                                        : 1) +
-        "\n#define LUCENT_PRECLASSIFY " + flag(sampling.classification == Classification::Pre) +
-        "\n#define LUCENT_PREINTEGRATE " + flag(preintegrate) + "\n#define LUCENT_SHADING " +
-        flag(desc.transferFunction.shading.enabled) + "\n#define LUCENT_LEAP " +
-        flag(sampling.emptySpaceLeaping && (overlay == nullptr || desc.mode == RenderMode::Dvr)) +
-        "\n#define LUCENT_CELLS_IN_ONE_BRICK " + flag(table.brickSize % kCellSize == 0) +
-        "\n#define LUCENT_GRADIENT_TEXTURE " + flag(pool.hasGradients()) +
-        "\n#define LUCENT_GRADIENT_IN_POOL " + flag(pool.gradientsShareTexture()) +
-        "\n#define LUCENT_SPECULAR_INT " +
-        std::to_string(integerPower(desc.transferFunction.shading)) +
-        "\n#define LUCENT_ROW_SAMPLES " + flag(countRows) + "\n#define LUCENT_SURFACE " +
-        flag(s.surface != nullptr) + "\n#define LUCENT_OVERLAY " + flag(overlay != nullptr) + "\n";
-    auto& program = s.programs[defines];
-    if (!program) {
-        program = std::make_unique<ShaderProgram>("raycast.vert", "raycast.frag", defines);
-    }
+    const BrickTable& table = s.updateBricks(desc, view, tLo, tHi, out);
+    out.gpu.tableUploaded = s.scene.updateBricks(table, s.streamer->tableGeneration());
+    s.scene.updateTables(desc.transferFunction, tLo, tHi, sampling.step, preintegrate,
+                         kRayTableSize, kRayPreintegrationSize);
+    const RayCastFrame frame{desc,
+                             g,
+                             view,
+                             part,
+                             s.part.has_value(),
+                             table,
+                             s.streamer->pool(),
+                             s.streamer->levelDims(),
+                             tLo,
+                             tHi,
+                             s.valueLo,
+                             s.valueHi,
+                             s.gradientUnit(),
+                             preintegrate,
+                             countRows,
+                             s.surface != nullptr,
+                             overlay != nullptr};
+    const ShaderProgram& p = s.program(rayCastDefines(frame));
     if (s.surface) { // its own program and framebuffer: before the rays' are set
         out.gpu.surfaceBytesUploaded = s.drawSurface(desc);
     }
     if (overlay != nullptr) {
         out.gpu.bytesUploaded += s.overlay.update(desc.overlay, sampling.step);
-        s.overlay.updateLeaping(desc.overlay, kCellSize, cellsPer, table.brickSize, per);
+        s.overlay.updateLeaping(desc.overlay, kRayCellSize, table.cellsPerAxis, table.brickSize,
+                                table.bricksPerAxis);
     }
-    const ShaderProgram& p = *program;
     p.use();
-    p.set("uEye", g.toIndex(frame.eye));
-    p.set("uForward", frame.forward);
-    p.set("uRight", frame.right);
-    p.set("uUp", frame.up);
-    p.set("uToIndex", glm::inverse(linear));
-    p.set("uTanHalfFov", frame.tanHalfFov);
-    p.set("uAspect", frame.aspect);
-    p.set("uImageSize", glm::ivec2(desc.width, desc.height));
-    p.set("uDt", dt);
-    p.set("uBoxLo", boxLo);
-    p.set("uBoxHi", boxHi);
-    p.set("uClipLo", glm::max(desc.clip.lo, boxLo));
-    p.set("uClipHi", glm::min(desc.clip.hi, boxHi));
-    p.set("uPart", s.part ? 1 : 0);
-    p.set("uOpenHi", part.openHi);
-    p.set("uSceneClipLo", part.sceneClipLo);
-    p.set("uSceneClipHi", part.sceneClipHi);
-    const Shading& light = desc.transferFunction.shading;
-    p.set("uEarlyTermination", float(sampling.earlyTermination));
-    p.set("uIso", float(desc.isoValue));
-    p.set("uLight", glm::vec4(light.ambient, light.diffuse, light.specular, light.specularPower));
-    p.set("uGradientToWorld",
-          glm::mat3(glm::transpose(glm::inverse(linear)) / gradientScale(s.valueLo, s.valueHi)));
-    p.set("uVisibleLo", float(std::max(visLo, -3.0e38)));
-    p.set("uVisibleHi", float(std::min(visHi, 3.0e38)));
-    p.set("uStepRatio", float(sampling.step));
-    glUniform3iv(p.location("uLevelDims[0]"), 8, &levelDims[0].x);
-    p.set("uBrickSize", table.brickSize);
-    p.set("uInvBrickSize", 1.0f / float(table.brickSize));
-    p.set("uBricksPerAxis", per);
-    p.set("uInvPoolSize", 1.0f / glm::vec3(pool.extent()));
-    p.set("uValueScale", format.valueScale);
-    p.set("uGradientScale", float(request.gradientUnit * 32767.0));
-    p.set("uTableSize", kTableSize);
-    p.set("uTableLo", float(tLo));
-    p.set("uTableScale", float(double(kTableSize - 1) / (tHi - tLo)));
-    p.set("uPreSize", kPreintegrationSize);
-    p.set("uPreLo", float(tLo));
-    p.set("uPreHi", float(tHi));
-    p.set("uCellSize", kCellSize);
-    p.set("uInvCellSize", 1.0f / float(kCellSize));
-    p.set("uCellsPerAxis", cellsPer);
+    setRayCastUniforms(p, frame);
     if (overlay != nullptr) {
         s.overlay.setUniforms(p, desc.overlay);
     }
-    // Texture units, in the order of the samplers' names.
-    const std::pair<const char*, GLuint> units[] = {
-        {"uPageTable", s.scene.pageTable()},
-        {"uPageBox", s.scene.pageBox()},
-        {"uCellCode", s.scene.cellCode()},
-        {"uCellRange", s.scene.cellRange()},
-        {"uPool", pool.texture()},
-        {"uTable", s.scene.table()},
-        {"uPreTable", preintegrate ? s.scene.preintegrationTable() : s.scene.table()},
-        {"uGradientPool", pool.hasGradients() ? pool.gradientTexture() : pool.texture()},
-        {"uSurfaceColour", s.surface ? s.surfaceRenderer->colour() : 0},
-        {"uSurfaceDistance", s.surface ? s.surfaceRenderer->distance() : 0},
-        {"uOverlay", overlay != nullptr ? s.overlay.volume() : 0},
-        {"uOverlayTable", overlay != nullptr ? s.overlay.table() : 0},
-        {"uOverlayEmptyCells", overlay != nullptr ? s.overlay.emptyCells() : 0},
-        {"uOverlayEmptyBricks", overlay != nullptr ? s.overlay.emptyBricks() : 0},
-    };
-    for (int u = 0; u < int(std::size(units)); ++u) {
-        glBindTextureUnit(GLuint(u), units[u].second);
-        p.set(units[u].first, u);
-    }
-
+    s.bindTextures(p, preintegrate, overlay != nullptr);
     s.target.resize(desc.width, desc.height);
     // From here the target holds no frame until this one is cast.
     s.inTarget.reset();
     s.target.bindAndClear(countRows);
     glBindVertexArray(s.vao.get());
+    out.gpu.prepareMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started)
+            .count();
     glDrawArrays(GL_TRIANGLES, 0, 3);
     checkGl("ray casting");
-    RenderStats& stats = out.frame.stats;
-    stats.bricksTotal = bricks.bricksTotal;
-    stats.bricksUsed = bricks.bricksUsed;
-    stats.lod = bricks.coarsestLevel;
-    stats.lodReason = out.gpu.lodReason;
-    stats.bricksPending = out.gpu.pending;
     s.inTarget = desc;
     s.inTarget->volume = &s.volume;
     s.last = out.gpu;

@@ -68,6 +68,16 @@ struct GpuFrameStats {
     double castMs = 0.0;
     double readMs = 0.0;
     double convertMs = 0.0;
+    // CPU time of the frame before its draw call (bricks, tables, uniforms);
+    // what a camera-only frame costs besides the cast itself.
+    double prepareMs = 0.0;
+    // What the frame rebuilt (render/BrickStreamer.h): the levels whose cell
+    // masks and boxes it classified, whether it planned the bricks (octree,
+    // levels, page table) anew and uploaded the page table. A frame that only
+    // moved the camera over the same pages does none of these.
+    int levelsClassified = 0;
+    bool bricksPlanned = false;
+    bool tableUploaded = false;
 };
 
 struct GpuRenderResult {

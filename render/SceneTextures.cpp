@@ -17,9 +17,10 @@ GlTexture texture3d(GLenum format, glm::ivec3 size, GLenum clientFormat, GLenum 
 
 } // namespace
 
-void SceneTextures::updateBricks(const BrickTable& t) {
-    if (bricksKey_ == t) {
-        return;
+bool SceneTextures::updateBricks(const BrickTable& t, std::uint64_t generation) {
+    if (bricksKey_ && (generation == generation_ || *bricksKey_ == t)) {
+        generation_ = generation;
+        return false;
     }
     pageTable_ = texture3d(GL_RGBA32I, t.bricksPerAxis, GL_RGBA_INTEGER, GL_INT, t.page.data());
     pageBox_ =
@@ -29,6 +30,8 @@ void SceneTextures::updateBricks(const BrickTable& t) {
     cellRange_ = texture3d(GL_RG32F, cellsPerAxis_, GL_RG, GL_FLOAT, t.ranges.data());
     checkGl("page table and leaping cells");
     bricksKey_ = t;
+    generation_ = generation;
+    return true;
 }
 
 void SceneTextures::updateTables(const TransferFunction& tf, double lo, double hi, double stepRatio,

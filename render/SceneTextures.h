@@ -19,8 +19,9 @@ namespace lucent {
 class SceneTextures {
 public:
     // The page table, the bricks' sample boxes and the leaping cells
-    // (BrickTable.h), uploaded when they changed.
-    void updateBricks(const BrickTable& table);
+    // (BrickTable.h), uploaded when they changed: never for the generation
+    // (BrickStreamer::tableGeneration) last given. True when uploaded.
+    bool updateBricks(const BrickTable& table, std::uint64_t generation);
 
     // Row 0: alpha corrected for stepRatio; row 1: alpha per dt_ref. With
     // preintegrate, the pre-integration table too.
@@ -39,6 +40,7 @@ private:
     GlTexture pageTable_, pageBox_, cellCode_, cellRange_, table_, preTable_, spareTable_;
     glm::ivec3 cellsPerAxis_{0};
     std::optional<BrickTable> bricksKey_;
+    std::uint64_t generation_ = 0;
     // The pre-integration table in use and the one before it (another step).
     std::optional<std::tuple<TransferFunction, double, double, double>> tableKey_, preKey_,
         spareKey_;

@@ -6,13 +6,26 @@
 
 namespace lucent {
 
-std::function<bool(double, double)> valueVisibility(const RenderDescription& desc, double tableLo,
-                                                    double tableHi, int tableSize) {
+VisibilityKey visibilityKey(const RenderDescription& desc, double tableLo, double tableHi,
+                            int tableSize) {
     const double cell = tableSize > 1 ? (tableHi - tableLo) / double(tableSize - 1) : 0.0;
-    const double widen = cell + 1e-6 * (std::abs(tableLo) + std::abs(tableHi) + 1.0);
-    const RenderMode mode = desc.mode;
-    const double iso = desc.isoValue;
-    return [mode, iso, widen, tf = desc.transferFunction](double a, double b) {
+    VisibilityKey key;
+    key.mode = desc.mode;
+    key.widen = cell + 1e-6 * (std::abs(tableLo) + std::abs(tableHi) + 1.0);
+    if (desc.mode == RenderMode::Isosurface) {
+        key.isoValue = desc.isoValue;
+    }
+    if (desc.mode == RenderMode::Dvr) {
+        key.opacity = desc.transferFunction.opacity;
+    }
+    return key;
+}
+
+std::function<bool(double, double)> valueVisibility(const VisibilityKey& key) {
+    TransferFunction opacity;
+    opacity.opacity = key.opacity;
+    return [mode = key.mode, iso = key.isoValue, widen = key.widen,
+            tf = std::move(opacity)](double a, double b) {
         if (mode == RenderMode::Isosurface) {
             return iso >= a - widen && iso <= b + widen;
         }
@@ -21,6 +34,11 @@ std::function<bool(double, double)> valueVisibility(const RenderDescription& des
         }
         return tf.maxOpacity(a - widen, b + widen) > 0.0;
     };
+}
+
+std::function<bool(double, double)> valueVisibility(const RenderDescription& desc, double tableLo,
+                                                    double tableHi, int tableSize) {
+    return valueVisibility(visibilityKey(desc, tableLo, tableHi, tableSize));
 }
 
 std::pair<double, double> tableRange(double lo, double hi) {

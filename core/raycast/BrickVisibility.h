@@ -4,11 +4,26 @@
 
 #include <functional>
 #include <utility>
+#include <vector>
 
 #include "core/scene/RenderDescription.h"
 #include "core/scene/ViewFrame.h"
 
 namespace lucent {
+
+// What valueVisibility answers from: two descriptions with equal keys see
+// the same values, so what was derived from one (visible cells, boxes) holds
+// for the other. A colour or shading change leaves it as it is.
+struct VisibilityKey {
+    RenderMode mode = RenderMode::Dvr;
+    double isoValue = 0.0;
+    std::vector<OpacityPoint> opacity; // DVR only
+    double widen = 0.0;                // of each range asked, for the table's lookups
+    bool operator==(const VisibilityKey&) const = default;
+};
+VisibilityKey visibilityKey(const RenderDescription& desc, double tableLo, double tableHi,
+                            int tableSize);
+std::function<bool(double lo, double hi)> valueVisibility(const VisibilityKey& key);
 
 // isVisible(lo, hi) for visibleBricks: whether any value in [lo, hi] can show.
 // DVR: non-zero opacity; isosurface: the iso value inside; MIP, MinIP and

@@ -62,6 +62,7 @@ private:
 struct ClipBox {
     glm::dvec3 lo{-1e300};
     glm::dvec3 hi{1e300};
+    bool operator==(const ClipBox&) const = default;
 };
 
 // Ids of the bricks that can contribute to an image, ascending: those whose
