@@ -216,10 +216,20 @@ std::vector<std::optional<SampleBox>> BrickStreamer::boxesInView(const BrickRequ
 
 BrickStreamer::FrameKey BrickStreamer::frameKey(const BrickRequest& r, std::size_t budget,
                                                 const LevelBoxList& inView) const {
-    FrameKey key{
-        boxGeneration_,  {},          budget,    r.policy,          r.uploadCap, r.shaded,
-        r.gradientCache, r.halfFloat, r.decides, gradientsRefused_, r.brickSize, r.gradientUnit,
-        r.tight};
+    FrameKey key;
+    key.boxes = boxGeneration_;
+    key.budget = budget;
+    key.policy = r.policy;
+    key.uploadCap = r.uploadCap;
+    key.shaded = r.shaded;
+    key.gradientCache = r.gradientCache;
+    key.halfFloat = r.halfFloat;
+    key.decides = r.decides;
+    key.gradientsRefused = gradientsRefused_;
+    key.gradientCacheBytes = r.gradientCacheBytes;
+    key.brickSize = r.brickSize;
+    key.gradientUnit = r.gradientUnit;
+    key.tight = r.tight;
     key.inView.reserve(inView.size());
     for (const auto& box : inView) {
         key.inView.push_back(box.has_value() ? 1 : 0);
@@ -270,14 +280,17 @@ const BrickTable& BrickStreamer::updateWithin(const BrickRequest& r, BrickFrameS
     }
     const BrickOctree tree(*boxes_, perLevel, worth);
     LevelChoice choice = tree.choose(computed, valuesOnly, budget, r.policy);
-    // Gradients are cached when they cost no brick a finer level.
+    // Gradients are cached when they cost no brick a finer level, and the
+    // bricks with them stay within their share of memory.
     bool gradients = false;
     const bool mayCache = r.shaded && r.gradientCache && !r.cubic && !gradientsRefused_;
     if (mayCache || (pool_ && pool_->hasGradients() && !r.cubic)) {
         try {
             const LevelChoice with =
                 tree.choose(cached, BrickPool::texelBytes(f, true), budget, r.policy);
-            if (with.shown == choice.shown) {
+            const bool withinShare =
+                r.gradientCacheBytes == 0 || with.bytes <= r.gradientCacheBytes;
+            if (with.shown == choice.shown && withinShare) {
                 choice = with;
                 gradients = true;
             }

@@ -33,11 +33,12 @@ namespace lucent {
 
 struct BrickRequest {
     int brickSize = 64;
-    bool cubic = false;        // the pool holds B-spline coefficients
-    bool halfFloat = false;    // ... in 16-bit floats
-    bool shaded = false;       // samples read gradients
-    bool gradientCache = true; // keep them in the pool when they fit (not cubic)
-    double gradientUnit = 1.0; // value units of a cached gradient component of 1 (int16)
+    bool cubic = false;                 // the pool holds B-spline coefficients
+    bool halfFloat = false;             // ... in 16-bit floats
+    bool shaded = false;                // samples read gradients
+    bool gradientCache = true;          // keep them in the pool when they fit (not cubic)
+    std::size_t gradientCacheBytes = 0; // ... and the bricks with them take at most this (0: any)
+    double gradientUnit = 1.0;          // value units of a cached gradient component of 1 (int16)
     std::function<bool(double, double)> visible;
     // What `visible` answers from (equal keys, equal answers): the cell masks
     // and boxes built for one request serve the next with the same key, clip
@@ -122,6 +123,7 @@ private:
         std::size_t uploadCap = 0;
         bool shaded = false, gradientCache = false, halfFloat = false, decides = false,
              gradientsRefused = false;
+        std::size_t gradientCacheBytes = 0;
         int brickSize = 0;
         double gradientUnit = 0.0;
         bool tight = true;

@@ -339,6 +339,8 @@ const BrickTable& GpuRayCaster::State::updateBricks(const RenderDescription& d,
     request.halfFloat = options.halfFloatCoefficients;
     request.shaded = shadedMode && d.transferFunction.shading.enabled;
     request.gradientCache = options.gradientCache;
+    request.gradientCacheBytes =
+        std::size_t(std::max(options.gradientCacheShare, 0.0) * double(volume.byteCount()));
     request.gradientUnit = gradientUnit();
     request.visibilityKey =
         visibilityKey(d, tLo, tHi, preintegrate ? kRayPreintegrationSize : kRayTableSize);

@@ -27,6 +27,11 @@ struct GpuOptions {
     // one texel instead of six (nearest and trilinear). Either way the pool
     // holds only what the scene needs.
     bool gradientCache = true;
+    // The most GPU memory the resident bricks may take with cached gradients,
+    // as a share of the volume's own bytes; above it the gradients are
+    // computed (0: no limit). Cached gradients take 4x the values of an int16
+    // volume: on a CT whose visible boxes cover 3/4 of it, 3x the volume.
+    double gradientCacheShare = 2.0;
     // Under a budget too small for level 0: each brick at the finest level the
     // budget allows for it, those worth most first (projected voxel size,
     // visible content, focus), or the whole volume at one level.

@@ -46,7 +46,9 @@ int runRender(const QStringList& args) {
         {"preset", "Transfer function preset (default ct-bone, ct-mip or mr-default).", "NAME"},
         {"tf", "Transfer function JSON file.", "FILE.json"},
         {"gpu-budget", "GPU memory budget (GPU backend).", "MiB"},
-        {"gradient-cache", "GPU: keep each brick's gradient for faster shading (the default)."},
+        {"gradient-cache",
+         "GPU: keep each brick's gradient for faster shading whatever memory it takes (by "
+         "default only while the bricks stay within twice the volume's bytes)."},
         {"no-gradient-cache", "GPU: compute gradients from six fetches (less memory, slower)."},
         {"lod",
          "GPU, under a budget too small for level 0: per-brick (each brick as fine as the budget "
@@ -132,6 +134,9 @@ int runRender(const QStringList& args) {
             throw UsageError("--gradient-cache and --no-gradient-cache exclude each other");
         }
         gpuOptions.gradientCache = !parser.isSet("no-gradient-cache");
+        if (parser.isSet("gradient-cache")) {
+            gpuOptions.gradientCacheShare = 0.0; // no limit
+        }
         const QString lod = parser.value("lod");
         if (lod != "per-brick" && lod != "uniform") {
             throw UsageError("--lod must be per-brick or uniform, not '" + lod.toStdString() + "'");

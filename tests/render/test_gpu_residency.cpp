@@ -146,6 +146,45 @@ private slots:
         QSKIP("no budget tried renders a coarser level with cached gradients for this volume");
     }
 
+    // The default path's bricks take at most twice the volume's bytes: the
+    // Philips CT keeps its cached gradients (186 %), the head CT, whose
+    // visible boxes cover most of it, computes them (the cache would take 3x).
+    void gradientCacheStaysWithinTwiceTheVolume() {
+        const std::filesystem::path head =
+            "/usr/share/doc/invesalius-examples/examples/Cranium.inv3";
+        if (!std::filesystem::exists(head)) {
+            QFAIL("invesalius-examples is not installed: run packaging/install-deps.sh");
+        }
+        for (const auto& path : {philipsCt(), head}) {
+            if (!std::filesystem::exists(path)) {
+                continue;
+            }
+            const Volume v = loadPath(path);
+            RenderDescription d = describe(v, loadPreset("ct-bone"), 64);
+            GpuRayCaster gpu(v);
+            const GpuRenderResult r = gpu.renderWithGpuStats(d);
+            QVERIFY2(r.gpu.residentBytes <= 2 * v.byteCount(),
+                     qPrintable(QString("%1: %2 MiB resident for a volume of %3 MiB")
+                                    .arg(QString::fromStdString(path.string()))
+                                    .arg(r.gpu.residentBytes >> 20)
+                                    .arg(v.byteCount() >> 20)));
+            GpuOptions unlimited;
+            unlimited.gradientCacheShare = 0.0;
+            GpuRayCaster cacheAlways(v, unlimited);
+            const GpuRenderResult all = cacheAlways.renderWithGpuStats(d);
+            QVERIFY(all.gpu.gradientsCached);
+            // Cached where it fits the share, computed where not; the same image either way.
+            QCOMPARE(r.gpu.gradientsCached, all.gpu.residentBytes <= 2 * v.byteCount());
+            const double p = comparedPsnr(r.frame.image, all.frame.image, "gradient-share", 50.0);
+            QVERIFY2(p >= 50.0, qPrintable(QString("within the share vs unlimited: %1 dB").arg(p)));
+            if (path == philipsCt()) {
+                QVERIFY(r.gpu.gradientsCached);
+            } else {
+                QVERIFY(!r.gpu.gradientsCached);
+            }
+        }
+    }
+
     void budgetTooSmallForAnyLevelSaysSo() {
         const Volume v = realOrMade();
         GpuOptions tiny;
