@@ -1,7 +1,9 @@
 #include "core/raycast/CpuRayCaster.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <optional>
@@ -95,6 +97,32 @@ std::vector<std::uint8_t> leapCodes(const BrickGrid& bricks,
     return codes;
 }
 
+// Times a frame: the rays (added by the caller around the cast) and, when the
+// frame ends by any path, the rest.
+class FrameClock {
+public:
+    using Clock = std::chrono::steady_clock;
+    FrameClock(double& outsideMs, double& castMs) : outside_(outsideMs), cast_(castMs) {
+        cast_ = 0.0;
+    }
+    ~FrameClock() { outside_ = millisecondsSince(start_) - cast_; }
+    FrameClock(const FrameClock&) = delete;
+    FrameClock& operator=(const FrameClock&) = delete;
+    template <class F> void timeCast(F&& f) {
+        const auto t0 = Clock::now();
+        f();
+        cast_ += millisecondsSince(t0);
+    }
+
+private:
+    static double millisecondsSince(Clock::time_point t) {
+        return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+    }
+    Clock::time_point start_ = Clock::now();
+    double& outside_;
+    double& cast_;
+};
+
 } // namespace
 
 CpuRayCaster::CpuRayCaster(const Volume& volume)
@@ -113,7 +141,17 @@ std::string CpuRayCaster::device() const {
     return "cpu: " + std::to_string(std::max(1u, std::thread::hardware_concurrency())) + " threads";
 }
 
+FrameDetails CpuRayCaster::frameDetails() const {
+    const auto fixed = [](double v) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.3f", v);
+        return std::string(text);
+    };
+    return {{"outside_cast_ms", fixed(outsideCastMs_)}, {"cast_ms", fixed(castMs_)}};
+}
+
 RenderResult CpuRayCaster::render(const RenderDescription& desc) {
+    FrameClock clock(outsideCastMs_, castMs_);
     desc.validate();
     if (desc.volume != nullptr && desc.volume != &volume_) {
         throw std::invalid_argument("render description names another volume than this caster's");
@@ -362,8 +400,10 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
         result.projection.assign(result.premultiplied.size(), glm::vec2(0.0f));
     }
     auto cast = [&](const auto& kernel) {
-        castImage(kernel, g, frame, local, result.image, result.premultiplied, result.stats.samples,
-                  projecting ? &result.projection : nullptr);
+        clock.timeCast([&] {
+            castImage(kernel, g, frame, local, result.image, result.premultiplied,
+                      result.stats.samples, projecting ? &result.projection : nullptr);
+        });
     };
     // The overlay along the same rays (the generic kernel: the fast ones draw the base alone).
     const OverlayTable overlayEntries =

@@ -34,12 +34,17 @@ public:
     RenderResult render(const RenderDescription& description) override;
     std::string backend() const override { return "cpu"; }
     std::string device() const override;
+    // The last frame's split of its time: outside_cast_ms (validation, tables,
+    // leap data, buffers: what a camera-only change costs beyond the rays) and
+    // cast_ms (the rays).
+    FrameDetails frameDetails() const override;
 
 private:
     struct Cache;
     const Volume& volume_;
     std::optional<VolumePart> part_;
     std::unique_ptr<Cache> cache_;
+    double outsideCastMs_ = 0.0, castMs_ = 0.0;
 };
 
 } // namespace lucent
