@@ -6,9 +6,10 @@
 #include <stdexcept>
 #include <string>
 
-#include <volpack.h>
-
 #include "core/scene/ViewFrame.h"
+
+#ifdef LUCENT_HAVE_VOLPACK
+#include <volpack.h>
 
 namespace lucent::bench {
 
@@ -241,3 +242,31 @@ int VolPackAnchor::lastAxis() const {
 }
 
 } // namespace lucent::bench
+
+#else // built without libvolpack1-dev: the anchor fails, saying so
+
+namespace lucent::bench {
+
+void VolPackAnchor::ContextDeleter::operator()(vpContext*) const {}
+
+VolPackAnchor::VolPackAnchor(const Volume& volume, const TransferFunction&, const Camera&,
+                             int width, int height)
+    : volume_(volume), width_(width), height_(height) {
+    throw std::runtime_error("VolPack anchor: libvolpack1-dev was not found when the build was "
+                             "configured (packaging/install-deps.sh installs it; then run cmake "
+                             "again)");
+}
+
+VolPackAnchor::~VolPackAnchor() = default;
+
+ImageRGBA8 VolPackAnchor::render(const Camera&) {
+    return {};
+}
+
+int VolPackAnchor::lastAxis() const {
+    return -1;
+}
+
+} // namespace lucent::bench
+
+#endif
