@@ -1,33 +1,45 @@
 #!/usr/bin/python3
-"""The anchor of the CPU render benchmark, measured with VTK 9.1's
-vtkFixedPointVolumeRayCastMapper on the same scene as bench_cpu_render:
+"""The VTK anchor of the render benchmarks, measured with VTK 9.1's
+vtkFixedPointVolumeRayCastMapper (--mapper fixed, the default: bench_cpu_render's
+anchor) or vtkGPUVolumeRayCastMapper (--mapper gpu: bench_gpu_render's) on the
+same scene as the benchmarks:
 Philips 140-slice CT (as converted by lucent-cli convert), 512x512, ct-bone,
 shading on, trilinear, step 0.5 voxel of the smallest spacing, Lucent's
 anterior camera (30 degree view angle, zoom 1 fits the bounding sphere).
 The opacity unit distance is one voxel of the smallest spacing, as in Lucent.
 
 Needs Debian's python3-vtk9 (a measuring tool, not a project dependency) and
-a display (run under xvfb-run). Usage:
+a display (run under xvfb-run; the GPU mapper then runs on Mesa's llvmpipe, as
+Lucent's GL caster does through EGL). The benchmarks run it themselves
+(tests/perf/VtkAnchor.cpp) and print both side by side. By hand:
   build/bin/lucent-cli convert ../shared/data/dcm_qa_ct/Philips_S21570/S2020 /tmp/philips.mhd
-  xvfb-run -a /usr/bin/python3 tests/perf/vtk_anchor.py /tmp/philips.mhd \
-      resources/presets/ct-bone.json OUT.png [UNIT_MM]
-Prints the median time of 6 frames turning 5 degrees. Without UNIT_MM the
+  xvfb-run -a -s "-screen 0 1280x1024x24" /usr/bin/python3 tests/perf/vtk_anchor.py \
+      [--mapper fixed|gpu] /tmp/philips.mhd resources/presets/ct-bone.json OUT.png [UNIT_MM]
+Prints the median time of 6 frames turning 5 degrees (each frame waits for the
+GL to finish). Without UNIT_MM the
 scene is bench_cpu_render's first (opacity per voxel): compare OUT.png with
 build/bench_cpu_render_reference.png; with UNIT_MM 1 (VTK's default, the
 issue's anchor) compare with build/bench_cpu_render_reference_per_mm.png,
 using build/bin/lucent-cli compare.
 """
+import argparse
 import json
 import math
 import statistics
-import sys
 import time
 
 import vtk
 
-volume_path, preset_path, out_path = sys.argv[1:4]
-# Optional 4th argument: the opacity unit distance in mm (default: Lucent's, the smallest spacing).
-unit_distance = float(sys.argv[4]) if len(sys.argv) > 4 else None
+parser = argparse.ArgumentParser(description="VTK's volume mappers on Lucent's benchmark scene")
+parser.add_argument("--mapper", choices=["fixed", "gpu"], default="fixed")
+parser.add_argument("volume")
+parser.add_argument("preset")
+parser.add_argument("out")
+# The opacity unit distance in mm (default: Lucent's, the smallest spacing).
+parser.add_argument("unit_mm", nargs="?", type=float)
+arguments = parser.parse_args()
+volume_path, preset_path, out_path = arguments.volume, arguments.preset, arguments.out
+unit_distance = arguments.unit_mm
 reader = vtk.vtkMetaImageReader()
 reader.SetFileName(volume_path)
 reader.Update()
@@ -57,13 +69,24 @@ if shading.get("enabled", True):
     prop.SetSpecular(shading.get("specular", 0.2))
     prop.SetSpecularPower(shading.get("specular_power", 10))
 
-mapper = vtk.vtkFixedPointVolumeRayCastMapper()
-mapper.SetInputData(image)
-mapper.SetAutoAdjustSampleDistances(0)
-mapper.SetSampleDistance(0.5 * min(spacing))
-mapper.SetInteractiveSampleDistance(0.5 * min(spacing))
-mapper.SetImageSampleDistance(1.0)
-mapper.SetNumberOfThreads(2)
+if arguments.mapper == "gpu":
+    mapper = vtk.vtkGPUVolumeRayCastMapper()
+    mapper.SetInputData(image)
+    mapper.SetAutoAdjustSampleDistances(0)
+    mapper.SetSampleDistance(0.5 * min(spacing))
+    mapper.SetImageSampleDistance(1.0)
+    label = "vtk_gpu"
+    threads = "llvmpipe"
+else:
+    mapper = vtk.vtkFixedPointVolumeRayCastMapper()
+    mapper.SetInputData(image)
+    mapper.SetAutoAdjustSampleDistances(0)
+    mapper.SetSampleDistance(0.5 * min(spacing))
+    mapper.SetInteractiveSampleDistance(0.5 * min(spacing))
+    mapper.SetImageSampleDistance(1.0)
+    mapper.SetNumberOfThreads(2)
+    label = "vtk_fixed_point"
+    threads = "2 threads"
 
 actor = vtk.vtkVolume()
 actor.SetMapper(mapper)
@@ -87,7 +110,14 @@ camera.SetViewUp(0, 0, 1)
 camera.SetViewAngle(30.0)
 renderer.ResetCameraClippingRange()
 
-window.Render()  # first frame: setup, as Lucent's first_ms
+
+def render():
+    window.Render()
+    if hasattr(window, "WaitForCompletion"):
+        window.WaitForCompletion()  # glFinish: the GPU mapper's frame is done, not queued
+
+
+render()  # first frame: setup, as Lucent's first_ms
 grab = vtk.vtkWindowToImageFilter()
 grab.SetInput(window)
 grab.SetInputBufferTypeToRGB()
@@ -103,6 +133,9 @@ for frame in range(6):
     camera.Azimuth(5.0)
     renderer.ResetCameraClippingRange()
     t0 = time.perf_counter()
-    window.Render()
+    render()
     times.append((time.perf_counter() - t0) * 1000.0)
-print("vtk_fixed_point: render_ms=%.1f (median of 6, 512x512, 2 threads)" % statistics.median(times))
+renderer_lines = [l for l in window.ReportCapabilities().splitlines() if "renderer string" in l]
+gl = renderer_lines[0].split(":", 1)[1].strip() if renderer_lines else "unknown"
+print("%s: render_ms=%.1f (median of 6, 512x512, %s) gl_renderer=%s"
+      % (label, statistics.median(times), threads, gl))
