@@ -70,4 +70,59 @@ std::vector<std::uint8_t> leapReach(const std::vector<std::uint8_t>& leapable, g
     return reach;
 }
 
+namespace {
+
+// e and its neighbours one cell either way along an axis (beyond the grid
+// counts as leapable): out = e & e[-1] & e[+1]. The grid as [outer][length][inner],
+// the axis `length` cells long, `inner` cells apart.
+void erodeAxis(const std::vector<std::uint8_t>& e, std::vector<std::uint8_t>& out,
+               std::size_t inner, std::size_t length) {
+    const std::ptrdiff_t outer = std::ptrdiff_t(e.size() / (inner * length));
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t o = 0; o < outer; ++o) {
+        const std::uint8_t* line = e.data() + std::size_t(o) * length * inner;
+        std::uint8_t* to = out.data() + std::size_t(o) * length * inner;
+        if (inner == 1) { // along x: neighbours in the same row
+            for (std::size_t a = 0; a < length; ++a) {
+                const std::uint8_t before = a > 0 ? line[a - 1] : 1;
+                const std::uint8_t after = a + 1 < length ? line[a + 1] : 1;
+                to[a] = line[a] & before & after;
+            }
+            continue;
+        }
+        for (std::size_t a = 0; a < length; ++a) {
+            const std::uint8_t* here = line + a * inner;
+            const std::uint8_t* before = a > 0 ? here - inner : here;
+            const std::uint8_t* after = a + 1 < length ? here + inner : here;
+            std::uint8_t* row = to + a * inner;
+            for (std::size_t i = 0; i < inner; ++i) {
+                row[i] = here[i] & before[i] & after[i];
+            }
+        }
+    }
+}
+
+} // namespace
+
+std::vector<std::uint8_t> leapReachWithin(const std::vector<std::uint8_t>& leapable,
+                                          glm::ivec3 cells, int cap) {
+    std::vector<std::uint8_t> eroded(leapable.size()), scratch(leapable.size());
+    for (std::size_t i = 0; i < leapable.size(); ++i) {
+        eroded[i] = leapable[i] != 0 ? 1 : 0;
+    }
+    std::vector<std::uint8_t> reach(leapable.size(), 0);
+    const std::size_t sx = 1, sy = std::size_t(cells.x), sz = sy * std::size_t(cells.y);
+    // After k erosions a cell is 1 where every cell within k of it is leapable.
+    for (int k = 1; k <= cap; ++k) {
+        erodeAxis(eroded, scratch, sx, std::size_t(cells.x));
+        erodeAxis(scratch, eroded, sy, std::size_t(cells.y));
+        scratch.swap(eroded);
+        erodeAxis(scratch, eroded, sz, std::size_t(cells.z));
+        for (std::size_t i = 0; i < reach.size(); ++i) {
+            reach[i] = std::uint8_t(reach[i] + eroded[i]);
+        }
+    }
+    return reach;
+}
+
 } // namespace lucent

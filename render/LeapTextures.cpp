@@ -1,0 +1,82 @@
+#include "render/LeapTextures.h"
+
+#include <algorithm>
+
+#include "core/raycast/LeapReach.h"
+
+namespace lucent {
+
+namespace {
+
+constexpr int kBlockReach = 3; // blocks: the cells' distance map leaps further
+
+} // namespace
+
+LeapTextures::LeapTextures() = default;
+LeapTextures::~LeapTextures() = default;
+
+void LeapTextures::updateCells(const BrickTable& table) {
+    if (cellKey_ == table.codes) {
+        return;
+    }
+    const std::vector<std::uint8_t> reach = leapReach(table.codes, table.cellsPerAxis);
+    cellReach_ =
+        makeTexture3D(GL_R8UI, table.cellsPerAxis, GL_RED_INTEGER, GL_UNSIGNED_BYTE, reach.data());
+    checkGl("leaping cells' reach");
+    cellKey_ = table.codes;
+}
+
+void LeapTextures::updateBlocks(const Volume& volume, const BrickTable& table, int cellSize,
+                                float lo, float hi) {
+    if (!ranges_ || rangesOf_ != &volume) {
+        ranges_ = std::make_unique<BlockRanges>(volume);
+        rangesOf_ = &volume;
+        blockKey_.reset();
+    }
+    auto key = std::tuple(table.codes, table.page, cellSize, lo, hi);
+    if (blockKey_ == key) {
+        return;
+    }
+    const BlockRanges& r = *ranges_;
+    const glm::ivec3 blocks = r.blocksPerAxis(), cells = table.cellsPerAxis,
+                     bricks = table.bricksPerAxis;
+    const int size = BlockRanges::kBlockSize;
+    std::vector<int> cellOfX(std::size_t(blocks.x)), brickOfX(std::size_t(blocks.x));
+    for (int x = 0; x < blocks.x; ++x) {
+        cellOfX[std::size_t(x)] = x * size / cellSize;
+        brickOfX[std::size_t(x)] = x * size / table.brickSize;
+    }
+    std::vector<std::uint8_t> leapable(r.count(), 0);
+#pragma omp parallel for schedule(static)
+    for (int z = 0; z < blocks.z; ++z) {
+        for (int y = 0; y < blocks.y; ++y) {
+            const glm::ivec2 c = glm::ivec2(y, z) * size / cellSize,
+                             b = glm::ivec2(y, z) * size / table.brickSize;
+            const std::uint8_t* cellRow =
+                table.codes.data() +
+                std::size_t(cells.x) * (std::size_t(c.x) + std::size_t(cells.y) * c.y);
+            const glm::ivec4* brickRow =
+                table.page.data() +
+                std::size_t(bricks.x) * (std::size_t(b.x) + std::size_t(bricks.y) * b.y);
+            const std::size_t row = r.idOf({0, y, z});
+            for (int x = 0; x < blocks.x; ++x) {
+                // Page w = state | level << 2: 1 is resident at level 0, whose
+                // voxels the ranges are.
+                const bool empty = cellRow[cellOfX[std::size_t(x)]] != 0 ||
+                                   (brickRow[brickOfX[std::size_t(x)]].w == 1 &&
+                                    r.outside(row + std::size_t(x), lo, hi));
+                leapable[row + std::size_t(x)] = empty ? 1 : 0;
+            }
+        }
+    }
+    // A short reach: the cells' map takes the rays further.
+    std::vector<std::uint8_t> reach = leapReachWithin(leapable, blocks, kBlockReach);
+    for (std::size_t i = 0; i < reach.size(); ++i) {
+        reach[i] = leapable[i] != 0 ? std::uint8_t(reach[i] + 1) : 0;
+    }
+    blockReach_ = makeTexture3D(GL_R8UI, blocks, GL_RED_INTEGER, GL_UNSIGNED_BYTE, reach.data());
+    checkGl("sample blocks' reach");
+    blockKey_ = std::move(key);
+}
+
+} // namespace lucent
