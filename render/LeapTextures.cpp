@@ -8,7 +8,7 @@ namespace lucent {
 
 namespace {
 
-constexpr int kBlockReach = 3; // blocks: the cells' distance map leaps further
+constexpr int kBlockReach = 6; // blocks: the cells' distance map leaps further
 
 } // namespace
 

@@ -225,6 +225,8 @@ void castRay() {
     uint samples = 0u;
     ivec3 cell = ivec3(-1);
     uint code = 0u;
+    ivec3 block = ivec3(-1);
+    int blockReach = 0;
 
     float overlayMax = 0.0;
     bool overlaySeen = false;
@@ -306,7 +308,11 @@ void castRay() {
             // it: resume at the first sample not inside the cube, shrunk by a
             // hundredth of a voxel for the rounding of positions.
             ivec3 b = min(ivec3(p * 0.5), uBlocksPerAxis - 1);
-            int r = int(texelFetch(uBlockReach, b, 0).r);
+            if (b != block) { // a block holds about four samples: read it once
+                block = b;
+                blockReach = int(texelFetch(uBlockReach, b, 0).r);
+            }
+            int r = blockReach;
             if (r != 0) {
                 vec3 lo = vec3((b - (r - 1)) * 2) + 0.01, hi = vec3((b + r) * 2) - 0.01;
                 n = max(n, int(ceil(exitIndex(lo, hi))) - 1);
