@@ -131,7 +131,7 @@ struct GpuRayCaster::State {
     GpuFrameStats last;                      // the last frame's
     std::unique_ptr<BrickStreamer> streamer; // the bricks on the GPU
     SceneTextures scene;
-    LeapTextures leaping;                          // the distance maps of leaps and skipped blocks
+    LeapTextures leaping;                          // distance maps, made with the #defines
     OverlayTextures overlay;                       // a fused render's second volume and its table
     std::shared_ptr<const SurfaceDisplay> surface; // drawn with the volume; null: none
     std::unique_ptr<SurfaceRenderer> surfaceRenderer;
@@ -479,15 +479,6 @@ GpuRenderResult GpuRayCaster::cast(const RenderDescription& asked, bool countRow
     const double tableCell = (tHi - tLo) / double(kTableSize - 1);
     const auto [visLo, visHi] = visibleValueRange(desc.transferFunction, tableCell);
     const auto flag = [](bool b) { return b ? "true" : "false"; };
-    const bool leap =
-        sampling.emptySpaceLeaping && (overlay == nullptr || desc.mode == RenderMode::Dvr);
-    const bool cellReach = leap && sampling.leapDistance && overlay == nullptr;
-    const bool blockSkip = leap && sampling.blockSkipping && overlay == nullptr &&
-                           desc.mode == RenderMode::Dvr && !preintegrate && !cubic &&
-                           sampling.classification == Classification::Post &&
-                           table.brickSize % kCellSize == 0 && LeapTextures::blocksFor(s.volume);
-    const std::string leapDefines = std::string("#define LUCENT_CELL_REACH ") + flag(cellReach) +
-                                    "\n#define LUCENT_BLOCK_SKIP " + flag(blockSkip) + "\n";
     const std::string defines =
         "#define LUCENT_MODE " + std::to_string(shaderMode(desc.mode)) +
         "\n#define LUCENT_INTERP " +
@@ -505,7 +496,7 @@ GpuRenderResult GpuRayCaster::cast(const RenderDescription& asked, bool countRow
         std::to_string(integerPower(desc.transferFunction.shading)) +
         "\n#define LUCENT_ROW_SAMPLES " + flag(countRows) + "\n#define LUCENT_SURFACE " +
         flag(s.surface != nullptr) + "\n#define LUCENT_OVERLAY " + flag(overlay != nullptr) + "\n" +
-        leapDefines;
+        s.leaping.update(desc, s.volume, table, kCellSize, {visLo, visHi, tableCell, tLo, tHi});
     auto& program = s.programs[defines];
     if (!program) {
         program = std::make_unique<ShaderProgram>("raycast.vert", "raycast.frag", defines);
@@ -516,14 +507,6 @@ GpuRenderResult GpuRayCaster::cast(const RenderDescription& asked, bool countRow
     if (overlay != nullptr) {
         out.gpu.bytesUploaded += s.overlay.update(desc.overlay, sampling.step);
         s.overlay.updateLeaping(desc.overlay, kCellSize, cellsPer, table.brickSize, per);
-    }
-    if (cellReach) {
-        s.leaping.updateCells(table);
-    }
-    if (blockSkip) { // visLo, visHi widened by the float rounding of a sample
-        const double margin = tableCell + 4e-6 * std::max(std::abs(tLo), std::abs(tHi));
-        s.leaping.updateBlocks(s.volume, table, kCellSize, float(std::max(visLo - margin, -3.0e38)),
-                               float(std::min(visHi + margin, 3.0e38)));
     }
     const ShaderProgram& p = *program;
     p.use();
@@ -569,7 +552,6 @@ GpuRenderResult GpuRayCaster::cast(const RenderDescription& asked, bool countRow
     p.set("uCellSize", kCellSize);
     p.set("uInvCellSize", 1.0f / float(kCellSize));
     p.set("uCellsPerAxis", cellsPer);
-    p.set("uBlocksPerAxis", s.leaping.blocksPerAxis());
     if (overlay != nullptr) {
         s.overlay.setUniforms(p, desc.overlay);
     }
@@ -589,13 +571,12 @@ GpuRenderResult GpuRayCaster::cast(const RenderDescription& asked, bool countRow
         {"uOverlayTable", overlay != nullptr ? s.overlay.table() : 0},
         {"uOverlayEmptyCells", overlay != nullptr ? s.overlay.emptyCells() : 0},
         {"uOverlayEmptyBricks", overlay != nullptr ? s.overlay.emptyBricks() : 0},
-        {"uCellReach", cellReach ? s.leaping.cellReach() : 0},
-        {"uBlockReach", blockSkip ? s.leaping.blockReach() : 0},
     };
     for (int u = 0; u < int(std::size(units)); ++u) {
         glBindTextureUnit(GLuint(u), units[u].second);
         p.set(units[u].first, u);
     }
+    s.leaping.bind(p, GLuint(std::size(units)));
 
     s.target.resize(desc.width, desc.height);
     // From here the target holds no frame until this one is cast.

@@ -1,6 +1,7 @@
 #include "render/LeapTextures.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/raycast/LeapReach.h"
 
@@ -12,8 +13,44 @@ constexpr int kBlockReach = 6; // blocks: the cells' distance map leaps further
 
 } // namespace
 
+std::string LeapMaps::defines() const {
+    const auto flag = [](bool b) { return b ? std::string("true") : std::string("false"); };
+    return "#define LUCENT_CELL_REACH " + flag(cellReach) + "\n#define LUCENT_BLOCK_SKIP " +
+           flag(blockSkip) + "\n";
+}
+
 LeapTextures::LeapTextures() = default;
 LeapTextures::~LeapTextures() = default;
+
+std::string LeapTextures::update(const RenderDescription& d, const Volume& volume,
+                                 const BrickTable& table, int cellSize, const Visible& visible) {
+    const SamplingSettings& s = d.sampling;
+    const bool leap = s.emptySpaceLeaping && d.overlay.volume == nullptr;
+    LeapMaps& maps = maps_;
+    maps.cellReach = leap && s.leapDistance;
+    maps.blockSkip = leap && s.blockSkipping && d.mode == RenderMode::Dvr && !s.preintegrate &&
+                     s.interpolation != Interpolation::Cubic &&
+                     s.classification == Classification::Post && table.brickSize % cellSize == 0 &&
+                     blocksFor(volume);
+    if (maps.cellReach) {
+        updateCells(table);
+    }
+    if (maps.blockSkip) { // as the CPU's invisible cells: a table cell and float ulps
+        const double margin = visible.tableCell +
+                              4e-6 * std::max(std::abs(visible.tableLo), std::abs(visible.tableHi));
+        updateBlocks(volume, table, cellSize, float(std::max(visible.lo - margin, -3.0e38)),
+                     float(std::min(visible.hi + margin, 3.0e38)));
+    }
+    return maps.defines();
+}
+
+void LeapTextures::bind(const ShaderProgram& p, GLuint unit) const {
+    glBindTextureUnit(unit, maps_.cellReach ? cellReach_.get() : 0);
+    p.set("uCellReach", int(unit));
+    glBindTextureUnit(unit + 1, maps_.blockSkip ? blockReach_.get() : 0);
+    p.set("uBlockReach", int(unit + 1));
+    p.set("uBlocksPerAxis", ranges_ ? ranges_->blocksPerAxis() : glm::ivec3(0));
+}
 
 void LeapTextures::updateCells(const BrickTable& table) {
     if (cellKey_ == table.codes) {

@@ -10,14 +10,23 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
 #include <tuple>
 #include <vector>
 
+#include "core/scene/RenderDescription.h"
 #include "core/volume/BlockRanges.h"
 #include "render/BrickTable.h"
 #include "render/GlObjects_p.h"
 
 namespace lucent {
+
+// The maps a cast reads (the switches leap-distance and block-skipping where
+// they apply), and the shader's #defines for them.
+struct LeapMaps {
+    bool cellReach = false, blockSkip = false;
+    std::string defines() const;
+};
 
 class LeapTextures {
 public:
@@ -26,14 +35,20 @@ public:
     LeapTextures(const LeapTextures&) = delete;
     LeapTextures& operator=(const LeapTextures&) = delete;
 
-    // The cells' reach over the cells the table leaps (code != 0).
-    void updateCells(const BrickTable& table);
-    // The blocks' map: a sample in a block shows nothing where its leaping
-    // cell (of cellSize voxels) is leapt, or where its brick is drawn from
-    // level 0 and every value the block gives lies below lo or above hi.
-    // Needs table.brickSize a multiple of cellSize, cellSize of 2.
-    void updateBlocks(const Volume& volume, const BrickTable& table, int cellSize, float lo,
-                      float hi);
+    // Which maps `d` reads, brought up to date: the cells' with leaping
+    // (not with an overlay); the blocks' for DVR, post-classified, trilinear or
+    // nearest, not pre-integrated, no overlay, bricks of whole cells, a volume
+    // blocksFor() takes. visible: the values a sample may show (visibleValueRange),
+    // widened here by a table cell and the float rounding of a sample over the
+    // table's range [tableLo, tableHi].
+    struct Visible {
+        double lo, hi, tableCell, tableLo, tableHi;
+    };
+    // Returns the shader's #defines for them.
+    std::string update(const RenderDescription& d, const Volume& volume, const BrickTable& table,
+                       int cellSize, const Visible& visible);
+    // The last update()'s maps on units `unit` and `unit` + 1, and their uniforms.
+    void bind(const ShaderProgram& p, GLuint unit) const;
 
     // Whether the blocks' map is made for a volume: their ranges take a byte
     // of CPU memory per voxel, so up to 2^28 voxels (512 x 512 x 1024).
@@ -41,12 +56,18 @@ public:
         return volume.geometry().voxelCount() <= (std::size_t(1) << 28);
     }
 
-    GLuint cellReach() const { return cellReach_.get(); }
-    GLuint blockReach() const { return blockReach_.get(); }
-    glm::ivec3 blocksPerAxis() const { return ranges_ ? ranges_->blocksPerAxis() : glm::ivec3(0); }
-
 private:
+    // The cells' reach over the cells the table leaps (code != 0).
+    void updateCells(const BrickTable& table);
+    // The blocks' map: a sample in a block shows nothing where its leaping
+    // cell (of cellSize voxels) is leapt, or where its brick is drawn from
+    // level 0 and every value the block gives lies below lo or above hi.
+    // table.brickSize is a multiple of cellSize, cellSize a multiple of 2.
+    void updateBlocks(const Volume& volume, const BrickTable& table, int cellSize, float lo,
+                      float hi);
+
     GlTexture cellReach_, blockReach_;
+    LeapMaps maps_; // the last update()'s
     std::optional<std::vector<std::uint8_t>> cellKey_;
     std::unique_ptr<BlockRanges> ranges_; // of the volume, made once
     const Volume* rangesOf_ = nullptr;
