@@ -20,9 +20,9 @@ inline auto fields(const ClipBox& c) {
 }
 inline auto fields(const SamplingSettings& s) {
     const auto& [step, interpolation, classification, preintegrate, earlyTermination, brickSize,
-                 emptySpaceLeaping, precision, simd] = s;
+                 emptySpaceLeaping, leapDistance, blockSkipping, precision, simd] = s;
     return std::tie(step, interpolation, classification, preintegrate, earlyTermination, brickSize,
-                    emptySpaceLeaping, precision, simd);
+                    emptySpaceLeaping, leapDistance, blockSkipping, precision, simd);
 }
 // What of an overlay the cast draws: the volume, the map, the window and the opacity
 // (the style's MPR fields, mode, checkerboard and swipe, do not).

@@ -31,6 +31,15 @@ GlTexture makeTexture2D(GLenum format, int width, int height) {
     return texture;
 }
 
+GlTexture makeTexture3D(GLenum format, glm::ivec3 size, GLenum clientFormat, GLenum type,
+                        const void* data) {
+    GlTexture t = makeTexture(GL_TEXTURE_3D);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1); // rows of one-byte codes are not 4-aligned
+    glTextureStorage3D(t.get(), 1, format, size.x, size.y, size.z);
+    glTextureSubImage3D(t.get(), 0, 0, 0, 0, size.x, size.y, size.z, clientFormat, type, data);
+    return t;
+}
+
 GlFramebuffer makeFramebuffer(std::initializer_list<std::pair<GLenum, GLuint>> attachments,
                               const std::string& what) {
     GLuint name = 0;

@@ -57,6 +57,10 @@ using GlBuffer = GlName<gl_delete::buffer>;
 GlTexture makeTexture(GLenum target);
 // A 2D texture with immutable storage of `format` (makeTexture's filtering).
 GlTexture makeTexture2D(GLenum format, int width, int height);
+// A 3D texture with immutable storage of `format`, filled from `data` (rows of
+// `clientFormat`/`type`, tightly packed), with makeTexture's filtering.
+GlTexture makeTexture3D(GLenum format, glm::ivec3 size, GLenum clientFormat, GLenum type,
+                        const void* data);
 // A framebuffer of these (attachment point, texture) pairs that draws into
 // its colour attachments in the order given. Throws GlError saying "the
 // <what> framebuffer is not complete on this driver" when the driver refuses.

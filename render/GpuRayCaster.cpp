@@ -18,6 +18,7 @@
 #include "render/GlError.h"
 #include "render/GlObjects_p.h"
 #include "render/GpuBudget.h"
+#include "render/LeapTextures.h"
 #include "render/OverlayTextures.h"
 #include "render/PartFrame_p.h"
 #include "render/RayCastSetup_p.h"
@@ -68,6 +69,7 @@ struct GpuRayCaster::State {
     GpuFrameStats last;                      // the last frame's
     std::unique_ptr<BrickStreamer> streamer; // the bricks on the GPU
     SceneTextures scene;
+    LeapTextures leaping;                          // distance maps, made with the #defines
     OverlayTextures overlay;                       // a fused render's second volume and its table
     std::shared_ptr<const SurfaceDisplay> surface; // drawn with the volume; null: none
     std::unique_ptr<SurfaceRenderer> surfaceRenderer;
@@ -413,6 +415,7 @@ void GpuRayCaster::State::bindTextures(const ShaderProgram& p, bool preintegrate
         glBindTextureUnit(GLuint(u), units[u].second);
         p.set(units[u].first, u);
     }
+    leaping.bind(p, GLuint(std::size(units))); // the distance maps take the next units
 }
 
 GpuRenderResult GpuRayCaster::State::castSurfaceAlone(const RenderDescription& d, bool countRows) {
@@ -486,7 +489,11 @@ GpuRenderResult GpuRayCaster::cast(const RenderDescription& asked, bool countRow
                              countRows,
                              s.surface != nullptr,
                              overlay != nullptr};
-    const ShaderProgram& p = s.program(rayCastDefines(frame));
+    const double tableCell = (tHi - tLo) / double(kRayTableSize - 1);
+    const auto [visLo, visHi] = visibleValueRange(desc.transferFunction, tableCell);
+    const ShaderProgram& p =
+        s.program(rayCastDefines(frame) + s.leaping.update(desc, s.volume, table, kRayCellSize,
+                                                           {visLo, visHi, tableCell, tLo, tHi}));
     if (s.surface) { // its own program and framebuffer: before the rays' are set
         out.gpu.surfaceBytesUploaded = s.drawSurface(desc);
     }

@@ -4,30 +4,18 @@
 
 namespace lucent {
 
-namespace {
-
-GlTexture texture3d(GLenum format, glm::ivec3 size, GLenum clientFormat, GLenum type,
-                    const void* data) {
-    GlTexture t = makeTexture(GL_TEXTURE_3D);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1); // rows of one-byte codes are not 4-aligned
-    glTextureStorage3D(t.get(), 1, format, size.x, size.y, size.z);
-    glTextureSubImage3D(t.get(), 0, 0, 0, 0, size.x, size.y, size.z, clientFormat, type, data);
-    return t;
-}
-
-} // namespace
-
 bool SceneTextures::updateBricks(const BrickTable& t, std::uint64_t generation) {
     if (bricksKey_ && (generation == generation_ || *bricksKey_ == t)) {
         generation_ = generation;
         return false;
     }
-    pageTable_ = texture3d(GL_RGBA32I, t.bricksPerAxis, GL_RGBA_INTEGER, GL_INT, t.page.data());
+    pageTable_ = makeTexture3D(GL_RGBA32I, t.bricksPerAxis, GL_RGBA_INTEGER, GL_INT, t.page.data());
     pageBox_ =
-        texture3d(GL_RGBA32UI, t.bricksPerAxis, GL_RGBA_INTEGER, GL_UNSIGNED_INT, t.box.data());
+        makeTexture3D(GL_RGBA32UI, t.bricksPerAxis, GL_RGBA_INTEGER, GL_UNSIGNED_INT, t.box.data());
     cellsPerAxis_ = t.cellsPerAxis;
-    cellCode_ = texture3d(GL_R8UI, cellsPerAxis_, GL_RED_INTEGER, GL_UNSIGNED_BYTE, t.codes.data());
-    cellRange_ = texture3d(GL_RG32F, cellsPerAxis_, GL_RG, GL_FLOAT, t.ranges.data());
+    cellCode_ =
+        makeTexture3D(GL_R8UI, cellsPerAxis_, GL_RED_INTEGER, GL_UNSIGNED_BYTE, t.codes.data());
+    cellRange_ = makeTexture3D(GL_RG32F, cellsPerAxis_, GL_RG, GL_FLOAT, t.ranges.data());
     checkGl("page table and leaping cells");
     bricksKey_ = t;
     generation_ = generation;

@@ -70,4 +70,108 @@ std::vector<std::uint8_t> leapReach(const std::vector<std::uint8_t>& leapable, g
     return reach;
 }
 
+namespace {
+
+// The leapable cells as bits, a row of cells along x in whole 64-bit words;
+// bits past the end of a row are set (beyond the grid is leapable).
+struct CellBits {
+    glm::ivec3 n{0};
+    std::size_t rowWords = 0, rows = 0;
+    std::uint64_t pastEnd = 0; // the bits of a row's last word beyond the grid
+    std::vector<std::uint64_t> words;
+
+    explicit CellBits(glm::ivec3 cells)
+        : n(cells), rowWords((std::size_t(cells.x) + 63) / 64),
+          rows(std::size_t(cells.y) * std::size_t(cells.z)), words(rowWords * rows, 0) {
+        const int used = cells.x % 64;
+        pastEnd = used == 0 ? 0 : ~((std::uint64_t(1) << used) - 1);
+    }
+    std::uint64_t* row(std::size_t r) { return words.data() + r * rowWords; }
+    const std::uint64_t* row(std::size_t r) const { return words.data() + r * rowWords; }
+};
+
+// out = the cells whose 3x3x3 neighbourhood is leapable in `in`: along x by
+// shifts, then along y and z by rows (beyond the grid is leapable).
+void erode(const CellBits& in, CellBits& scratch, CellBits& out) {
+    const std::size_t w = in.rowWords;
+    const std::ptrdiff_t rows = std::ptrdiff_t(in.rows);
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+        const std::uint64_t* e = in.row(std::size_t(r));
+        std::uint64_t* to = scratch.row(std::size_t(r));
+        for (std::size_t i = 0; i < w; ++i) {
+            const std::uint64_t before = i > 0 ? e[i - 1] >> 63 : 1;
+            const std::uint64_t after = i + 1 < w ? e[i + 1] << 63 : std::uint64_t(1) << 63;
+            to[i] = e[i] & ((e[i] << 1) | before) & ((e[i] >> 1) | after);
+        }
+        to[w - 1] |= in.pastEnd;
+    }
+    const int ny = in.n.y, nz = in.n.z;
+    // Along y into out, then along z into scratch, swapped back.
+    const auto alongRows = [w](const CellBits& from, CellBits& to, int length, int rowStride) {
+        const std::ptrdiff_t rows = std::ptrdiff_t(from.rows);
+        for (std::ptrdiff_t r = 0; r < rows; ++r) {
+            const int along = int(r / rowStride % length);
+            const std::uint64_t* here = from.row(std::size_t(r));
+            const std::uint64_t* before = along > 0 ? here - std::ptrdiff_t(rowStride * w) : here;
+            const std::uint64_t* after =
+                along + 1 < length ? here + std::ptrdiff_t(rowStride * w) : here;
+            std::uint64_t* row = to.row(std::size_t(r));
+            for (std::size_t i = 0; i < w; ++i) {
+                row[i] = here[i] & before[i] & after[i];
+            }
+        }
+    };
+    alongRows(scratch, out, ny, 1);
+    alongRows(out, scratch, nz, ny);
+    out.words.swap(scratch.words);
+}
+
+} // namespace
+
+std::vector<std::uint8_t> leapReachWithin(const std::vector<std::uint8_t>& leapable,
+                                          glm::ivec3 cells, int cap) {
+    CellBits bits(cells), scratch(cells), next(cells);
+    const std::size_t nx = std::size_t(cells.x);
+    for (std::size_t r = 0; r < bits.rows; ++r) {
+        std::uint64_t* row = bits.row(r);
+        for (std::size_t x = 0; x < nx; ++x) {
+            row[x / 64] |= std::uint64_t(leapable[r * nx + x] != 0 ? 1 : 0) << (x % 64);
+        }
+        row[bits.rowWords - 1] |= bits.pastEnd;
+    }
+    std::vector<std::uint8_t> reach(leapable.size(), 0);
+    // After k erosions a cell is set where every cell within k of it is leapable.
+    for (int k = 1; k <= cap; ++k) {
+        erode(bits, scratch, next);
+        std::swap(bits.words, next.words);
+        bool any = false;
+        const std::ptrdiff_t rows = std::ptrdiff_t(bits.rows);
+        for (std::ptrdiff_t r = 0; r < rows; ++r) {
+            const std::uint64_t* row = bits.row(std::size_t(r));
+            std::uint8_t* out = reach.data() + std::size_t(r) * nx;
+            for (std::size_t i = 0; i < bits.rowWords; ++i) {
+                const std::uint64_t word = row[i] & ~(i + 1 == bits.rowWords ? bits.pastEnd : 0);
+                const std::size_t x0 = i * 64, count = std::min<std::size_t>(64, nx - x0);
+                if (word == 0) {
+                    continue;
+                }
+                any = true;
+                if (word == ~std::uint64_t(0)) { // the common case inside empty space
+                    for (std::size_t b = 0; b < 64; ++b) {
+                        ++out[x0 + b];
+                    }
+                    continue;
+                }
+                for (std::size_t b = 0; b < count; ++b) {
+                    out[x0 + b] = std::uint8_t(out[x0 + b] + ((word >> b) & 1));
+                }
+            }
+        }
+        if (!any) {
+            break;
+        }
+    }
+    return reach;
+}
+
 } // namespace lucent

@@ -35,6 +35,13 @@ struct SamplingSettings {
     double earlyTermination = 0.99; // stop when accumulated opacity reaches this
     int brickSize = 64;
     bool emptySpaceLeaping = true;
+    // GL caster, with leaping: a leap crosses every leapt cell within the
+    // distance map's reach at once (render/LeapTextures.h), not one cell.
+    bool leapDistance = true;
+    // GL caster, DVR with post-classification, trilinear or nearest: samples
+    // in blocks of 2^3 voxels that show nothing are passed over, several
+    // blocks at once, without reading the volume.
+    bool blockSkipping = true;
     Precision precision = Precision::Float;
     // The CPU ray caster marches eight rays at once with SIMD (AVX2) where the
     // CPU has it; false forces its scalar kernels (tests compare the two). The

@@ -263,6 +263,25 @@ void addCastingRows(std::vector<RenderOption>& t) {
                  .help = "Skip bricks that are empty under the transfer function.",
                  .read = [](const D& d) { return boolText(d.sampling.emptySpaceLeaping); },
                  .write = [](D& d, sv v) { d.sampling.emptySpaceLeaping = isTrue(v); }});
+    t.push_back({.name = "leap-distance",
+                 .words = "leaping by distance map",
+                 .kind = OptionKind::Switch,
+                 .cliFlag = "no-leap-distance",
+                 .cliSets = "false",
+                 .help = "GL: a leap crosses every empty cell within a distance map's reach at "
+                         "once, not one cell (the same image).",
+                 .read = [](const D& d) { return boolText(d.sampling.leapDistance); },
+                 .write = [](D& d, sv v) { d.sampling.leapDistance = isTrue(v); }});
+    t.push_back({.name = "block-skipping",
+                 .words = "block skipping",
+                 .kind = OptionKind::Switch,
+                 .cliFlag = "no-block-skipping",
+                 .cliSets = "false",
+                 .help = "GL, DVR (post-classified, trilinear or nearest): pass over the samples "
+                         "of 2x2x2-voxel blocks that show nothing without reading the volume (the "
+                         "same image).",
+                 .read = [](const D& d) { return boolText(d.sampling.blockSkipping); },
+                 .write = [](D& d, sv v) { d.sampling.blockSkipping = isTrue(v); }});
     t.push_back(
         {.name = "precision",
          .words = "precision",

@@ -30,6 +30,9 @@ const int kMode = LUCENT_MODE, kInterp = LUCENT_INTERP;
 const bool kPreclassify = LUCENT_PRECLASSIFY, kPreintegrate = LUCENT_PREINTEGRATE;
 const bool kShading = LUCENT_SHADING, kLeap = LUCENT_LEAP;
 const bool kCellsInOneBrick = LUCENT_CELLS_IN_ONE_BRICK;
+// Leaps cross the cube of leapt cells the distance map gives (uCellReach);
+// DVR passes over samples in blocks that show nothing (uBlockReach).
+const bool kCellReach = LUCENT_CELL_REACH, kBlockSkip = LUCENT_BLOCK_SKIP;
 // Each brick's central differences sit in a second pool (nearest, trilinear),
 // or, for int16 voxels, in the pool itself: texel = (gradient xyz, value), so
 // a shaded sample reads one texel for both.
@@ -222,6 +225,8 @@ void castRay() {
     uint samples = 0u;
     ivec3 cell = ivec3(-1);
     uint code = 0u;
+    ivec3 block = ivec3(-1);
+    int blockReach = 0;
 
     float overlayMax = 0.0;
     bool overlaySeen = false;
@@ -260,7 +265,20 @@ void castRay() {
                 }
             }
             if (leap) {
-                int resume = max(n + 1, int(floor(exitIndex(lo, hi))) - 1);
+                // With the distance maps, a leap without continuity resumes at
+                // the first sample not inside the boxes shrunk by a hundredth
+                // of a voxel (the rounding of positions), else one sample early
+                // (also for nearest, whose samples read half a voxel further).
+                bool tight = kCellReach && !continuity && kInterp != kNearest;
+                float shrink = tight ? 0.01 : 0.0;
+                float exit = exitIndex(lo + shrink, hi - shrink);
+                if (kCellReach && !kOverlay && kMode != kMip && kMode != kMinIp) {
+                    // The cube of leapt cells around this one, where it reaches further.
+                    int r = int(texelFetch(uCellReach, c, 0).r);
+                    exit = max(exit, exitIndex(vec3((c - r) * uCellSize) + shrink,
+                                               vec3((c + r + 1) * uCellSize) - shrink));
+                }
+                int resume = tight ? max(n + 1, int(ceil(exit))) : max(n + 1, int(floor(exit)) - 1);
                 if (!continuity) {
                     n = resume - 1;
                     continue;
@@ -283,6 +301,22 @@ void castRay() {
                     cell = ivec3(-1);
                     continue;
                 }
+            }
+        }
+        if (kBlockSkip) {
+            // A block that shows nothing, and the cube of such blocks around
+            // it: resume at the first sample not inside the cube, shrunk by a
+            // hundredth of a voxel for the rounding of positions.
+            ivec3 b = min(ivec3(p * 0.5), uBlocksPerAxis - 1);
+            if (b != block) { // a block holds about four samples: read it once
+                block = b;
+                blockReach = int(texelFetch(uBlockReach, b, 0).r);
+            }
+            int r = blockReach;
+            if (r != 0) {
+                vec3 lo = vec3((b - (r - 1)) * 2) + 0.01, hi = vec3((b + r) * 2) - 0.01;
+                n = max(n, int(ceil(exitIndex(lo, hi))) - 1);
+                continue;
             }
         }
         if (!kCellsInOneBrick) {

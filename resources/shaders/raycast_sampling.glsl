@@ -279,6 +279,12 @@ uniform sampler3D uCellRange; // r = min, g = max over the cell and its overlap
 uniform int uCellSize;
 uniform float uInvCellSize;
 uniform ivec3 uCellsPerAxis;
+// Distance maps (render/LeapTextures.h): per cell, the reach r of the cube of
+// leapt cells within r of it; per block of 2^3 voxels, 0 where a sample may
+// show, else 1 + the reach of the cube of blocks around it that show nothing.
+uniform usampler3D uCellReach;
+uniform usampler3D uBlockReach;
+uniform ivec3 uBlocksPerAxis;
 
 vec3 gEntry, gStride; // the ray in level-0 index space: p(n) = gEntry + gStride * n
 

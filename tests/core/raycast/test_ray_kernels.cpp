@@ -165,6 +165,27 @@ private slots:
         }
     }
 
+    // The capped reach (erosions) is the exact reach (the distance transform), capped.
+    void leapReachWithinIsLeapReachCapped() {
+        std::mt19937 rng(11);
+        for (int trial = 0; trial < 20; ++trial) {
+            // Rows of more than one 64-bit word too.
+            const glm::ivec3 n(1 + int(rng() % 150), 1 + int(rng() % 12), 1 + int(rng() % 12));
+            std::vector<std::uint8_t> leapable(std::size_t(n.x) * n.y * n.z);
+            for (std::uint8_t& v : leapable) {
+                v = rng() % 20 < 19 ? 1 : 0;
+            }
+            const std::vector<std::uint8_t> exact = leapReach(leapable, n);
+            for (const int cap : {1, 3, 5, 40}) {
+                std::vector<std::uint8_t> expected = exact;
+                for (std::uint8_t& r : expected) {
+                    r = std::uint8_t(std::min(int(r), cap));
+                }
+                QVERIFY(leapReachWithin(leapable, n, cap) == expected);
+            }
+        }
+    }
+
     void changesBetweenFramesMatchAFreshCaster() {
         const Volume v = makeVolume({40, 37, 35}, blobs);
         CpuRayCaster kept(v);

@@ -27,6 +27,8 @@ private slots:
                       0.95,
                       16,
                       false,
+                      false,
+                      false,
                       Precision::Double,
                       false};
         d.width = 333;
@@ -53,6 +55,8 @@ private slots:
         QCOMPARE(back.sampling.earlyTermination, d.sampling.earlyTermination);
         QCOMPARE(back.sampling.brickSize, d.sampling.brickSize);
         QCOMPARE(back.sampling.emptySpaceLeaping, d.sampling.emptySpaceLeaping);
+        QCOMPARE(back.sampling.leapDistance, d.sampling.leapDistance);
+        QCOMPARE(back.sampling.blockSkipping, d.sampling.blockSkipping);
         QCOMPARE(back.sampling.precision, d.sampling.precision);
         QCOMPARE(back.sampling.simd, d.sampling.simd);
         QCOMPARE(back.width, d.width);

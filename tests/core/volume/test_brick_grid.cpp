@@ -8,6 +8,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "core/volume/BlockRanges.h"
 #include "core/volume/BrickGrid.h"
 
 using namespace lucent;
@@ -188,6 +189,39 @@ private slots:
         const BrickGrid grid(volume, 8, 3);
         QCOMPARE(grid.bricks()[0].minValue, 1.0f);
         QCOMPARE(grid.bricks()[0].maxValue, 511.0f);
+    }
+
+    // Every trilinear sample in a block, odd dimensions included, lies in its
+    // block's range; a NaN voxel opens the range of each block that reads it.
+    void blockRangesHoldEverySampleInTheBlock() {
+        Volume volume = randomVolume({9, 6, 7}, VoxelType::Float32, 5);
+        const BlockRanges ranges(volume);
+        QCOMPARE(ranges.blocksPerAxis(), glm::ivec3(5, 3, 4));
+        std::mt19937 rng(9);
+        std::uniform_real_distribution<double> unit(0.0, 1.0);
+        const glm::ivec3 d = volume.dims();
+        for (int trial = 0; trial < 4000; ++trial) {
+            const glm::dvec3 p = glm::dvec3(unit(rng), unit(rng), unit(rng)) * glm::dvec3(d - 1);
+            const glm::ivec3 b = glm::min(glm::ivec3(p / 2.0), ranges.blocksPerAxis() - 1);
+            const glm::ivec3 i = glm::min(glm::ivec3(p), d - 2);
+            const glm::dvec3 f = p - glm::dvec3(i);
+            double v = 0.0;
+            for (int n = 0; n < 8; ++n) {
+                const glm::ivec3 o(n & 1, (n >> 1) & 1, n >> 2);
+                const double w =
+                    (o.x ? f.x : 1 - f.x) * (o.y ? f.y : 1 - f.y) * (o.z ? f.z : 1 - f.z);
+                v += w * volume.value(i.x + o.x, i.y + o.y, i.z + o.z);
+            }
+            const std::size_t id = ranges.idOf(b);
+            QVERIFY(!ranges.outside(id, float(v - 1e-3), float(v + 1e-3)));
+        }
+        volume.voxels<float>()[volume.linearIndex(2, 2, 2)] =
+            std::numeric_limits<float>::quiet_NaN();
+        const BlockRanges withNan(volume);
+        for (const glm::ivec3 b : {glm::ivec3(0, 0, 0), glm::ivec3(1, 1, 1), glm::ivec3(0, 1, 0)}) {
+            QVERIFY(!withNan.outside(withNan.idOf(b), 1e30f, -1e30f));
+        }
+        QVERIFY(withNan.outside(withNan.idOf({3, 2, 3}), 1e30f, 2e30f));
     }
 
     void visibleBricksMatchBruteForce() {
