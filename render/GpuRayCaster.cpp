@@ -494,6 +494,7 @@ GpuRenderResult GpuRayCaster::cast(const RenderDescription& asked, bool countRow
     const ShaderProgram& p =
         s.program(rayCastDefines(frame) + s.leaping.update(desc, s.volume, table, kRayCellSize,
                                                            {visLo, visHi, tableCell, tLo, tHi}));
+    out.gpu.tableBytes += s.leaping.bytes(); // the distance maps
     if (s.surface) { // its own program and framebuffer: before the rays' are set
         out.gpu.surfaceBytesUploaded = s.drawSurface(desc);
     }

@@ -53,7 +53,7 @@ struct GpuFrameStats {
     std::size_t residentBytes = 0; // GPU memory the resident bricks take (values and gradients)
     std::size_t valueBytes = 0;    // ... of that, their values
     std::size_t gradientBytes = 0; // ... and their cached gradients
-    std::size_t tableBytes = 0;    // the page table, boxes and leaping cells
+    std::size_t tableBytes = 0;    // the page table, boxes, leaping cells and distance maps
     std::size_t poolBytes = 0;     // GPU memory the pool's textures take, free room included
     std::vector<std::size_t> bricksPerLevel; // bricks shown per level
     // Per brick of the pool (pages of pageSize voxels a side, x fastest): the

@@ -59,6 +59,7 @@ void LeapTextures::updateCells(const BrickTable& table) {
     const std::vector<std::uint8_t> reach = leapReach(table.codes, table.cellsPerAxis);
     cellReach_ =
         makeTexture3D(GL_R8UI, table.cellsPerAxis, GL_RED_INTEGER, GL_UNSIGNED_BYTE, reach.data());
+    cellBytes_ = reach.size();
     checkGl("leaping cells' reach");
     cellKey_ = table.codes;
 }
@@ -112,6 +113,7 @@ void LeapTextures::updateBlocks(const Volume& volume, const BrickTable& table, i
         reach[i] = leapable[i] != 0 ? std::uint8_t(reach[i] + 1) : 0;
     }
     blockReach_ = makeTexture3D(GL_R8UI, blocks, GL_RED_INTEGER, GL_UNSIGNED_BYTE, reach.data());
+    blockBytes_ = reach.size();
     checkGl("sample blocks' reach");
     blockKey_ = std::move(key);
 }

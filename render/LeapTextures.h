@@ -7,6 +7,7 @@
 // it may show, else 1 + the reach of the cube of blocks around it where none
 // does. Each is rebuilt only when what it depends on changed. Private to render/.
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -47,6 +48,10 @@ public:
     // Returns the shader's #defines for them.
     std::string update(const RenderDescription& d, const Volume& volume, const BrickTable& table,
                        int cellSize, const Visible& visible);
+    // GPU memory of the maps the last update() reads (one byte a cell or block).
+    std::size_t bytes() const {
+        return (maps_.cellReach ? cellBytes_ : 0) + (maps_.blockSkip ? blockBytes_ : 0);
+    }
     // The last update()'s maps on units `unit` and `unit` + 1, and their uniforms.
     void bind(const ShaderProgram& p, GLuint unit) const;
 
@@ -67,6 +72,7 @@ private:
                       float hi);
 
     GlTexture cellReach_, blockReach_;
+    std::size_t cellBytes_ = 0, blockBytes_ = 0;
     LeapMaps maps_; // the last update()'s
     std::optional<std::vector<std::uint8_t>> cellKey_;
     std::unique_ptr<BlockRanges> ranges_; // of the volume, made once
