@@ -472,6 +472,8 @@ GpuRenderResult GpuRayCaster::cast(const RenderDescription& asked, bool countRow
     out.gpu.tableUploaded = s.scene.updateBricks(table, s.streamer->tableGeneration());
     s.scene.updateTables(desc.transferFunction, tLo, tHi, sampling.step, preintegrate,
                          kRayTableSize, kRayPreintegrationSize);
+    const double tableCell = (tHi - tLo) / double(kRayTableSize - 1);
+    const auto [visLo, visHi] = visibleValueRange(desc.transferFunction, tableCell);
     const RayCastFrame frame{desc,
                              g,
                              view,
@@ -482,6 +484,8 @@ GpuRenderResult GpuRayCaster::cast(const RenderDescription& asked, bool countRow
                              s.streamer->levelDims(),
                              tLo,
                              tHi,
+                             visLo,
+                             visHi,
                              s.valueLo,
                              s.valueHi,
                              s.gradientUnit(),
@@ -489,11 +493,10 @@ GpuRenderResult GpuRayCaster::cast(const RenderDescription& asked, bool countRow
                              countRows,
                              s.surface != nullptr,
                              overlay != nullptr};
-    const double tableCell = (tHi - tLo) / double(kRayTableSize - 1);
-    const auto [visLo, visHi] = visibleValueRange(desc.transferFunction, tableCell);
     const ShaderProgram& p =
-        s.program(rayCastDefines(frame) + s.leaping.update(desc, s.volume, table, kRayCellSize,
-                                                           {visLo, visHi, tableCell, tLo, tHi}));
+        s.program(rayCastDefines(frame) +
+                  s.leaping.update(desc, s.volume, table, s.streamer->tableGeneration(),
+                                   kRayCellSize, {visLo, visHi, tableCell, tLo, tHi}));
     out.gpu.tableBytes += s.leaping.bytes(); // the distance maps
     if (s.surface) { // its own program and framebuffer: before the rays' are set
         out.gpu.surfaceBytesUploaded = s.drawSurface(desc);

@@ -23,7 +23,8 @@ LeapTextures::LeapTextures() = default;
 LeapTextures::~LeapTextures() = default;
 
 std::string LeapTextures::update(const RenderDescription& d, const Volume& volume,
-                                 const BrickTable& table, int cellSize, const Visible& visible) {
+                                 const BrickTable& table, std::uint64_t generation, int cellSize,
+                                 const Visible& visible) {
     const SamplingSettings& s = d.sampling;
     const bool leap = s.emptySpaceLeaping && d.overlay.volume == nullptr;
     LeapMaps& maps = maps_;
@@ -33,12 +34,13 @@ std::string LeapTextures::update(const RenderDescription& d, const Volume& volum
                      s.classification == Classification::Post && table.brickSize % cellSize == 0 &&
                      blocksFor(volume);
     if (maps.cellReach) {
-        updateCells(table);
+        updateCells(table, generation);
     }
     if (maps.blockSkip) { // as the CPU's invisible cells: a table cell and float ulps
         const double margin = visible.tableCell +
                               4e-6 * std::max(std::abs(visible.tableLo), std::abs(visible.tableHi));
-        updateBlocks(volume, table, cellSize, float(std::max(visible.lo - margin, -3.0e38)),
+        updateBlocks(volume, table, generation, cellSize,
+                     float(std::max(visible.lo - margin, -3.0e38)),
                      float(std::min(visible.hi + margin, 3.0e38)));
     }
     return maps.defines();
@@ -52,8 +54,9 @@ void LeapTextures::bind(const ShaderProgram& p, GLuint unit) const {
     p.set("uBlocksPerAxis", ranges_ ? ranges_->blocksPerAxis() : glm::ivec3(0));
 }
 
-void LeapTextures::updateCells(const BrickTable& table) {
-    if (cellKey_ == table.codes) {
+void LeapTextures::updateCells(const BrickTable& table, std::uint64_t generation) {
+    if (cellKey_ && (generation == cellGeneration_ || *cellKey_ == table.codes)) {
+        cellGeneration_ = generation;
         return;
     }
     const std::vector<std::uint8_t> reach = leapReach(table.codes, table.cellsPerAxis);
@@ -62,16 +65,22 @@ void LeapTextures::updateCells(const BrickTable& table) {
     cellBytes_ = reach.size();
     checkGl("leaping cells' reach");
     cellKey_ = table.codes;
+    cellGeneration_ = generation;
 }
 
-void LeapTextures::updateBlocks(const Volume& volume, const BrickTable& table, int cellSize,
-                                float lo, float hi) {
+void LeapTextures::updateBlocks(const Volume& volume, const BrickTable& table,
+                                std::uint64_t generation, int cellSize, float lo, float hi) {
     if (!ranges_ || rangesOf_ != &volume) {
         ranges_ = std::make_unique<BlockRanges>(volume);
         rangesOf_ = &volume;
         blockKey_.reset();
     }
+    if (blockKey_ && generation == blockGeneration_ && std::get<2>(*blockKey_) == cellSize &&
+        std::get<3>(*blockKey_) == lo && std::get<4>(*blockKey_) == hi) {
+        return; // the same table: nothing to copy or compare
+    }
     auto key = std::tuple(table.codes, table.page, cellSize, lo, hi);
+    blockGeneration_ = generation;
     if (blockKey_ == key) {
         return;
     }

@@ -46,8 +46,10 @@ public:
         double lo, hi, tableCell, tableLo, tableHi;
     };
     // Returns the shader's #defines for them.
+    // `generation` (BrickStreamer::tableGeneration) names the table: a frame
+    // with the last one's compares nothing.
     std::string update(const RenderDescription& d, const Volume& volume, const BrickTable& table,
-                       int cellSize, const Visible& visible);
+                       std::uint64_t generation, int cellSize, const Visible& visible);
     // GPU memory of the maps the last update() reads (one byte a cell or block).
     std::size_t bytes() const {
         return (maps_.cellReach ? cellBytes_ : 0) + (maps_.blockSkip ? blockBytes_ : 0);
@@ -63,19 +65,20 @@ public:
 
 private:
     // The cells' reach over the cells the table leaps (code != 0).
-    void updateCells(const BrickTable& table);
+    void updateCells(const BrickTable& table, std::uint64_t generation);
     // The blocks' map: a sample in a block shows nothing where its leaping
     // cell (of cellSize voxels) is leapt, or where its brick is drawn from
     // level 0 and every value the block gives lies below lo or above hi.
     // table.brickSize is a multiple of cellSize, cellSize a multiple of 2.
-    void updateBlocks(const Volume& volume, const BrickTable& table, int cellSize, float lo,
-                      float hi);
+    void updateBlocks(const Volume& volume, const BrickTable& table, std::uint64_t generation,
+                      int cellSize, float lo, float hi);
 
     GlTexture cellReach_, blockReach_;
     std::size_t cellBytes_ = 0, blockBytes_ = 0;
     LeapMaps maps_; // the last update()'s
     std::optional<std::vector<std::uint8_t>> cellKey_;
-    std::unique_ptr<BlockRanges> ranges_; // of the volume, made once
+    std::uint64_t cellGeneration_ = 0, blockGeneration_ = 0; // of the tables the keys hold
+    std::unique_ptr<BlockRanges> ranges_;                    // of the volume, made once
     const Volume* rangesOf_ = nullptr;
     std::optional<std::tuple<std::vector<std::uint8_t>, std::vector<glm::ivec4>, int, float, float>>
         blockKey_;

@@ -90,10 +90,8 @@ void setRayCastUniforms(const ShaderProgram& p, const RayCastFrame& f) {
     p.set("uGradientToWorld",
           glm::mat3(glm::transpose(glm::inverse(linear)) / gradientScale(f.valueLo, f.valueHi)));
     const double tLo = f.tableLo, tHi = f.tableHi;
-    const double tableCell = (tHi - tLo) / double(kRayTableSize - 1);
-    const auto [visLo, visHi] = visibleValueRange(desc.transferFunction, tableCell);
-    p.set("uVisibleLo", float(std::max(visLo, -3.0e38)));
-    p.set("uVisibleHi", float(std::min(visHi, 3.0e38)));
+    p.set("uVisibleLo", float(std::max(f.visibleLo, -3.0e38)));
+    p.set("uVisibleHi", float(std::min(f.visibleHi, 3.0e38)));
     p.set("uStepRatio", float(desc.sampling.step));
     std::vector<glm::ivec3> levelDims = f.levelDims;
     levelDims.resize(8, levelDims.back());

@@ -30,6 +30,8 @@ struct RayCastFrame {
     const BrickPool& pool;
     std::vector<glm::ivec3> levelDims;   // at most 8
     double tableLo = 0.0, tableHi = 1.0; // the classification tables' range
+    // The values a sample may show (visibleValueRange, widened by a table cell).
+    double visibleLo = -1e300, visibleHi = 1e300;
     double valueLo = 0.0, valueHi = 1.0; // the volume's
     double gradientUnit = 1.0;           // of a cached gradient component of 1
     bool preintegrate = false, countRows = false, surface = false, overlay = false;
