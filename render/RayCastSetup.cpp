@@ -37,6 +37,14 @@ glm::dmat3 indexToPatient(const VolumeGeometry& g) {
             g.direction[2] * g.spacing.z};
 }
 
+// Whether every brick the table places is drawn from level 0 (the volume fits
+// the budget): the shader then drops its per-brick level arithmetic.
+bool onlyLevelZero(const BrickTable& table) {
+    return std::all_of(table.perLevel.begin() +
+                           std::min<std::ptrdiff_t>(1, std::ssize(table.perLevel)),
+                       table.perLevel.end(), [](std::size_t n) { return n == 0; });
+}
+
 } // namespace
 
 std::string rayCastDefines(const RayCastFrame& f) {
@@ -53,12 +61,22 @@ std::string rayCastDefines(const RayCastFrame& f) {
            flag(f.preintegrate) + "\n#define LUCENT_SHADING " +
            flag(desc.transferFunction.shading.enabled) + "\n#define LUCENT_LEAP " + flag(leap) +
            "\n#define LUCENT_CELLS_IN_ONE_BRICK " + flag(f.table.brickSize % kRayCellSize == 0) +
+           "\n#define LUCENT_ONE_LEVEL " + flag(onlyLevelZero(f.table)) +
            "\n#define LUCENT_GRADIENT_TEXTURE " + flag(f.pool.hasGradients()) +
            "\n#define LUCENT_GRADIENT_IN_POOL " + flag(f.pool.gradientsShareTexture()) +
            "\n#define LUCENT_SPECULAR_INT " +
            std::to_string(integerPower(desc.transferFunction.shading)) +
            "\n#define LUCENT_ROW_SAMPLES " + flag(f.countRows) + "\n#define LUCENT_SURFACE " +
            flag(f.surface) + "\n#define LUCENT_OVERLAY " + flag(f.overlay) + "\n";
+}
+
+PixelRect rayPixels(const RayCastFrame& f) {
+    const RenderDescription& desc = f.desc;
+    if (f.surface) {
+        return PixelRect{0, 0, desc.width - 1, desc.height - 1};
+    }
+    return pixelsOfBox(f.geometry, f.view, glm::max(desc.clip.lo, f.part.boxLo),
+                       glm::min(desc.clip.hi, f.part.boxHi), desc.width, desc.height);
 }
 
 void setRayCastUniforms(const ShaderProgram& p, const RayCastFrame& f) {

@@ -38,6 +38,10 @@ struct RayCastFrame {
 };
 
 std::string rayCastDefines(const RayCastFrame& f);
+// The pixels whose rays can meet the clip box (pixelsOfBox, as the CPU caster
+// casts): the others keep the cleared target, what a ray that misses leaves.
+// The whole image with a surface, which every pixel shows.
+PixelRect rayPixels(const RayCastFrame& f);
 void setRayCastUniforms(const ShaderProgram& p, const RayCastFrame& f);
 
 } // namespace lucent

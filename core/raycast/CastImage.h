@@ -21,44 +21,6 @@ constexpr int kTile = 16;
 constexpr int kPacket = 8;
 constexpr int kPacketColumns = 2, kPacketRows = kPacket / kPacketColumns;
 
-// Pixels x0 .. x1, y0 .. y1 (inclusive).
-struct PixelRect {
-    int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
-};
-
-// The pixels whose rays can meet the box lo .. hi (index space): the bounding
-// rectangle of its corners on screen, two pixels wider than rounding could
-// ever need; the whole image when a corner lies at or behind the eye.
-inline PixelRect pixelsOfBox(const VolumeGeometry& g, const ViewFrame& frame, glm::dvec3 lo,
-                             glm::dvec3 hi, int width, int height) {
-    const PixelRect all{0, 0, width - 1, height - 1};
-    double sxLo = HUGE_VAL, sxHi = -HUGE_VAL, syLo = HUGE_VAL, syHi = -HUGE_VAL;
-    for (int c = 0; c < 8; ++c) {
-        const glm::dvec3 corner((c & 1) != 0 ? hi.x : lo.x, (c & 2) != 0 ? hi.y : lo.y,
-                                (c & 4) != 0 ? hi.z : lo.z);
-        const glm::dvec3 v = g.toPatient(corner) - frame.eye;
-        const double depth = glm::dot(v, frame.forward);
-        if (!(depth > 1e-6 * glm::length(v))) {
-            return all;
-        }
-        const double sx = glm::dot(v, frame.right) / depth, sy = glm::dot(v, frame.up) / depth;
-        sxLo = std::min(sxLo, sx), sxHi = std::max(sxHi, sx);
-        syLo = std::min(syLo, sy), syHi = std::max(syHi, sy);
-    }
-    // ViewFrame::screenX and screenY solved for the pixel.
-    const double ax = frame.tanHalfFov * frame.aspect, ay = frame.tanHalfFov;
-    auto column = [&](double sx) { return (sx / ax + 1.0) * 0.5 * width - 0.5; };
-    auto row = [&](double sy) { return (1.0 - sy / ay) * 0.5 * height - 0.5; };
-    const double limit = 4.0 * double(std::max(width, height));
-    auto pixel = [&](double p) { return int(std::clamp(p, -limit, limit)); };
-    PixelRect r;
-    r.x0 = std::max(0, pixel(std::floor(column(sxLo))) - 2);
-    r.x1 = std::min(width - 1, pixel(std::ceil(column(sxHi))) + 2);
-    r.y0 = std::max(0, pixel(std::floor(row(syHi))) - 2);
-    r.y1 = std::min(height - 1, pixel(std::ceil(row(syLo))) + 2);
-    return r;
-}
-
 // kernel: anything with RayOutput cast(origin, direction, unit direction), or
 // with castPacket over up to kPacket neighbouring rays. Pixels outside
 // pixelsOfBox(clip box) get the background without a ray. `projection`, when

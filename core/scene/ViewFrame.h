@@ -38,6 +38,17 @@ ViewFrame makeViewFrame(const VolumeGeometry& geometry, const Camera& camera, in
 // volume's bounding sphere just fits the narrower side of a view of this size.
 double fitDistance(const VolumeGeometry& geometry, const Camera& camera, int width, int height);
 
+// Pixels x0 .. x1, y0 .. y1 (inclusive).
+struct PixelRect {
+    int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
+};
+
+// The pixels whose rays can meet the box lo .. hi (index space): the bounding
+// rectangle of its corners on screen, two pixels wider than rounding could
+// ever need; the whole image when a corner lies at or behind the eye.
+PixelRect pixelsOfBox(const VolumeGeometry& g, const ViewFrame& frame, glm::dvec3 lo, glm::dvec3 hi,
+                      int width, int height);
+
 // Radius of the sphere around the voxel centres (centred on volumeCentre), in LPS mm.
 double volumeRadius(const VolumeGeometry& geometry);
 

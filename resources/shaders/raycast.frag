@@ -30,6 +30,8 @@ const int kMode = LUCENT_MODE, kInterp = LUCENT_INTERP;
 const bool kPreclassify = LUCENT_PRECLASSIFY, kPreintegrate = LUCENT_PREINTEGRATE;
 const bool kShading = LUCENT_SHADING, kLeap = LUCENT_LEAP;
 const bool kCellsInOneBrick = LUCENT_CELLS_IN_ONE_BRICK;
+// Every brick is drawn from level 0: no level arithmetic per brick.
+const bool kOneLevel = LUCENT_ONE_LEVEL;
 // Leaps cross the cube of leapt cells the distance map gives (uCellReach);
 // DVR passes over samples in blocks that show nothing (uBlockReach).
 const bool kCellReach = LUCENT_CELL_REACH, kBlockSkip = LUCENT_BLOCK_SKIP;
@@ -212,8 +214,7 @@ void castRay() {
     }
 
     vec3 entry = vec3(o + d * t0), stride = vec3(d * uDt);
-    gEntry = entry;
-    gStride = stride;
+    setRayLattice(entry, stride);
     bool continuity = kPreintegrate || kMode == kIso;
     vec4 acc = vec4(0.0);
     float extreme = kMode == kMinIp ? 3.0e38 : -3.0e38;

@@ -7,8 +7,8 @@ ivec3 gBrick = ivec3(-1);
 int gState = 0;             // of the current brick: 0 absent, 1 resident, 2 border only
 vec3 gSlotBase = vec3(0.0); // atlas texel of its level's voxel 0
 vec3 gBoxLo = vec3(1.0e30), gBoxHi = vec3(-1.0e30); // the samples it backs
-float gLevelScale = 1.0, gLevelOffset = 0.0;
-ivec3 gDims = ivec3(1);
+float gLevelScale = 1.0, gLevelOffset = 0.0; // with kOneLevel: these, always
+ivec3 gDims = ivec3(1);                        // with kOneLevel: set with the ray
 
 ivec3 brickOf(vec3 p) {
     return min(ivec3(p * uInvBrickSize), uBricksPerAxis - 1);
@@ -23,10 +23,12 @@ void enterBrick(ivec3 b) {
         uvec4 box = texelFetch(uPageBox, b, 0);
         gBoxLo = vec3(uvec3(box.x & 0xffffu, box.x >> 16, box.y & 0xffffu));
         gBoxHi = vec3(uvec3(box.y >> 16, box.z & 0xffffu, box.z >> 16));
-        int level = page.w >> 2;
-        gLevelScale = exp2(-float(level));
-        gLevelOffset = 0.5 * (gLevelScale - 1.0);
-        gDims = uLevelDims[level];
+        if (!kOneLevel) {
+            int level = page.w >> 2;
+            gLevelScale = exp2(-float(level));
+            gLevelOffset = 0.5 * (gLevelScale - 1.0);
+            gDims = uLevelDims[level];
+        }
     }
 }
 
@@ -39,7 +41,7 @@ bool backed(vec3 p) {
 
 // The current brick's level position of level-0 p.
 vec3 toLevel(vec3 p) {
-    return p * gLevelScale + gLevelOffset;
+    return kOneLevel ? p : p * gLevelScale + gLevelOffset;
 }
 
 // --- filters (positions q in the current brick's level, inside its box's reach)
@@ -287,18 +289,27 @@ uniform usampler3D uBlockReach;
 uniform ivec3 uBlocksPerAxis;
 
 vec3 gEntry, gStride; // the ray in level-0 index space: p(n) = gEntry + gStride * n
+// Per axis 1 / gStride, 0 where the ray does not move along it; gBound picks
+// the box face it leaves by (1: hi, 0: lo). Set with the ray.
+vec3 gInvStride, gBound;
 
-// The lattice index at which the ray leaves the box [lo, hi).
-float exitIndex(vec3 lo, vec3 hi) {
-    float e = 1.0e30;
-    for (int a = 0; a < 3; ++a) {
-        if (gStride[a] > 1e-20) {
-            e = min(e, (hi[a] - gEntry[a]) / gStride[a]);
-        } else if (gStride[a] < -1e-20) {
-            e = min(e, (lo[a] - gEntry[a]) / gStride[a]);
-        }
+void setRayLattice(vec3 entry, vec3 stride) {
+    if (kOneLevel) {
+        gDims = uLevelDims[0];
     }
-    return e;
+    gEntry = entry;
+    gStride = stride;
+    bvec3 moving = greaterThan(abs(stride), vec3(1e-20));
+    gInvStride = mix(vec3(0.0), 1.0 / stride, moving);
+    gBound = vec3(greaterThan(stride, vec3(0.0)));
+}
+
+// The lattice index at which the ray leaves the box [lo, hi): a product per
+// axis, no division (every lane of llvmpipe runs this for every sample).
+float exitIndex(vec3 lo, vec3 hi) {
+    vec3 t = (mix(lo, hi, gBound) - gEntry) * gInvStride;
+    t = mix(vec3(1.0e30), t, notEqual(gInvStride, vec3(0.0)));
+    return min(t.x, min(t.y, t.z));
 }
 
 // --- the overlay ------------------------------------------------------------------
