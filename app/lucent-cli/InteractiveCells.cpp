@@ -29,7 +29,12 @@ std::string unitName(double unitMm) {
 }
 
 std::string msCell(double ms) {
-    return formatted(ms >= 100.0 ? "%.0f ms" : ms >= 10.0 ? "%.1f ms" : "%.2f ms", ms);
+    // Three significant figures or more: 0.504 ms must not read as 0.50 beside a 0.5 ms goal.
+    return formatted(ms >= 100.0  ? "%.0f ms"
+                     : ms >= 10.0 ? "%.1f ms"
+                     : ms >= 1.0  ? "%.2f ms"
+                                  : "%.3f ms",
+                     ms);
 }
 
 std::string dbCell(double db) {
@@ -49,6 +54,12 @@ InteractiveRow missingRow(std::string what, std::string goal, const std::string&
     row.what = std::move(what);
     row.lucent = why;
     row.goal = std::move(goal);
+    return row;
+}
+
+InteractiveRow goalRow(std::string what, std::string lucent, std::string goal, bool met) {
+    InteractiveRow row = missingRow(std::move(what), std::move(goal), lucent);
+    row.met = metCell(met);
     return row;
 }
 

@@ -33,7 +33,8 @@ std::string dimsText(glm::ivec3 d) {
 
 std::string mib(std::size_t bytes) {
     char text[32];
-    std::snprintf(text, sizeof text, "%.4g MiB", double(bytes) / 1048576.0);
+    const double v = double(bytes) / 1048576.0;
+    std::snprintf(text, sizeof text, v >= 100.0 ? "%.0f MiB" : "%.1f MiB", v);
     return text;
 }
 
@@ -62,16 +63,16 @@ std::string goalMsText(double ms) {
 }
 
 // The cube's frames for one variant and opacity unit, timed against the variant's goal.
-void cubeRow(GpuRayCaster& gpu, const Volume& cube, const InteractiveSettings& s,
-             const CubeVariant& v, double unitMm, InteractiveRow& row) {
+InteractiveRow cubeRow(GpuRayCaster& gpu, const Volume& cube, const InteractiveSettings& s,
+                       const CubeVariant& v, double unitMm, const std::string& what) {
     RenderDescription d = bench::ctBoneScene(cube, unitMm, s.cubeSize.x, s.cubeSize.y);
     d.sampling.interpolation = v.interpolation;
     d.sampling.preintegrate = v.preintegrate;
     const bench::TurnFrames f = bench::turnFrames(gpu, d);
     char fps[32];
     std::snprintf(fps, sizeof fps, " (%.1f fps", 1000.0 / f.medianMs);
-    row.lucent = msCell(f.medianMs) + fps + levelNote(f) + ")";
-    row.met = metCell(f.medianMs <= v.goalMs);
+    return goalRow(what, msCell(f.medianMs) + fps + levelNote(f) + ")", goalMsText(v.goalMs),
+                   f.medianMs <= v.goalMs);
 }
 
 } // namespace
@@ -92,17 +93,14 @@ InteractiveRows glCubeRows(const Volume& volume, const InteractiveSettings& s,
     InteractiveRows rows;
     for (const double unit : s.unitsMm) {
         for (const CubeVariant& v : kCubeVariants) {
-            InteractiveRow& row = rows.emplace_back();
-            row.what = "GL " + dimsText(glm::ivec3(s.cube)) + " (tiled), " + sizeText(s.cubeSize) +
-                       ", " + v.name + ", " + unitName(unit);
-            row.goal = goalMsText(v.goalMs);
-            row.lucent = why;
+            const std::string what = "GL " + dimsText(glm::ivec3(s.cube)) + " (tiled), " +
+                                     sizeText(s.cubeSize) + ", " + v.name + ", " + unitName(unit);
             try {
-                if (gpu) {
-                    cubeRow(*gpu, *cube, s, v, unit, row);
-                }
+                rows.push_back(gpu ? cubeRow(*gpu, *cube, s, v, unit, what)
+                                   : missingRow(what, goalMsText(v.goalMs), why));
             } catch (const std::exception& e) {
-                row.lucent = std::string("failed: ") + e.what();
+                rows.push_back(
+                    missingRow(what, goalMsText(v.goalMs), std::string("failed: ") + e.what()));
             }
         }
     }
@@ -136,18 +134,13 @@ InteractiveRows glLongRows(const Volume& volume, const InteractiveSettings& s,
         const double fps = 1000.0 / f.medianMs;
         char fpsText[32];
         std::snprintf(fpsText, sizeof fpsText, "%.1f fps", fps);
-        InteractiveRow first{firstWhat,
-                             msCell(firstMs) + " (caster " + msCell(openMs) + " + frame " +
-                                 msCell(f.firstMs) + levelNote(f) + ")",
-                             "-",
-                             "-",
-                             firstGoal,
-                             metCell(firstMs <= 2000.0)};
-        InteractiveRow rate{
-            fpsWhat, std::string(fpsText) + " (" + msCell(f.medianMs) + levelNote(f) + ")",
-            "-",     "-",
-            fpsGoal, metCell(fps >= 30.0)};
-        return {first, rate};
+        return {goalRow(firstWhat,
+                        msCell(firstMs) + " (caster " + msCell(openMs) + " + frame " +
+                            msCell(f.firstMs) + levelNote(f) + ")",
+                        firstGoal, firstMs <= 2000.0),
+                goalRow(fpsWhat,
+                        std::string(fpsText) + " (" + msCell(f.medianMs) + levelNote(f) + ")",
+                        fpsGoal, fps >= 30.0)};
     } catch (const std::exception& e) {
         const std::string failed = std::string("failed: ") + e.what();
         return {missingRow(firstWhat, firstGoal, failed), missingRow(fpsWhat, fpsGoal, failed)};
@@ -181,14 +174,11 @@ InteractiveRows glSurfaceRows(const Volume& volume, const InteractiveSettings& s
         gpu.setSurface(display);
         const bench::TurnFrames with = bench::turnFrames(gpu, d);
         const double added = with.medianMs - without.medianMs;
-        InteractiveRow row;
-        row.what = what;
-        row.lucent = msCell(added) + " (" + std::to_string(mesh->triangles.size()) +
-                     " triangles: " + msCell(without.medianMs) + " -> " + msCell(with.medianMs) +
-                     ")";
-        row.goal = goal;
-        row.met = metCell(added <= 2.0);
-        return {row};
+        return {goalRow(what,
+                        msCell(added) + " (" + std::to_string(mesh->triangles.size()) +
+                            " triangles: " + msCell(without.medianMs) + " -> " +
+                            msCell(with.medianMs) + ")",
+                        goal, added <= 2.0)};
     } catch (const std::exception& e) {
         return {missingRow(what, goal, std::string("failed: ") + e.what())};
     }
@@ -215,13 +205,15 @@ InteractiveRows defaultPathRows(const Volume& volume, const InteractiveSettings&
                 100.0 * double(g.residentBytes + g.tableBytes) / double(volume.byteCount());
             char pct[32];
             std::snprintf(pct, sizeof pct, "%.0f %%", share);
-            rows.push_back({memoryWhat,
-                            std::string(pct) + " (" + mib(g.residentBytes) + " + " +
-                                mib(g.tableBytes) + " of " + mib(volume.byteCount()) +
-                                "; gradients " + (g.gradientsCached ? "cached" : "computed") + ")",
-                            "-", "-", "<= 200 %", metCell(share <= 200.0)});
-            rows.push_back({glWhat, msCell(o.outsideCastMs) + " (cast " + msCell(o.castMs) + ")",
-                            "-", "-", "<= 0.5 ms", metCell(o.outsideCastMs <= 0.5)});
+            rows.push_back(goalRow(memoryWhat,
+                                   std::string(pct) + " (" + mib(g.residentBytes) + " + " +
+                                       mib(g.tableBytes) + " of " + mib(volume.byteCount()) +
+                                       "; gradients " +
+                                       (g.gradientsCached ? "cached" : "computed") + ")",
+                                   "<= 200 %", share <= 200.0));
+            rows.push_back(goalRow(glWhat,
+                                   msCell(o.outsideCastMs) + " (cast " + msCell(o.castMs) + ")",
+                                   "<= 0.5 ms", o.outsideCastMs <= 0.5));
         } catch (const std::exception& e) {
             const std::string failed = std::string("failed: ") + e.what();
             rows = {missingRow(memoryWhat, "<= 200 %", failed),
@@ -230,8 +222,8 @@ InteractiveRows defaultPathRows(const Volume& volume, const InteractiveSettings&
     }
     CpuRayCaster cpu(volume);
     const bench::DragOverhead c = bench::dragOverhead(cpu, d);
-    rows.push_back({cpuWhat, msCell(c.outsideCastMs) + " (cast " + msCell(c.castMs) + ")", "-", "-",
-                    "<= 0.5 ms", metCell(c.outsideCastMs <= 0.5)});
+    rows.push_back(goalRow(cpuWhat, msCell(c.outsideCastMs) + " (cast " + msCell(c.castMs) + ")",
+                           "<= 0.5 ms", c.outsideCastMs <= 0.5));
     return rows;
 }
 

@@ -64,6 +64,8 @@ std::string metCell(bool met);
 
 // A row whose measurement could not be made: `why` in the Lucent cell.
 InteractiveRow missingRow(std::string what, std::string goal, const std::string& why);
+// A row of Lucent alone (no anchor), its goal met or not.
+InteractiveRow goalRow(std::string what, std::string lucent, std::string goal, bool met);
 
 // a. The GL caster: the cube (tricubic + shading, + pre-integration, trilinear + shading) at
 // the cube size, per opacity unit; the long volume in its budget (first frame, frames a
