@@ -26,7 +26,7 @@ packages=(
   # the distributed renderer: Open MPI, and IceT (shipped in Debian only inside ParaView 5.11)
   libopenmpi-dev openmpi-bin paraview-dev
   # surfaces: mesh decimation (meshoptimizer); VTK's marching cubes for the surface benchmark,
-  # and VTK's volume mappers, the render benchmarks' anchor (tests/perf/vtk_anchor.py)
+  # and VTK's volume mappers, the render benchmarks' anchor (app/bench/vtk_anchor.py)
   libmeshoptimizer-dev python3-vtk9
   # the web test: headless Chromium driven through chromedriver; openssl makes the TLS test's certificate
   chromium chromium-driver openssl
@@ -47,7 +47,7 @@ packages=(
   libinsighttoolkit5-dev
   # the registration benchmark's anchor (tests/perf/bench_register_elastix): elastix 5.0.1
   elastix
-  # the CPU render benchmark's shear-warp anchor (tests/perf/VolPackAnchor): VolPack 1.0b3
+  # the CPU render benchmark's shear-warp anchor (app/bench/VolPackAnchor): VolPack 1.0b3
   libvolpack1-dev
 )
 

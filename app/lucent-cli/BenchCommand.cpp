@@ -34,6 +34,9 @@ int runBench(const QStringList& args) {
     if (args.size() > 1 && args[1] == "lod") {
         return runLodBench(args);
     }
+    if (args.size() > 1 && args[1] == "interactive") {
+        return runInteractiveBench(args);
+    }
     QCommandLineParser parser;
     parser.setApplicationDescription("bench quality PATH: time against accuracy for every sampling "
                                      "setting, measured against the reference (double, tricubic, "

@@ -36,12 +36,6 @@ inline double numberFlag(const QCommandLineParser& p, const QString& name, doubl
     return v;
 }
 
-// The median of frame times (render --repeat, bench quality).
-inline double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
-
 // Each takes the arguments after the command name, with the program name first.
 int runInfo(const QStringList& args);
 int runConvert(const QStringList& args);
@@ -53,6 +47,8 @@ int runExport(const QStringList& args);   // DICOM to a folder or ZIP, de-identi
 int runBench(const QStringList& args);
 // bench lod PATH: PSNR against the GPU budget, per-brick levels and one level.
 int runLodBench(const QStringList& args);
+// bench interactive PATH: issue 31's goal table, VTK and VolPack side by side.
+int runInteractiveBench(const QStringList& args);
 int runOptions(const QStringList& args);      // the render options table
 int runSurface(const QStringList& args);      // isosurface meshes and the method of spheres
 int runMeasurements(const QStringList& args); // a series' or an SR's measurements

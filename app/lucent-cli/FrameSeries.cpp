@@ -3,6 +3,7 @@
 #include <QElapsedTimer>
 
 #include "CliCommand.h"
+#include "app/bench/BenchScenes.h"
 
 namespace lucent::cli {
 
@@ -31,7 +32,7 @@ QString seriesStats(double loadMs, const FrameSeries& series) {
         frames.erase(frames.begin());
     }
     const RenderStats& s = series.first.stats;
-    return text + " render_ms=" + QString::number(median(frames), 'f', 1) +
+    return text + " render_ms=" + QString::number(bench::median(frames), 'f', 1) +
            " samples=" + QString::number(s.samples) +
            " bricks_total=" + QString::number(s.bricksTotal) +
            " bricks_used=" + QString::number(s.bricksUsed) + " lod=" + QString::number(s.lod);

@@ -29,6 +29,8 @@ const char* kUsageText =
     "                                       time against PSNR/SSIM of every sampling setting\n"
     "  bench lod PATH [--budgets MIB,...] [--csv OUT.csv] [--plot OUT.png]\n"
     "                                       PSNR against the GPU budget, per-brick and one level\n"
+    "  bench interactive PATH [--runs N] [--no-anchors] [--csv OUT.csv] [--size WxH] [...]\n"
+    "                                       issue 31's goal table, VTK and VolPack side by side\n"
     "PATH: a DICOM folder (searched recursively), a DICOM file, a DICOMDIR,\n"
     "      or a .mhd/.mha, .nii/.nii.gz or InVesalius .inv3 volume.\n"
     "  pacs echo|find|get --pacs AET@HOST:PORT ...  C-ECHO, C-FIND, C-GET into the study store\n"

@@ -8,15 +8,15 @@
 // Issue 31's anchors run in the same benchmark, on the same scene, against the
 // same reference, three runs alternating with Lucent, one line per run each:
 //  - VTK 9.1's vtkFixedPointVolumeRayCastMapper (2 threads), through
-//    tests/perf/vtk_anchor.py under xvfb-run (tests/perf/VtkAnchor.h): time,
+//    app/bench/vtk_anchor.py under xvfb-run (app/bench/VtkAnchor.h): time,
 //    ratio Lucent / VTK, dB of both. Fails when xvfb-run or python3-vtk9 is
 //    missing (packaging/install-deps.sh installs them).
-//  - VolPack's shear-warp (libvolpack1-dev, tests/perf/VolPackAnchor.h), one
+//  - VolPack's shear-warp (libvolpack1-dev, app/bench/VolPackAnchor.h), one
 //    thread, classification once outside the timing as Lucent caches its own.
 //    Its parallel projection does not line up with Lucent's perspective view:
 //    its dB counts that too.
-// Prints the figures; asserts nothing about time.
-#include <QTemporaryDir>
+// The scene, the frames and the anchors are lucent_bench's (app/bench), which lucent-cli bench
+// interactive runs too. Prints the figures; asserts nothing about time.
 #include <QTest>
 
 #include <algorithm>
@@ -25,13 +25,14 @@
 #include <filesystem>
 #include <optional>
 
+#include "app/bench/BenchFrames.h"
+#include "app/bench/BenchScenes.h"
+#include "app/bench/VolPackAnchor.h"
+#include "app/bench/VtkAnchor.h"
 #include "core/image/ImageMetrics.h"
 #include "core/image/PngIO.h"
 #include "core/io/Catalog.h"
 #include "core/raycast/CpuRayCaster.h"
-#include "tests/perf/BenchScenes.h"
-#include "tests/perf/VolPackAnchor.h"
-#include "tests/perf/VtkAnchor.h"
 
 using namespace lucent;
 
@@ -51,40 +52,10 @@ std::filesystem::path outDir() {
     return std::filesystem::path(LUCENT_BIN_DIR) / "..";
 }
 
-// Median of 6 frames turning 5 degrees, after one frame that warms the caches; the first
-// timed frame (azimuth 0) is kept.
-struct Frames {
-    double medianMs = 0.0, warmMs = 0.0;
-    ImageRGBA8 first;
-    std::size_t samples = 0;
-};
-
-// The reference: tricubic, step 1/16 voxel, double precision.
-RenderDescription converged(const RenderDescription& d) {
-    RenderDescription ref = d;
-    ref.sampling.step = 1.0 / 16.0;
-    ref.sampling.interpolation = Interpolation::Cubic;
-    ref.sampling.precision = Precision::Double;
-    return ref;
-}
-
-Frames lucentFrames(CpuRayCaster& caster, const RenderDescription& d, bool simd) {
-    Frames out;
-    std::vector<double> ms;
-    for (int frame = 0; frame < 7; ++frame) {
-        RenderDescription f = d;
-        f.camera.azimuth = 5.0 * std::max(0, frame - 1);
-        f.sampling.simd = simd;
-        const auto t0 = Clock::now();
-        RenderResult r = caster.render(f);
-        (frame == 0 ? out.warmMs : ms.emplace_back()) = msSince(t0);
-        if (frame == 1) {
-            out.first = std::move(r.image);
-            out.samples = r.stats.samples;
-        }
-    }
-    out.medianMs = bench::median(ms);
-    return out;
+// Lucent's 6 frames turning 5 degrees (median) after one that warms the caches.
+bench::TurnFrames lucentFrames(CpuRayCaster& caster, RenderDescription d, bool simd) {
+    d.sampling.simd = simd;
+    return bench::turnFrames(caster, d);
 }
 
 } // namespace
@@ -92,8 +63,7 @@ Frames lucentFrames(CpuRayCaster& caster, const RenderDescription& d, bool simd)
 class BenchCpuRender : public QObject {
     Q_OBJECT
     std::optional<Volume> volume_;
-    QTemporaryDir dir_;
-    std::filesystem::path mhd_; // the volume as the VTK anchor reads it
+    std::optional<bench::VtkAnchor> vtk_; // the volume and the preset as the VTK anchor reads them
 
 private slots:
     void initTestCase() {
@@ -101,8 +71,7 @@ private slots:
             QSKIP("real test data not found: ../shared/data/dcm_qa_ct/Philips_S21570/S2020");
         }
         volume_.emplace(loadPath(philips()));
-        QVERIFY(dir_.isValid());
-        mhd_ = bench::writeAnchorVolume(*volume_, dir_.path().toStdString());
+        vtk_.emplace(*volume_, loadPreset("ct-bone"));
     }
 
     void philipsCtBone_data() {
@@ -113,16 +82,12 @@ private slots:
     void philipsCtBone() {
         QFETCH(double, unitMm);
         const Volume& volume = *volume_;
-        RenderDescription d;
-        d.volume = &volume;
-        d.transferFunction = bench::opacityPerUnit(loadPreset("ct-bone"), volume, unitMm);
-        d.sampling.step = 0.5;
-        d.sampling.interpolation = Interpolation::Linear;
+        const RenderDescription d = bench::ctBoneScene(volume, unitMm);
         CpuRayCaster caster(volume);
         const std::string tag = unitMm > 0.0 ? "_per_mm" : "";
-        const Frames scalar = lucentFrames(caster, d, false); // no SIMD ray packets
+        const bench::TurnFrames scalar = lucentFrames(caster, d, false); // no SIMD ray packets
         const auto t0 = Clock::now();
-        const RenderResult reference = caster.render(converged(d));
+        const RenderResult reference = caster.render(bench::converged(d));
         const double refMs = msSince(t0);
         writePng(reference.image, outDir() / ("bench_cpu_render_reference" + tag + ".png"));
         // VolPack classifies once, outside the timing (Lucent caches its classification).
@@ -137,21 +102,22 @@ private slots:
         const double classifyMs = msSince(t1);
         // Three runs, Lucent and its anchors alternating: this machine's load comes and goes.
         for (int run = 1; run <= 3; ++run) {
-            const Frames lucent = lucentFrames(caster, d, true);
-            const double lucentDb = psnr(lucent.first, reference.image);
-            const double lucentSsim = ssim(lucent.first, reference.image);
+            const bench::TurnFrames lucent = lucentFrames(caster, d, true);
+            const ImageRGBA8& lucentImage = lucent.first.frame.image;
+            const double lucentDb = psnr(lucentImage, reference.image);
+            const double lucentSsim = ssim(lucentImage, reference.image);
             if (run == 1) {
-                writePng(lucent.first, outDir() / ("bench_cpu_render_fast" + tag + ".png"));
+                writePng(lucentImage, outDir() / ("bench_cpu_render_fast" + tag + ".png"));
                 qInfo("cpu_render%s: render_ms=%.1f (median of 6, 512x512, 2 threads) "
                       "first_ms=%.1f scalar_render_ms=%.1f samples=%zu psnr_db=%.2f ssim=%.4f vs "
                       "reference (reference took %.0f ms)",
-                      tag.c_str(), lucent.medianMs, lucent.warmMs, scalar.medianMs, lucent.samples,
-                      lucentDb, lucentSsim, refMs);
+                      tag.c_str(), lucent.medianMs, lucent.firstMs, scalar.medianMs,
+                      lucent.first.frame.stats.samples, lucentDb, lucentSsim, refMs);
             }
             bench::VtkAnchorRun vtk;
             try {
-                vtk = bench::runVtkAnchor(mhd_, "fixed", unitMm,
-                                          outDir() / ("bench_cpu_render_vtk" + tag + ".png"));
+                vtk = vtk_->run("fixed", unitMm, d.width, d.height,
+                                outDir() / ("bench_cpu_render_vtk" + tag + ".png"));
             } catch (const std::exception& e) {
                 QFAIL(e.what());
             }
@@ -162,15 +128,17 @@ private slots:
                   lucentDb, psnr(vtk.image, reference.image), lucentSsim,
                   ssim(vtk.image, reference.image));
             if (volpack) {
-                const Frames v = volPackFrames(*volpack, d.camera);
-                writePng(v.first, outDir() / ("bench_cpu_render_volpack" + tag + ".png"));
+                const bench::TurnFrames v = volPackFrames(*volpack, d);
+                const ImageRGBA8& volpackImage = v.first.frame.image;
+                writePng(volpackImage, outDir() / ("bench_cpu_render_volpack" + tag + ".png"));
                 qInfo("anchor_volpack%s run %d/3: lucent_ms=%.1f volpack_ms=%.1f ratio=%.3f "
                       "lucent_db=%.2f volpack_db=%.2f volpack_ssim=%.4f classify_ms=%.0f axis=%c "
                       "(VolPack: 1 thread, shear-warp, parallel projection: its image does not "
                       "line up with Lucent's perspective one, and its dB counts that)",
                       tag.c_str(), run, lucent.medianMs, v.medianMs, lucent.medianMs / v.medianMs,
-                      lucentDb, psnr(v.first, reference.image), ssim(v.first, reference.image),
-                      classifyMs, "ijk"[std::clamp(volpack->lastAxis(), 0, 2)]);
+                      lucentDb, psnr(volpackImage, reference.image),
+                      ssim(volpackImage, reference.image), classifyMs,
+                      "ijk"[std::clamp(volpack->lastAxis(), 0, 2)]);
             }
         }
         if (!volpack) {
@@ -181,28 +149,22 @@ private slots:
 
 private:
     // VolPack's 6 frames turning 5 degrees; frame 0 (not timed) sizes its buffers.
-    static Frames volPackFrames(bench::VolPackAnchor& volpack, const Camera& start) {
-        Frames out;
-        std::vector<double> ms;
-        for (int frame = 0; frame < 7; ++frame) {
-            Camera camera = start;
-            camera.azimuth = 5.0 * std::max(0, frame - 1);
-            const auto t = Clock::now();
-            ImageRGBA8 image = volpack.render(camera);
-            (frame == 0 ? out.warmMs : ms.emplace_back()) = msSince(t);
-            if (frame == 1) {
-                out.first = std::move(image);
-            }
-        }
-        out.medianMs = bench::median(ms);
-        return out;
+    static bench::TurnFrames volPackFrames(bench::VolPackAnchor& volpack,
+                                           const RenderDescription& d) {
+        return bench::turnFrames(
+            [&](const RenderDescription& f) {
+                GpuRenderResult r;
+                r.frame.image = volpack.render(f.camera);
+                return r;
+            },
+            d);
     }
 
     // To tell VolPack's projection from its sampling: its frame with a 0.5 degree field of
     // view (all but parallel) against Lucent's converged reference with that view.
     static void volPackNearParallel(CpuRayCaster& caster, bench::VolPackAnchor& volpack,
                                     const RenderDescription& d, const std::string& tag) {
-        RenderDescription narrow = converged(d);
+        RenderDescription narrow = bench::converged(d);
         narrow.camera.fieldOfView = 0.5;
         const ImageRGBA8 parallel = volpack.render(narrow.camera);
         const ImageRGBA8 parallelReference = caster.render(narrow).image;

@@ -20,12 +20,12 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "app/bench/BenchScenes.h"
 #include "core/fusion/FusionCompositor.h"
 #include "core/fusion/OverlayResampler.h"
 #include "core/io/Catalog.h"
 #include "core/mpr/CrosshairSlice.h"
 #include "core/raycast/CpuRayCaster.h"
-#include "tests/perf/BenchScenes.h"
 #include "tests/support/MovedVolume.h"
 
 using namespace lucent;

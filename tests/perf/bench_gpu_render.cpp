@@ -6,17 +6,17 @@
 //    against the CPU reference (same settings, double precision) and against
 //    the converged reference (tricubic, step 1/16, double).
 //  - Issue 31's anchor on that scene: VTK 9.1's vtkGPUVolumeRayCastMapper
-//    through tests/perf/vtk_anchor.py under xvfb-run (GLX on Mesa llvmpipe, as
-//    Lucent's EGL is here; tests/perf/VtkAnchor.h), 512x512, three runs with
+//    through app/bench/vtk_anchor.py under xvfb-run (GLX on Mesa llvmpipe, as
+//    Lucent's EGL is here; app/bench/VtkAnchor.h), 512x512, three runs with
 //    Lucent and VTK alternating, each run's ratio and both dB against the
 //    converged reference (the goal: GL / VTK <= 0.10 in each of 3 runs). Fails
 //    when xvfb-run or python3-vtk9 is missing.
 //  - Volumes tiled from the same CT beyond the budget: 1024 x 1024 x 1120
 //    (2.3 GB of int16) in 512 MiB, and the seed's 512 x 512 x 5382 (2.8 GB) in
 //    2 GiB: the level used, the time, what was uploaded.
-// LUCENT_BENCH_SIZE=WxH changes the image size. Prints the figures; asserts
-// nothing about time.
-#include <QTemporaryDir>
+// The scene, the frames, the tiles and the anchor are lucent_bench's (app/bench), which
+// lucent-cli bench interactive runs too. LUCENT_BENCH_SIZE=WxH changes the image size.
+// Prints the figures; asserts nothing about time.
 #include <QTest>
 
 #include <algorithm>
@@ -25,6 +25,9 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "app/bench/BenchFrames.h"
+#include "app/bench/BenchScenes.h"
+#include "app/bench/VtkAnchor.h"
 #include "core/image/ImageMetrics.h"
 #include "core/image/PngIO.h"
 #include "core/io/Catalog.h"
@@ -32,8 +35,6 @@
 #include "core/volume/Volume.h"
 #include "render/GpuRayCaster.h"
 #include "render/OffscreenContext.h"
-#include "tests/perf/BenchScenes.h"
-#include "tests/perf/VtkAnchor.h"
 
 using namespace lucent;
 
@@ -72,64 +73,7 @@ glm::ivec2 benchSize() {
 
 // The CPU issue's scene: ct-bone (opacities per unitMm when > 0), trilinear, step 0.5.
 RenderDescription ctBoneScene(const Volume& volume, double unitMm) {
-    RenderDescription d;
-    d.volume = &volume;
-    d.transferFunction = bench::opacityPerUnit(loadPreset("ct-bone"), volume, unitMm);
-    d.width = benchSize().x;
-    d.height = benchSize().y;
-    return d;
-}
-
-// Median of 6 frames turning 5 degrees, after frame 0 (compile and upload); the first
-// timed frame (azimuth 0) is kept.
-struct GlFrames {
-    double medianMs = 0.0, firstMs = 0.0, uploadedMib = 0.0;
-    GpuRenderResult first;
-};
-
-GlFrames glFrames(GpuRayCaster& gpu, const RenderDescription& d) {
-    GlFrames out;
-    std::vector<double> ms;
-    for (int frame = 0; frame < 7; ++frame) {
-        RenderDescription f = d;
-        f.camera.azimuth = 5.0 * std::max(0, frame - 1);
-        const auto t0 = Clock::now();
-        GpuRenderResult r = gpu.renderWithGpuStats(f);
-        (frame == 0 ? out.firstMs : ms.emplace_back()) = msSince(t0);
-        out.uploadedMib += double(r.gpu.bytesUploaded) / 1048576.0;
-        if (frame == 1) {
-            out.first = std::move(r);
-        }
-    }
-    out.medianMs = bench::median(ms);
-    return out;
-}
-
-// Mirrored tiles of the CT, so that the tiled volume has no seams.
-Volume tiled(const Volume& ct, glm::ivec3 dims) {
-    VolumeGeometry g = ct.geometry();
-    g.dims = dims;
-    Volume out(g, VoxelType::Int16);
-    out.modality = ct.modality;
-    const auto src = ct.voxels<std::int16_t>();
-    const auto dst = out.voxels<std::int16_t>();
-    const glm::ivec3 n = ct.dims();
-    const auto mirror = [](int i, int size) {
-        const int period = 2 * size;
-        i %= period;
-        return i < size ? i : period - 1 - i;
-    };
-#pragma omp parallel for schedule(static)
-    for (int k = 0; k < dims.z; ++k) {
-        const int kk = mirror(k, n.z);
-        for (int j = 0; j < dims.y; ++j) {
-            const int jj = mirror(j, n.y);
-            for (int i = 0; i < dims.x; ++i) {
-                dst[out.linearIndex(i, j, k)] = src[ct.linearIndex(mirror(i, n.x), jj, kk)];
-            }
-        }
-    }
-    return out;
+    return bench::ctBoneScene(volume, unitMm, benchSize().x, benchSize().y);
 }
 
 } // namespace
@@ -164,16 +108,13 @@ private slots:
         GpuOptions options;
         options.gradientCache = gradientCache;
         GpuRayCaster gpu(volume, options);
-        const GlFrames gl = glFrames(gpu, d);
+        const bench::TurnFrames gl = bench::turnFrames(gpu, d);
         const GpuRenderResult& first = gl.first;
         CpuRayCaster cpu(volume);
         RenderDescription same = d;
         same.sampling.precision = Precision::Double;
         const RenderResult sameRef = cpu.render(same);
-        RenderDescription converged = same;
-        converged.sampling.step = 1.0 / 16.0;
-        converged.sampling.interpolation = Interpolation::Cubic;
-        const RenderResult truth = cpu.render(converged);
+        const RenderResult truth = cpu.render(bench::converged(d));
         const std::string tag = std::string(unitMm > 0.0 ? "_per_mm" : "") +
                                 (gradientCache ? "" : "_computed_gradients");
         writePng(first.frame.image, std::filesystem::path(LUCENT_BIN_DIR) / ".." /
@@ -202,39 +143,31 @@ private slots:
             QSKIP("real test data not found: ../shared/data/dcm_qa_ct/Philips_S21570/S2020");
         }
         const Volume volume = loadPath(philips());
-        QTemporaryDir dir;
-        QVERIFY(dir.isValid());
-        const std::filesystem::path mhd =
-            bench::writeAnchorVolume(volume, dir.path().toStdString());
-        RenderDescription d = ctBoneScene(volume, unitMm);
-        d.width = d.height = 512; // the anchor's size
-        RenderDescription converged = d;
-        converged.sampling.precision = Precision::Double;
-        converged.sampling.step = 1.0 / 16.0;
-        converged.sampling.interpolation = Interpolation::Cubic;
-        const RenderResult truth = CpuRayCaster(volume).render(converged);
+        const bench::VtkAnchor anchor(volume, loadPreset("ct-bone"));
+        const RenderDescription d = ctBoneScene(volume, unitMm);
+        const RenderResult truth = CpuRayCaster(volume).render(bench::converged(d));
         const std::string tag = unitMm > 0.0 ? "_per_mm" : "";
         GpuRayCaster gpu(volume);
         double worst = 0.0;
         for (int run = 1; run <= 3; ++run) {
-            const GlFrames gl = glFrames(gpu, d);
+            const bench::TurnFrames gl = bench::turnFrames(gpu, d);
             bench::VtkAnchorRun vtk;
             try {
-                vtk = bench::runVtkAnchor(mhd, "gpu", unitMm,
-                                          std::filesystem::path(LUCENT_BIN_DIR) / ".." /
-                                              ("bench_gpu_render_vtk" + tag + ".png"));
+                vtk = anchor.run("gpu", unitMm, d.width, d.height,
+                                 std::filesystem::path(LUCENT_BIN_DIR) / ".." /
+                                     ("bench_gpu_render_vtk" + tag + ".png"));
             } catch (const std::exception& e) {
                 QFAIL(e.what());
             }
             const double ratio = gl.medianMs / vtk.renderMs;
             worst = std::max(worst, ratio);
             qInfo("anchor_vtk_gpu%s run %d/3: lucent_ms=%.1f vtk_ms=%.1f ratio=%.3f lucent_db=%.2f "
-                  "vtk_db=%.2f lucent_ssim=%.4f vtk_ssim=%.4f (512x512, both on %s; dB and SSIM "
+                  "vtk_db=%.2f lucent_ssim=%.4f vtk_ssim=%.4f (%dx%d, both on %s; dB and SSIM "
                   "against the converged reference)",
                   tag.c_str(), run, gl.medianMs, vtk.renderMs, ratio,
                   psnr(gl.first.frame.image, truth.image), psnr(vtk.image, truth.image),
-                  ssim(gl.first.frame.image, truth.image), ssim(vtk.image, truth.image),
-                  context_->description().c_str());
+                  ssim(gl.first.frame.image, truth.image), ssim(vtk.image, truth.image), d.width,
+                  d.height, context_->description().c_str());
         }
         qInfo("anchor_vtk_gpu%s: worst ratio of 3 runs %.3f (issue 31's goal: <= 0.10 in each)",
               tag.c_str(), worst);
@@ -295,29 +228,13 @@ private slots:
             QSKIP("real test data not found");
         }
         const auto t0 = Clock::now();
-        const Volume big = tiled(loadPath(philips()), dims);
+        const Volume big = bench::tiled(loadPath(philips()), dims);
         const double buildMs = msSince(t0);
         GpuOptions options;
         options.budgetBytes = std::size_t(budgetMib) << 20;
         GpuRayCaster gpu(big, options);
-        RenderDescription d;
-        d.volume = &big;
-        d.transferFunction = loadPreset("ct-bone");
-        d.width = benchSize().x;
-        d.height = benchSize().y;
-        std::vector<double> ms;
-        GpuRenderResult first;
-        double firstMs = 0.0;
-        for (int frame = 0; frame < 4; ++frame) {
-            RenderDescription f = d;
-            f.camera.azimuth = 5.0 * frame;
-            const auto t = Clock::now();
-            GpuRenderResult r = gpu.renderWithGpuStats(f);
-            (frame == 0 ? firstMs : ms.emplace_back()) = msSince(t);
-            if (frame == 0) {
-                first = std::move(r);
-            }
-        }
+        const bench::TurnFrames frames = bench::turnFrames(gpu, ctBoneScene(big, 0.0), 3);
+        const GpuRenderResult& first = frames.first;
         writePng(first.frame.image,
                  std::filesystem::path(LUCENT_BIN_DIR) / ".." /
                      ("bench_gpu_" + std::string(QTest::currentDataTag()) + ".png"));
@@ -326,8 +243,8 @@ private slots:
               "resident_mib=%.1f values_mib=%.1f pool_mib=%.1f uploaded_mib=%.1f gradients=%s "
               "levels=%s",
               big.dims().x, big.dims().y, big.dims().z, double(big.byteCount()) / 1e9, buildMs,
-              budgetMib, first.frame.stats.lod, first.gpu.lodReason.c_str(), firstMs,
-              bench::median(ms), first.gpu.bricksResident,
+              budgetMib, first.frame.stats.lod, first.gpu.lodReason.c_str(), frames.firstMs,
+              frames.medianMs, first.gpu.bricksResident,
               double(first.gpu.residentBytes) / 1048576.0, double(first.gpu.valueBytes) / 1048576.0,
               double(first.gpu.poolBytes) / 1048576.0, double(first.gpu.bytesUploaded) / 1048576.0,
               first.gpu.gradientsCached ? "cached" : "computed", levelsOf(first.gpu).c_str());

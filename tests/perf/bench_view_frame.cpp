@@ -33,11 +33,11 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "app/bench/BenchScenes.h"
 #include "core/image/ImageMetrics.h"
 #include "core/io/Catalog.h"
 #include "core/quality/InteractiveQuality.h"
 #include "render/RenderDevice.h"
-#include "tests/perf/BenchScenes.h"
 #include "tests/support/XvfbRelaunch.h"
 
 using namespace lucent;

@@ -1,4 +1,4 @@
-#include "tests/perf/VolPackAnchor.h"
+#include "app/bench/VolPackAnchor.h"
 
 #include <algorithm>
 #include <cmath>
@@ -252,9 +252,8 @@ void VolPackAnchor::ContextDeleter::operator()(vpContext*) const {}
 VolPackAnchor::VolPackAnchor(const Volume& volume, const TransferFunction&, const Camera&,
                              int width, int height)
     : volume_(volume), width_(width), height_(height) {
-    throw std::runtime_error("VolPack anchor: libvolpack1-dev was not found when the build was "
-                             "configured (packaging/install-deps.sh installs it; then run cmake "
-                             "again)");
+    throw std::runtime_error("not built: libvolpack1-dev missing (the VolPack anchor: "
+                             "packaging/install-deps.sh installs it; then run cmake again)");
 }
 
 VolPackAnchor::~VolPackAnchor() = default;

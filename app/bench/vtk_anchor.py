@@ -1,20 +1,23 @@
 #!/usr/bin/python3
 """The VTK anchor of the render benchmarks, measured with VTK 9.1's
-vtkFixedPointVolumeRayCastMapper (--mapper fixed, the default: bench_cpu_render's
-anchor) or vtkGPUVolumeRayCastMapper (--mapper gpu: bench_gpu_render's) on the
-same scene as the benchmarks:
-Philips 140-slice CT (as converted by lucent-cli convert), 512x512, ct-bone,
-shading on, trilinear, step 0.5 voxel of the smallest spacing, Lucent's
-anterior camera (30 degree view angle, zoom 1 fits the bounding sphere).
+vtkFixedPointVolumeRayCastMapper (--mapper fixed, the default: the CPU caster's
+anchor) or vtkGPUVolumeRayCastMapper (--mapper gpu: the GL caster's) on the
+same scene as the benchmarks (app/bench/BenchScenes.h):
+a volume (as converted by lucent-cli convert), 512x512 unless --size, a preset
+(the JSON of writeTransferFunction: "opacity", "colour", "shading"), shading
+on, trilinear, step 0.5 voxel of the smallest spacing, Lucent's anterior
+camera (30 degree view angle, zoom 1 fits the bounding sphere).
 The opacity unit distance is one voxel of the smallest spacing, as in Lucent.
 
 Needs Debian's python3-vtk9 (a measuring tool, not a project dependency) and
 a display (run under xvfb-run; the GPU mapper then runs on Mesa's llvmpipe, as
-Lucent's GL caster does through EGL). The benchmarks run it themselves
-(tests/perf/VtkAnchor.cpp) and print both side by side. By hand:
+Lucent's GL caster does through EGL). lucent-cli bench interactive and the
+benchmarks in tests/perf carry this file in their binary and run it themselves
+(app/bench/VtkAnchor.cpp), printing both side by side. By hand:
   build/bin/lucent-cli convert ../shared/data/dcm_qa_ct/Philips_S21570/S2020 /tmp/philips.mhd
-  xvfb-run -a -s "-screen 0 1280x1024x24" /usr/bin/python3 tests/perf/vtk_anchor.py \
-      [--mapper fixed|gpu] /tmp/philips.mhd resources/presets/ct-bone.json OUT.png [UNIT_MM]
+  xvfb-run -a -s "-screen 0 1280x1024x24" /usr/bin/python3 app/bench/vtk_anchor.py \
+      [--mapper fixed|gpu] [--size WxH] /tmp/philips.mhd resources/presets/ct-bone.json \
+      OUT.png [UNIT_MM]
 Prints the median time of 6 frames turning 5 degrees (each frame waits for the
 GL to finish). Without UNIT_MM the
 scene is bench_cpu_render's first (opacity per voxel): compare OUT.png with
@@ -32,6 +35,7 @@ import vtk
 
 parser = argparse.ArgumentParser(description="VTK's volume mappers on Lucent's benchmark scene")
 parser.add_argument("--mapper", choices=["fixed", "gpu"], default="fixed")
+parser.add_argument("--size", default="512x512", help="image size, WxH")
 parser.add_argument("volume")
 parser.add_argument("preset")
 parser.add_argument("out")
@@ -40,6 +44,7 @@ parser.add_argument("unit_mm", nargs="?", type=float)
 arguments = parser.parse_args()
 volume_path, preset_path, out_path = arguments.volume, arguments.preset, arguments.out
 unit_distance = arguments.unit_mm
+width, height = (int(n) for n in arguments.size.split("x"))
 reader = vtk.vtkMetaImageReader()
 reader.SetFileName(volume_path)
 reader.Update()
@@ -97,7 +102,7 @@ renderer.SetBackground(0, 0, 0)
 window = vtk.vtkRenderWindow()
 window.SetOffScreenRendering(1)
 window.AddRenderer(renderer)
-window.SetSize(512, 512)
+window.SetSize(width, height)
 
 # Lucent's ViewFrame: eye in front (anterior, -y), looking +y, head (+z) up.
 centre = [origin[i] + spacing[i] * (dims[i] - 1) / 2 for i in range(3)]
@@ -137,5 +142,5 @@ for frame in range(6):
     times.append((time.perf_counter() - t0) * 1000.0)
 renderer_lines = [l for l in window.ReportCapabilities().splitlines() if "renderer string" in l]
 gl = renderer_lines[0].split(":", 1)[1].strip() if renderer_lines else "unknown"
-print("%s: render_ms=%.1f (median of 6, 512x512, %s) gl_renderer=%s"
-      % (label, statistics.median(times), threads, gl))
+print("%s: render_ms=%.1f (median of 6, %dx%d, %s) gl_renderer=%s"
+      % (label, statistics.median(times), width, height, threads, gl))
