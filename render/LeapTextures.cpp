@@ -13,6 +13,15 @@ constexpr int kBlockReach = 6; // blocks: the cells' distance map leaps further
 
 } // namespace
 
+std::vector<std::uint8_t> cellCodesAndReach(const std::vector<std::uint8_t>& codes,
+                                            glm::ivec3 cellsPerAxis) {
+    std::vector<std::uint8_t> bits = leapReach(codes, cellsPerAxis);
+    for (std::size_t i = 0; i < bits.size(); ++i) {
+        bits[i] = std::uint8_t((codes[i] & 3) | std::min<int>(bits[i], 63) << 2);
+    }
+    return bits;
+}
+
 std::string LeapMaps::defines() const {
     const auto flag = [](bool b) { return b ? std::string("true") : std::string("false"); };
     return "#define LUCENT_CELL_REACH " + flag(cellReach) + "\n#define LUCENT_BLOCK_SKIP " +
@@ -59,7 +68,8 @@ void LeapTextures::updateCells(const BrickTable& table, std::uint64_t generation
         cellGeneration_ = generation;
         return;
     }
-    const std::vector<std::uint8_t> reach = leapReach(table.codes, table.cellsPerAxis);
+    // The code beside the reach, so that a cell takes one fetch.
+    const std::vector<std::uint8_t> reach = cellCodesAndReach(table.codes, table.cellsPerAxis);
     cellReach_ =
         makeTexture3D(GL_R8UI, table.cellsPerAxis, GL_RED_INTEGER, GL_UNSIGNED_BYTE, reach.data());
     cellBytes_ = reach.size();

@@ -1,8 +1,9 @@
 #pragma once
 // Distance maps that let a ray leap several empty places at once (Deakin &
-// Knackstedt 2019, distance maps for empty space skipping), beside the leaping
-// cells' codes (SceneTextures): per leaping cell, the reach r of the cube of
-// cells within r of it that are all leapt (core/raycast/LeapReach.h); per
+// Knackstedt 2019, distance maps for empty space skipping): per leaping cell,
+// its code (SceneTextures has them alone) | r << 2, r the reach of the cube of
+// cells within r of it that are all leapt (core/raycast/LeapReach.h), so that
+// a cell takes one fetch; per
 // block of 2 x 2 x 2 voxels (core/volume/BlockRanges.h), 0 where a sample in
 // it may show, else 1 + the reach of the cube of blocks around it where none
 // does. Each is rebuilt only when what it depends on changed. Private to render/.
@@ -28,6 +29,12 @@ struct LeapMaps {
     bool cellReach = false, blockSkip = false;
     std::string defines() const;
 };
+
+// The cells' map as the shader reads it: per cell its code (0, 1 or 2, as
+// BrickTable::codes) | r << 2, r = min(leapReach, 63), a smaller cube inside
+// the leapt one where the reach is longer.
+std::vector<std::uint8_t> cellCodesAndReach(const std::vector<std::uint8_t>& codes,
+                                            glm::ivec3 cellsPerAxis);
 
 class LeapTextures {
 public:

@@ -242,7 +242,9 @@ void castRay() {
         ivec3 c = min(ivec3(p * uInvCellSize), uCellsPerAxis - 1);
         if (c != cell) {
             cell = c;
-            code = texelFetch(uCellCode, c, 0).r;
+            // With the distance map, one fetch gives the code and the reach.
+            uint cellBits = kCellReach ? texelFetch(uCellReach, c, 0).r : texelFetch(uCellCode, c, 0).r;
+            code = kCellReach ? cellBits & 3u : cellBits;
             if (kCellsInOneBrick) {
                 enterBrick(brickOf(p));
             }
@@ -275,7 +277,7 @@ void castRay() {
                 float exit = exitIndex(lo + shrink, hi - shrink);
                 if (kCellReach && !kOverlay && kMode != kMip && kMode != kMinIp) {
                     // The cube of leapt cells around this one, where it reaches further.
-                    int r = int(texelFetch(uCellReach, c, 0).r);
+                    int r = int(cellBits >> 2u);
                     exit = max(exit, exitIndex(vec3((c - r) * uCellSize) + shrink,
                                                vec3((c + r + 1) * uCellSize) - shrink));
                 }

@@ -281,8 +281,8 @@ uniform sampler3D uCellRange; // r = min, g = max over the cell and its overlap
 uniform int uCellSize;
 uniform float uInvCellSize;
 uniform ivec3 uCellsPerAxis;
-// Distance maps (render/LeapTextures.h): per cell, the reach r of the cube of
-// leapt cells within r of it; per block of 2^3 voxels, 0 where a sample may
+// Distance maps (render/LeapTextures.h): per cell, its code | r << 2, r the
+// reach of the cube of leapt cells within r of it; per block of 2^3 voxels, 0 where a sample may
 // show, else 1 + the reach of the cube of blocks around it that show nothing.
 uniform usampler3D uCellReach;
 uniform usampler3D uBlockReach;

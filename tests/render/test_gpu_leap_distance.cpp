@@ -7,6 +7,8 @@
 // and the maps follow the transfer function and the clip box from frame to frame.
 #include <QTest>
 
+#include "core/raycast/LeapReach.h"
+#include "render/LeapTextures.h"
 #include "tests/core/raycast/RaycastScenes.h"
 #include "tests/render/GlTestSupport.h"
 
@@ -107,6 +109,28 @@ private slots:
     // One caster through changes of the transfer function (another visible
     // range) and of the clip box, and back: every frame as a caster that never
     // had the maps draws it.
+    // The cells' map holds each cell's code in its low two bits and the reach
+    // above them: a line of 100 leapt cells (code 1), one at each end of a
+    // brick (code 2), a cell shown in the middle.
+    void cellMapHoldsCodeAndReach() {
+        const glm::ivec3 n(200, 1, 1);
+        std::vector<std::uint8_t> codes(200, 1);
+        codes[0] = 2;
+        codes[199] = 2;
+        codes[100] = 0;
+        const std::vector<std::uint8_t> reach = leapReach(codes, n);
+        const std::vector<std::uint8_t> bits = cellCodesAndReach(codes, n);
+        QCOMPARE(bits.size(), codes.size());
+        bool clamped = false;
+        for (std::size_t i = 0; i < bits.size(); ++i) {
+            QCOMPARE(int(bits[i] & 3), int(codes[i]));
+            QCOMPARE(int(bits[i] >> 2), std::min<int>(reach[i], 63));
+            clamped = clamped || reach[i] > 63;
+        }
+        QVERIFY(clamped); // a reach beyond 63 is there to be capped
+        QCOMPARE(int(bits[100]), 0);
+    }
+
     void mapsFollowTheTransferFunctionAndClip() {
         if (!std::filesystem::exists(philipsCt())) {
             QSKIP("real test data not found: ../shared/data/dcm_qa_ct/Philips_S21570/S2020");
