@@ -88,11 +88,11 @@ DragOverhead dragOverhead(GpuRayCaster& gpu, RenderDescription d,
 }
 
 DragOverhead dragOverhead(CpuRayCaster& cpu, RenderDescription d) {
-    cpu.render(d);
+    cpu.recycle(cpu.render(d));
     std::vector<double> outside, cast;
     for (int frame = 1; frame <= kDragFrames; ++frame) {
         d.camera.azimuth = 3.0 * frame;
-        cpu.render(d);
+        cpu.recycle(cpu.render(d)); // as a view that has shown its frame hands it back
         const FrameDetails details = cpu.frameDetails();
         outside.push_back(detailMs(details, "outside_cast_ms"));
         cast.push_back(detailMs(details, "cast_ms"));

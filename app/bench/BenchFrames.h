@@ -39,7 +39,8 @@ struct DragOverhead {
 // function, both resident before timing, so that each plans anew but uploads nothing.
 DragOverhead dragOverhead(GpuRayCaster& gpu, RenderDescription d,
                           const TransferFunction* alternate = nullptr);
-// CpuRayCaster::frameDetails' outside_cast_ms and cast_ms.
+// CpuRayCaster::frameDetails' outside_cast_ms and cast_ms, each frame handed back
+// (CpuRayCaster::recycle) once shown.
 DragOverhead dragOverhead(CpuRayCaster& cpu, RenderDescription d);
 
 } // namespace lucent::bench

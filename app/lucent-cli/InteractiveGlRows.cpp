@@ -189,8 +189,8 @@ InteractiveRows defaultPathRows(const Volume& volume, const InteractiveSettings&
     const std::string memoryWhat = "GL default path: GPU memory (resident + tables) / volume";
     const std::string glWhat =
         "GL: CPU time outside the cast, camera-only drag (prepare_ms, median of 12)";
-    const std::string cpuWhat =
-        "CPU caster: time outside the cast, camera-only drag (outside_cast_ms, median of 12)";
+    const std::string cpuWhat = "CPU caster: time outside the cast, camera-only drag, frames "
+                                "handed back (outside_cast_ms, median of 12)";
     const RenderDescription d = bench::ctBoneScene(volume, 0.0, s.size.x, s.size.y);
     InteractiveRows rows;
     if (!devices.glMissing.empty()) {

@@ -23,7 +23,8 @@ constexpr int kPacketColumns = 2, kPacketRows = kPacket / kPacketColumns;
 
 // kernel: anything with RayOutput cast(origin, direction, unit direction), or
 // with castPacket over up to kPacket neighbouring rays. Pixels outside
-// pixelsOfBox(clip box) get the background without a ray. `projection`, when
+// pixelsOfBox(clip box) get the background without a ray (and premultiplied
+// 0): every pixel of `image` and `premultiplied` is written. `projection`, when
 // given (sized like the image), receives each ray's RayOutput::projection.
 template <class Kernel>
 void castImage(const Kernel& kernel, const VolumeGeometry& g, const ViewFrame& frame,
@@ -65,6 +66,8 @@ void castImage(const Kernel& kernel, const VolumeGeometry& g, const ViewFrame& f
                         std::uint8_t* px = image.at(pixel[c].x, pixel[c].y);
                         std::copy(background, background + 3, px);
                         px[3] = 255;
+                        premultiplied[std::size_t(pixel[c].y) * desc.width + pixel[c].x] =
+                            glm::vec4(0.0f);
                     }
                     continue;
                 }

@@ -57,6 +57,26 @@ struct CpuRayCaster::Cache {
     std::optional<std::pair<double, double>> invisibleBounds;
     InvisibleCells invisible;
     OverlayLeaping overlayLeaping; // a fused DVR render's leaping decisions
+    // A frame handed back (recycle): its buffers, for the next frame of its size.
+    ImageRGBA8 spareImage;
+    std::vector<glm::vec4> sparePremultiplied;
+
+    // The frame's image and premultiplied colours: the spare ones when their
+    // size matches, else new ones. castImage writes every pixel of both
+    // (premultiplied 0 where no ray is cast), so spare ones are not cleared.
+    void takeFrameBuffers(int width, int height, RenderResult& r) {
+        const std::size_t n = std::size_t(width) * std::size_t(height);
+        if (spareImage.width == width && spareImage.height == height &&
+            spareImage.pixels.size() == 4 * n && sparePremultiplied.size() == n) {
+            r.image = std::move(spareImage);
+            r.premultiplied = std::move(sparePremultiplied);
+        } else {
+            r.image = ImageRGBA8::filled(width, height, 0);
+            r.premultiplied.assign(n, glm::vec4(0.0f));
+        }
+        spareImage = ImageRGBA8{};
+        sparePremultiplied = {};
+    }
 };
 
 namespace {
@@ -136,6 +156,11 @@ CpuRayCaster::CpuRayCaster(const Volume& part, const VolumePart& where)
 }
 
 CpuRayCaster::~CpuRayCaster() = default;
+
+void CpuRayCaster::recycle(RenderResult&& spent) {
+    cache_->spareImage = std::move(spent.image);
+    cache_->sparePremultiplied = std::move(spent.premultiplied);
+}
 
 std::string CpuRayCaster::device() const {
     return "cpu: " + std::to_string(std::max(1u, std::thread::hardware_concurrency())) + " threads";
@@ -378,8 +403,7 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
     }
 
     RenderResult result;
-    result.image = ImageRGBA8::filled(desc.width, desc.height, 0);
-    result.premultiplied.assign(std::size_t(desc.width) * desc.height, glm::vec4(0.0f));
+    cache.takeFrameBuffers(desc.width, desc.height, result);
     // A part draws its box in its own indices, over transparent black, seen as
     // the whole volume is.
     RenderDescription local = desc;
@@ -464,6 +488,8 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
     // A part whose box the clip box leaves out draws nothing.
     if (part_ && glm::any(glm::lessThan(sf.clipHi, sf.clipLo))) {
         result.stats.bricksUsed = 0;
+        std::fill(result.image.pixels.begin(), result.image.pixels.end(), std::uint8_t(0));
+        std::fill(result.premultiplied.begin(), result.premultiplied.end(), glm::vec4(0.0f));
         return result;
     }
     if (exact) {

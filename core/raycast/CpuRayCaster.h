@@ -38,6 +38,11 @@ public:
     // leap data, buffers: what a camera-only change costs beyond the rays) and
     // cast_ms (the rays).
     FrameDetails frameDetails() const override;
+    // Hands back a frame this caster rendered, once its caller is done with
+    // it: the next frame of the same size draws into its buffers instead of
+    // allocating and clearing new ones (5 MB at 512 x 512, about 1 ms of a
+    // drag's frame outside the cast). Optional.
+    void recycle(RenderResult&& spent);
 
 private:
     struct Cache;

@@ -2,6 +2,7 @@
 // chords, MIP, isosurface discs, convergence, camera conventions, presets.
 #include <QTest>
 
+#include <algorithm>
 #include <filesystem>
 #include <numbers>
 #include <random>
@@ -11,6 +12,7 @@
 #include "core/io/Catalog.h"
 #include "core/raycast/CpuRayCaster.h"
 #include "core/scene/ViewFrame.h"
+#include "core/volume/VolumePart.h"
 #include "tests/core/raycast/RaycastScenes.h"
 
 using namespace lucent;
@@ -274,6 +276,52 @@ private slots:
             CpuRayCaster fresh(v);
             QVERIFY(kept.render(d).image == fresh.render(d).image);
         }
+    }
+
+    // Frames handed back (recycle) lend their buffers to the next frame of their
+    // size, which is not cleared: every pixel must be written again. A close
+    // view that fills the image, then a far one and a clipped one whose rays
+    // cover less of it, then another size: each equal to a fresh caster's
+    // (image and premultiplied colours), on the real CT through the SIMD kernel.
+    void handedBackFramesEqualFreshOnes() {
+        const std::filesystem::path dir =
+            std::filesystem::path(LUCENT_TEST_DATA_DIR) / "dcm_qa_ct/Philips_S21570/S2010";
+        if (!std::filesystem::exists(dir)) {
+            QSKIP("real test data not found: ../shared/data/dcm_qa_ct/Philips_S21570/S2010");
+        }
+        const Volume v = loadPath(dir);
+        RenderDescription close = describe(v, loadPreset("ct-soft-tissue"), 96);
+        close.camera.zoom = 3.0;
+        RenderDescription far = close;
+        far.camera.zoom = 0.6;
+        far.camera.azimuth = 30.0;
+        RenderDescription clipped = far;
+        clipped.clip.hi = glm::dvec3(v.dims()) * 0.5;
+        RenderDescription other = far;
+        other.width = 80;
+        CpuRayCaster kept(v);
+        for (const RenderDescription* d : {&close, &far, &clipped, &close, &other, &far}) {
+            RenderResult r = kept.render(*d);
+            const RenderResult fresh = CpuRayCaster(v).render(*d);
+            QVERIFY(r.image == fresh.image);
+            QVERIFY(r.premultiplied == fresh.premultiplied);
+            kept.recycle(std::move(r));
+        }
+        // A part the clip box leaves out draws nothing, into a handed-back frame too.
+        const PartBox box{{0, 0, 0}, v.dims() / 2};
+        const VolumePart where{v.geometry(), glm::ivec3(0), box, v.valueRange()};
+        const Volume part = cutPart(v, glm::ivec3(0), v.dims() / 2 + 2);
+        CpuRayCaster partCaster(part, where);
+        RenderDescription inside = close;
+        inside.volume = nullptr; // the part's caster renders its own voxels
+        partCaster.recycle(partCaster.render(inside));
+        RenderDescription outside = inside;
+        outside.clip.lo = glm::dvec3(v.dims()) * 0.75;
+        const RenderResult none = partCaster.render(outside);
+        QVERIFY(std::all_of(none.image.pixels.begin(), none.image.pixels.end(),
+                            [](std::uint8_t b) { return b == 0; }));
+        QVERIFY(std::all_of(none.premultiplied.begin(), none.premultiplied.end(),
+                            [](const glm::vec4& c) { return c == glm::vec4(0.0f); }));
     }
 
     void clipBoxRemovesWhatLiesOutside() {
