@@ -7,8 +7,11 @@ ivec3 gBrick = ivec3(-1);
 int gState = 0;             // of the current brick: 0 absent, 1 resident, 2 border only
 vec3 gSlotBase = vec3(0.0); // atlas texel of its level's voxel 0
 vec3 gBoxLo = vec3(1.0e30), gBoxHi = vec3(-1.0e30); // the samples it backs
-float gLevelScale = 1.0, gLevelOffset = 0.0; // with kOneLevel: these, always
-ivec3 gDims = ivec3(1);                        // with kOneLevel: set with the ray
+// With kOneLevel the scale and offset keep these values and gDims is set once
+// per ray (setRayLattice): assigned per brick, even as constants, they cost 4 %
+// of the llvmpipe frame.
+float gLevelScale = 1.0, gLevelOffset = 0.0;
+ivec3 gDims = ivec3(1);
 
 ivec3 brickOf(vec3 p) {
     return min(ivec3(p * uInvBrickSize), uBricksPerAxis - 1);

@@ -33,6 +33,7 @@
 #include "core/image/PngIO.h"
 #include "core/io/Catalog.h"
 #include "core/raycast/CpuRayCaster.h"
+#include "tests/support/RealData.h"
 
 using namespace lucent;
 
@@ -44,8 +45,10 @@ double msSince(Clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
+constexpr const char* kPhilipsCt = "dcm_qa_ct/Philips_S21570/S2020"; // the benchmarks' CT
+
 std::filesystem::path philips() {
-    return std::filesystem::path(LUCENT_TEST_DATA_DIR) / "dcm_qa_ct/Philips_S21570/S2020";
+    return test::kRealData / kPhilipsCt;
 }
 
 std::filesystem::path outDir() {
@@ -67,9 +70,7 @@ class BenchCpuRender : public QObject {
 
 private slots:
     void initTestCase() {
-        if (!std::filesystem::exists(philips())) {
-            QSKIP("real test data not found: ../shared/data/dcm_qa_ct/Philips_S21570/S2020");
-        }
+        REQUIRE_DATA(kPhilipsCt);
         volume_.emplace(loadPath(philips()));
         vtk_.emplace(*volume_, loadPreset("ct-bone"));
     }

@@ -17,13 +17,16 @@
 #include "core/io/Catalog.h"
 #include "render/GpuRayCaster.h"
 #include "render/OffscreenContext.h"
+#include "tests/support/RealData.h"
 
 using namespace lucent;
 
 namespace {
 
+constexpr const char* kPhilipsCt = "dcm_qa_ct/Philips_S21570/S2020"; // the benchmarks' CT
+
 std::filesystem::path philips() {
-    return std::filesystem::path(LUCENT_TEST_DATA_DIR) / "dcm_qa_ct/Philips_S21570/S2020";
+    return test::kRealData / kPhilipsCt;
 }
 
 } // namespace
@@ -36,9 +39,7 @@ private slots:
     void initTestCase() { context_ = OffscreenContext::create(); }
 
     void philipsCtBone() {
-        if (!std::filesystem::exists(philips())) {
-            QSKIP("real test data not found: ../shared/data/dcm_qa_ct/Philips_S21570/S2020");
-        }
+        REQUIRE_DATA(kPhilipsCt);
         const Volume volume = loadPath(philips());
         RenderDescription d;
         d.volume = &volume;

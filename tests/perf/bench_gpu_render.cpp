@@ -35,6 +35,7 @@
 #include "core/volume/Volume.h"
 #include "render/GpuRayCaster.h"
 #include "render/OffscreenContext.h"
+#include "tests/support/RealData.h"
 
 using namespace lucent;
 
@@ -55,8 +56,10 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 
+constexpr const char* kPhilipsCt = "dcm_qa_ct/Philips_S21570/S2020"; // the benchmarks' CT
+
 std::filesystem::path philips() {
-    return std::filesystem::path(LUCENT_TEST_DATA_DIR) / "dcm_qa_ct/Philips_S21570/S2020";
+    return test::kRealData / kPhilipsCt;
 }
 
 double msSince(Clock::time_point t0) {
@@ -100,9 +103,7 @@ private slots:
     void philipsCtBone() {
         QFETCH(double, unitMm);
         QFETCH(bool, gradientCache);
-        if (!std::filesystem::exists(philips())) {
-            QSKIP("real test data not found: ../shared/data/dcm_qa_ct/Philips_S21570/S2020");
-        }
+        REQUIRE_DATA(kPhilipsCt);
         const Volume volume = loadPath(philips());
         const RenderDescription d = ctBoneScene(volume, unitMm);
         GpuOptions options;
@@ -139,9 +140,7 @@ private slots:
     }
     void againstVtkGpu() {
         QFETCH(double, unitMm);
-        if (!std::filesystem::exists(philips())) {
-            QSKIP("real test data not found: ../shared/data/dcm_qa_ct/Philips_S21570/S2020");
-        }
+        REQUIRE_DATA(kPhilipsCt);
         const Volume volume = loadPath(philips());
         const bench::VtkAnchor anchor(volume, loadPreset("ct-bone"));
         const RenderDescription d = ctBoneScene(volume, unitMm);
@@ -176,9 +175,7 @@ private slots:
     // Tricubic from 8 trilinear fetches on prefiltered coefficients: the
     // coefficients in 32-bit floats or in half floats (half the memory).
     void cubicCoefficientFormats() {
-        if (!std::filesystem::exists(philips())) {
-            QSKIP("real test data not found");
-        }
+        REQUIRE_DATA(kPhilipsCt);
         const Volume volume = loadPath(philips());
         RenderDescription d;
         d.volume = &volume;
@@ -224,9 +221,7 @@ private slots:
     void beyondMemory() {
         QFETCH(glm::ivec3, dims);
         QFETCH(int, budgetMib);
-        if (!std::filesystem::exists(philips())) {
-            QSKIP("real test data not found");
-        }
+        REQUIRE_DATA(kPhilipsCt);
         const auto t0 = Clock::now();
         const Volume big = bench::tiled(loadPath(philips()), dims);
         const double buildMs = msSince(t0);
