@@ -96,6 +96,7 @@ Renderer& LocalRenderBackend::renderer() {
 bool LocalRenderBackend::renderJob(const FramebufferTarget* target) {
     const Pending job = *pending_;
     BackendFrame frame;
+    RenderResult spent; // handed back to the renderer once the frame is shown
     frame.interactive = job.options.interactive;
     try {
         RenderDescription d = job.options.interactive
@@ -109,9 +110,9 @@ bool LocalRenderBackend::renderJob(const FramebufferTarget* target) {
             frame.stats = r.drawInPlace(d, *target);
             frame.inPlace = true;
         } else {
-            RenderResult result = r.render(d);
-            frame.image = std::move(result.image);
-            frame.stats = result.stats;
+            spent = r.render(d);
+            frame.image = std::move(spent.image);
+            frame.stats = spent.stats;
         }
         frame.renderMs =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
@@ -136,6 +137,12 @@ bool LocalRenderBackend::renderJob(const FramebufferTarget* target) {
     }
     pending_.reset();
     emit frameReady(frame);
+    // The receivers have copied what they keep: the next frame of this size
+    // draws into these buffers (a drag allocates and clears nothing).
+    if (renderer_ != nullptr && !frame.inPlace) {
+        spent.image = std::move(frame.image);
+        renderer_->recycle(std::move(spent));
+    }
     if (frame.stats.bricksPending > 0 && !pending_) {
         // Bricks still stream in: the same frame again, finer, unless a newer one is asked for.
         pending_ = job;
@@ -192,6 +199,10 @@ void LocalRenderBackend::drawPending(const FramebufferTarget& target) {
         dropRenderer();
         emit gpuFailed(QString::fromStdString(e.what()));
     }
+}
+
+FrameDetails LocalRenderBackend::lastFrameDetails() const {
+    return renderer_ != nullptr ? renderer_->frameDetails() : FrameDetails{};
 }
 
 ImageRGBA8 LocalRenderBackend::readLastFrame() {

@@ -62,6 +62,9 @@ public:
     // read back on request (screenshots, tests): its description rendered
     // again. Empty when there is none. Gl: with the context current.
     ImageRGBA8 readLastFrame();
+    // The renderer's figures of its last frame (Renderer::frameDetails); empty
+    // before the first.
+    FrameDetails lastFrameDetails() const;
 
     // Frees the GL renderer's textures and buffers: call with its context
     // current, before that context goes.

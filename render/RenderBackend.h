@@ -82,6 +82,8 @@ public:
     virtual BackendStatus status() const { return BackendStatus::Ready; }
 
 signals:
+    // The frame is the backend's again once the receivers return: a receiver
+    // copies what it keeps (the local backend lends its buffers to the next frame).
     void frameReady(const lucent::BackendFrame& frame);
     // A request that could not be rendered (a bad setting, a server's refusal).
     void frameFailed(const QString& reason);

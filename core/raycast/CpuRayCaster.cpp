@@ -64,18 +64,22 @@ struct CpuRayCaster::Cache {
     // The frame's image and premultiplied colours: the spare ones when their
     // size matches, else new ones. castImage writes every pixel of both
     // (premultiplied 0 where no ray is cast), so spare ones are not cleared.
-    void takeFrameBuffers(int width, int height, RenderResult& r) {
+    // Returns whether they were spare ones.
+    bool takeFrameBuffers(int width, int height, RenderResult& r) {
         const std::size_t n = std::size_t(width) * std::size_t(height);
         if (spareImage.width == width && spareImage.height == height &&
             spareImage.pixels.size() == 4 * n && sparePremultiplied.size() == n) {
             r.image = std::move(spareImage);
             r.premultiplied = std::move(sparePremultiplied);
-        } else {
-            r.image = ImageRGBA8::filled(width, height, 0);
-            r.premultiplied.assign(n, glm::vec4(0.0f));
+            spareImage = ImageRGBA8{};
+            sparePremultiplied = {};
+            return true;
         }
+        r.image = ImageRGBA8::filled(width, height, 0);
+        r.premultiplied.assign(n, glm::vec4(0.0f));
         spareImage = ImageRGBA8{};
         sparePremultiplied = {};
+        return false;
     }
 };
 
@@ -172,7 +176,9 @@ FrameDetails CpuRayCaster::frameDetails() const {
         std::snprintf(text, sizeof text, "%.3f", v);
         return std::string(text);
     };
-    return {{"outside_cast_ms", fixed(outsideCastMs_)}, {"cast_ms", fixed(castMs_)}};
+    return {{"outside_cast_ms", fixed(outsideCastMs_)},
+            {"cast_ms", fixed(castMs_)},
+            {"frame_buffers", recycledBuffers_ ? "recycled" : "new"}};
 }
 
 RenderResult CpuRayCaster::render(const RenderDescription& desc) {
@@ -403,7 +409,7 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
     }
 
     RenderResult result;
-    cache.takeFrameBuffers(desc.width, desc.height, result);
+    recycledBuffers_ = cache.takeFrameBuffers(desc.width, desc.height, result);
     // A part draws its box in its own indices, over transparent black, seen as
     // the whole volume is.
     RenderDescription local = desc;

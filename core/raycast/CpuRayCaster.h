@@ -36,13 +36,13 @@ public:
     std::string device() const override;
     // The last frame's split of its time: outside_cast_ms (validation, tables,
     // leap data, buffers: what a camera-only change costs beyond the rays) and
-    // cast_ms (the rays).
+    // cast_ms (the rays); frame_buffers: recycled (a frame handed back lent
+    // them) or new.
     FrameDetails frameDetails() const override;
-    // Hands back a frame this caster rendered, once its caller is done with
-    // it: the next frame of the same size draws into its buffers instead of
+    // The next frame of the spent one's size draws into its buffers instead of
     // allocating and clearing new ones (5 MB at 512 x 512, about 1 ms of a
-    // drag's frame outside the cast). Optional.
-    void recycle(RenderResult&& spent);
+    // drag's frame outside the cast).
+    void recycle(RenderResult&& spent) override;
 
 private:
     struct Cache;
@@ -50,6 +50,7 @@ private:
     std::optional<VolumePart> part_;
     std::unique_ptr<Cache> cache_;
     double outsideCastMs_ = 0.0, castMs_ = 0.0;
+    bool recycledBuffers_ = false;
 };
 
 } // namespace lucent

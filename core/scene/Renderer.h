@@ -67,6 +67,12 @@ public:
     // The last frame's own figures (uploads, pool, gradients...), as key=value pairs.
     virtual FrameDetails frameDetails() const { return {}; }
 
+    // Hands back a frame this renderer returned, once its caller is done with
+    // it: a renderer may draw the next frame of that size into its buffers
+    // instead of allocating new ones (the CPU ray caster does). Optional; the
+    // default drops it.
+    virtual void recycle(RenderResult&& spent) { (void)spent; }
+
     // Whether drawInPlace() works: a renderer that draws with OpenGL can put a
     // frame straight into a framebuffer of the current context, with no read back.
     virtual bool drawsInPlace() const { return false; }

@@ -7,6 +7,7 @@
 #include <numbers>
 #include <random>
 #include <set>
+#include <string>
 
 #include "core/image/ImageMetrics.h"
 #include "core/io/Catalog.h"
@@ -300,8 +301,20 @@ private slots:
         RenderDescription other = far;
         other.width = 80;
         CpuRayCaster kept(v);
+        const auto buffers = [&] {
+            for (const auto& [key, value] : kept.frameDetails()) {
+                if (key == "frame_buffers") {
+                    return value;
+                }
+            }
+            return std::string("(none)");
+        };
+        // frame_buffers: the first frame and one of another size get new ones.
+        const char* expected[] = {"new", "recycled", "recycled", "recycled", "new", "new"};
+        int n = 0;
         for (const RenderDescription* d : {&close, &far, &clipped, &close, &other, &far}) {
             RenderResult r = kept.render(*d);
+            QCOMPARE(buffers(), std::string(expected[n++]));
             const RenderResult fresh = CpuRayCaster(v).render(*d);
             QVERIFY(r.image == fresh.image);
             QVERIFY(r.premultiplied == fresh.premultiplied);
