@@ -2,23 +2,17 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <map>
-#include <optional>
 #include <stdexcept>
 #include <string_view>
 #include <thread>
-#include <tuple>
+#include <type_traits>
 
-#include "core/raycast/BSplinePrefilter.h"
 #include "core/raycast/BrickVisibility.h"
 #include "core/raycast/CastImage.h"
+#include "core/raycast/CpuCasterCache.h"
 #include "core/raycast/FastDvrKernel.h"
-#include "core/raycast/InvisibleCells.h"
-#include "core/raycast/LeapReach.h"
-#include "core/raycast/OverlayLeaping.h"
 #include "core/raycast/OverlaySampler.h"
 #include "core/raycast/PacketDvrKernel.h"
 #include "core/raycast/RayKernel.h"
@@ -26,69 +20,9 @@
 
 namespace lucent {
 
-struct CpuRayCaster::Cache {
-    std::pair<double, double> range{0.0, 0.0};
-    std::vector<float> coefficientsF;
-    std::vector<double> coefficientsD;
-    std::pair<double, double> coefficientRange{0.0, 0.0};
-    std::map<std::tuple<int, bool, int>, BrickGrid> grids; // (size, over coefficients, overlap)
-    // What the last render derived from the transfer function, the sampling
-    // and the leaping levels (tables, leap decisions, leap reach): frames that
-    // only move the camera reuse it. Valid while `key` equals the render's.
-    struct ClassificationKey {
-        TransferFunction tf;
-        RenderMode mode = RenderMode::Dvr;
-        double isoValue = 0.0, tLo = 0.0, tHi = 0.0, step = 0.0;
-        bool exact = false, preintegrate = false, cubic = false;
-        int brickSize = 0, cellSize = 0, cellOverlap = 0;
-        bool operator==(const ClassificationKey&) const = default;
-    };
-    struct LevelData {
-        std::vector<std::uint8_t> skippable;
-        std::vector<glm::vec2> range;
-    };
-    std::optional<ClassificationKey> key;
-    std::vector<glm::vec4> rawTable, table;
-    PreintegrationTable preTable; // float pre-integration (3-22 ms to build)
-    LevelData coarse, fine;
-    std::vector<std::uint8_t> cellLeap, reach;
-    std::vector<std::int32_t> leapReach; // cellLeap | reach << 8
-    // Cells no sample can see (fast kernels), and the bounds they were found for.
-    std::optional<std::pair<double, double>> invisibleBounds;
-    InvisibleCells invisible;
-    OverlayLeaping overlayLeaping; // a fused DVR render's leaping decisions
-    // A frame handed back (recycle): its buffers, for the next frame of its size.
-    ImageRGBA8 spareImage;
-    std::vector<glm::vec4> sparePremultiplied;
-
-    // The frame's image and premultiplied colours: the spare ones when their
-    // size matches, else new ones. castImage writes every pixel of both
-    // (premultiplied 0 where no ray is cast), so spare ones are not cleared.
-    // Returns whether they were spare ones.
-    bool takeFrameBuffers(int width, int height, RenderResult& r) {
-        const std::size_t n = std::size_t(width) * std::size_t(height);
-        if (spareImage.width == width && spareImage.height == height &&
-            spareImage.pixels.size() == 4 * n && sparePremultiplied.size() == n) {
-            r.image = std::move(spareImage);
-            r.premultiplied = std::move(sparePremultiplied);
-            spareImage = ImageRGBA8{};
-            sparePremultiplied = {};
-            return true;
-        }
-        r.image = ImageRGBA8::filled(width, height, 0);
-        r.premultiplied.assign(n, glm::vec4(0.0f));
-        spareImage = ImageRGBA8{};
-        sparePremultiplied = {};
-        return false;
-    }
-};
-
 namespace {
 
-constexpr int kTableSize = 4096;
-constexpr int kPreintegrationSize = 256;
 static_assert(kPacket == PacketDvrKernel<std::int16_t>::kWidth);
-constexpr int kLeapCell = 8;
 
 // SIMD packets where the CPU has them, unless LUCENT_NO_SIMD=1 (read once)
 // asks for the scalar kernels, e.g. to compare timings from the command line.
@@ -98,27 +32,6 @@ bool simdAllowed() {
         return packetKernelSupported() && !(v != nullptr && std::string_view(v) == "1");
     }();
     return allowed;
-}
-
-// Per fine cell: 2 where the brick holding the whole cell can be leapt, 1 where
-// the cell can, 0 where neither.
-std::vector<std::uint8_t> leapCodes(const BrickGrid& bricks,
-                                    const std::vector<std::uint8_t>& brickSkip,
-                                    const BrickGrid& cells,
-                                    const std::vector<std::uint8_t>& cellSkip) {
-    std::vector<std::uint8_t> codes(cells.count(), 0);
-    const int b = bricks.brickSize();
-#pragma omp parallel for schedule(static)
-    for (std::size_t n = 0; n < cells.count(); ++n) {
-        const Brick& c = cells.bricks()[n];
-        const glm::ivec3 lo = c.first / b, hi = (c.last - 1) / b;
-        if (lo == hi && brickSkip[bricks.idOf(lo)] != 0) {
-            codes[n] = 2;
-        } else {
-            codes[n] = cellSkip[n];
-        }
-    }
-    return codes;
 }
 
 // Times a frame: the rays (added by the caller around the cast) and, when the
@@ -147,15 +60,103 @@ private:
     double& cast_;
 };
 
+// Where a frame's rays go: its view, the description as the rays see it (a
+// part's clip box and background), the result, and the clock that times the cast.
+struct FrameTarget {
+    ViewFrame view;
+    const RenderDescription& local;
+    RenderResult& result;
+    std::vector<glm::vec2>* projection;
+    FrameClock& clock;
+};
+
+// The kernel for the description's sampling and precision and for this CPU:
+// the SIMD packets, the scalar fast kernel, or the generic one (also the one
+// that draws an overlay along the rays).
+class KernelChoice {
+public:
+    KernelChoice(const Volume& volume, const RenderDescription& desc, const float* coefficientsF,
+                 const double* coefficientsD)
+        : volume_(volume), desc_(desc), coefficientsF_(coefficientsF),
+          coefficientsD_(coefficientsD) {}
+
+    template <class Real> void cast(const RaySetup<Real>& setup, const FrameTarget& t) const {
+        const glm::ivec3 dims = volume_.dims();
+        const SamplingSettings& sampling = desc_.sampling;
+        if (sampling.interpolation == Interpolation::Cubic) {
+            const Real* c = nullptr;
+            if constexpr (std::is_same_v<Real, double>) {
+                c = coefficientsD_;
+            } else {
+                c = coefficientsF_;
+            }
+            castWith(setup, CubicField<Real>{Grid<Real, Real>(c, dims)}, t);
+            return;
+        }
+        const bool alone = desc_.overlay.volume == nullptr;
+        visitVoxels(volume_, [&](auto v) {
+            using T = std::remove_const_t<typename decltype(v)::element_type>;
+            const Grid<Real, T> grid(v.data(), dims);
+            if (sampling.interpolation == Interpolation::Nearest) {
+                castWith(setup, NearestField<Real, T>{grid}, t);
+                return;
+            }
+            if constexpr (std::is_same_v<Real, float>) {
+                if (alone && sampling.simd && simdAllowed() &&
+                    PacketDvrKernel<T>::applies(setup, dims)) {
+                    castImageWith(PacketDvrKernel<T>(setup, grid), t);
+                    return;
+                }
+                if (alone && FastDvrKernel<T>::applies(setup, dims)) {
+                    castImageWith(FastDvrKernel<T>(setup, grid), t);
+                    return;
+                }
+            }
+            castWith(setup, LinearField<Real, T>{grid}, t);
+        });
+    }
+
+private:
+    template <class Kernel> void castImageWith(const Kernel& kernel, const FrameTarget& t) const {
+        t.clock.timeCast([&] {
+            castImage(kernel, volume_.geometry(), t.view, t.local, t.result.image,
+                      t.result.premultiplied, t.result.stats.samples, t.projection);
+        });
+    }
+
+    // The generic kernel, with the overlay along the same rays where there is one.
+    template <class Real, class Field>
+    void castWith(const RaySetup<Real>& setup, const Field& field, const FrameTarget& t) const {
+        const Volume* overlay = desc_.overlay.volume;
+        if (overlay == nullptr) {
+            castImageWith(RayKernel<Real, Field>(setup, field), t);
+            return;
+        }
+        const FusionStyle& style = desc_.overlay.style;
+        const OverlayTable entries = overlayTable(style, desc_.sampling.step);
+        OverlaySampler<Real> sampler{LinearField<Real, float>{Grid<Real, float>(
+                                         overlay->voxels<float>().data(), volume_.dims())},
+                                     &entries, 0.0, 1.0};
+        sampler.low = style.center - 0.5 * style.width;
+        sampler.width = std::max(style.width, 1e-9);
+        castImageWith(RayKernel<Real, Field, OverlaySampler<Real>>(setup, field, sampler), t);
+    }
+
+    const Volume& volume_;
+    const RenderDescription& desc_;
+    const float* coefficientsF_;
+    const double* coefficientsD_;
+};
+
 } // namespace
 
 CpuRayCaster::CpuRayCaster(const Volume& volume)
-    : volume_(volume), cache_(std::make_unique<Cache>()) {
+    : volume_(volume), cache_(std::make_unique<CpuCasterCache>()) {
     cache_->range = volume.valueRange();
 }
 
 CpuRayCaster::CpuRayCaster(const Volume& part, const VolumePart& where)
-    : volume_(part), part_(where), cache_(std::make_unique<Cache>()) {
+    : volume_(part), part_(where), cache_(std::make_unique<CpuCasterCache>()) {
     cache_->range = where.valueRange;
 }
 
@@ -194,234 +195,20 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
     if (overlay != nullptr && part_) {
         throw std::invalid_argument("a part of a distributed render draws no overlay");
     }
-    const VolumeGeometry& g = volume_.geometry();
-    const SamplingSettings& sampling = desc.sampling;
-    const bool cubic = sampling.interpolation == Interpolation::Cubic;
-    const bool exact = sampling.precision == Precision::Double;
-    Cache& cache = *cache_;
-    if (cubic && exact && cache.coefficientsD.empty()) {
-        cache.coefficientsD = bsplineCoefficients<double>(volume_);
-    }
-    if (cubic && !exact && cache.coefficientsF.empty()) {
-        cache.coefficientsF = bsplineCoefficients<float>(volume_);
-    }
-    auto gridFor = [&](int size, int overlap) -> const BrickGrid& {
-        const auto key = std::tuple(size, cubic, overlap);
-        auto it = cache.grids.find(key);
-        if (it == cache.grids.end()) {
-            if (cubic) {
-                // Spline values are convex combinations of coefficients: their brick
-                // min/max bound what a sample can see, the voxels' do not.
-                Volume coef(g, VoxelType::Float32);
-                const auto dst = coef.voxels<float>();
-                for (std::size_t i = 0; i < dst.size(); ++i) {
-                    dst[i] = exact ? float(cache.coefficientsD[i]) : cache.coefficientsF[i];
-                }
-                it = cache.grids.emplace(key, BrickGrid(coef, size, overlap)).first;
-            } else {
-                it = cache.grids.emplace(key, BrickGrid(volume_, size, overlap)).first;
-            }
-        }
-        return it->second;
-    };
-    const BrickGrid& grid = gridFor(sampling.brickSize, 3);
-    // Inside bricks that cannot be leapt, rays still leap over empty cells of this
-    // size. The fast kernel's trilinear samples read their cell's voxels and one
-    // beyond; a second voxel of overlap covers float rounding of positions.
-    const bool fast = !exact && sampling.interpolation == Interpolation::Linear &&
-                      desc.mode == RenderMode::Dvr && !sampling.preintegrate &&
-                      sampling.classification == Classification::Post;
-    const BrickGrid& cells = gridFor(std::min(sampling.brickSize, kLeapCell), fast ? 2 : 3);
-
-    RaySetup<double> sd;
-    RaySetup<float> sf;
-    auto fill = [&](auto& s) {
-        s.mode = desc.mode;
-        s.classification = sampling.classification;
-        s.preintegrate = sampling.preintegrate && desc.mode == RenderMode::Dvr;
-        s.shading = desc.transferFunction.shading.enabled;
-        s.exactTf = exact;
-        s.tf = &desc.transferFunction;
-        s.light = desc.transferFunction.shading;
-        s.stepRatio = sampling.step;
-        s.dt = sampling.step * std::min({g.spacing.x, g.spacing.y, g.spacing.z});
-        s.earlyTermination = static_cast<decltype(s.earlyTermination)>(sampling.earlyTermination);
-        s.isoValue = desc.isoValue;
-        const glm::dmat3 linear(g.direction[0] * g.spacing.x, g.direction[1] * g.spacing.y,
-                                g.direction[2] * g.spacing.z);
-        s.gradientToWorld = glm::transpose(glm::inverse(linear)) /
-                            gradientScale(cache.range.first, cache.range.second);
-        s.boxLo = glm::dvec3(0.0);
-        s.boxHi = glm::dvec3(g.dims - 1);
-        s.clipLo = glm::max(desc.clip.lo, s.boxLo);
-        s.clipHi = glm::min(desc.clip.hi, s.boxHi);
-        if (part_) {
-            // In the part's indices: the whole box anchors the lattice; the
-            // part draws its owned box within the clip box.
-            const glm::dvec3 offset(part_->offset);
-            const glm::dvec3 wholeHi(part_->whole.dims - 1);
-            s.part = true;
-            s.boxLo = -offset;
-            s.boxHi = wholeHi - offset;
-            s.sceneClipLo = glm::max(desc.clip.lo, glm::dvec3(0.0)) - offset;
-            s.sceneClipHi = glm::min(desc.clip.hi, wholeHi) - offset;
-            s.clipLo = glm::max(s.sceneClipLo, glm::dvec3(part_->owned.lo) - offset);
-            s.clipHi = glm::min(s.sceneClipHi, glm::dvec3(part_->owned.hi) - offset);
-            for (int a = 0; a < 3; ++a) {
-                s.openHi[a] = part_->sharedHi(a) && desc.clip.hi[a] >= double(part_->owned.hi[a]);
-            }
-        }
-    };
-    fill(sd);
-    fill(sf);
-
-    // Tables over the values a sample can take: the voxel range, or for cubic
-    // the coefficient range (a spline can overshoot its samples).
-    double tLo = cache.range.first, tHi = cache.range.second;
-    if (cubic) {
-        tLo = std::numeric_limits<double>::max();
-        tHi = std::numeric_limits<double>::lowest();
-        for (const Brick& b : grid.bricks()) {
-            tLo = std::min(tLo, double(b.minValue));
-            tHi = std::max(tHi, double(b.maxValue));
-        }
-    }
-    std::tie(tLo, tHi) = tableRange(tLo, tHi);
-    Cache::ClassificationKey key{
-        desc.transferFunction, desc.mode,       desc.isoValue,   tLo,   tHi,
-        sampling.step,         exact,           sf.preintegrate, cubic, grid.brickSize(),
-        cells.brickSize(),     cells.overlap(),
-    };
-    const bool reuse = cache.key == key;
-    if (!reuse) {
-        cache.key.reset(); // until everything below is rebuilt
-    }
-    std::vector<glm::vec4>& rawTable = cache.rawTable;
-    std::vector<glm::vec4>& table = cache.table;
-    if (!exact) {
-        if (!reuse) {
-            rawTable = bakeTable(desc.transferFunction, tLo, tHi, kTableSize).rgba;
-            table = rawTable;
-            for (glm::vec4& e : table) {
-                e.a = e.a <= 0.0f
-                          ? 0.0f
-                          : float(1.0 - std::pow(1.0 - std::min(double(e.a), 1.0), sampling.step));
-            }
-        }
-        sf.rawTable = &rawTable;
-        sf.table = &table;
-        sf.tableLo = tLo;
-        sf.tableScale = double(kTableSize - 1) / (tHi - tLo);
-    }
-    // Pre-integration: double precision integrates each segment exactly (the
-    // reference), float looks segments up in a table.
-    std::optional<SegmentPreintegrator> exactSegments;
-    if (sf.preintegrate && exact) {
-        sd.exactSegments = &exactSegments.emplace(desc.transferFunction, sampling.step);
-    } else if (sf.preintegrate) {
-        if (!reuse) {
-            cache.preTable = buildPreintegrationTable(desc.transferFunction, tLo, tHi,
-                                                      kPreintegrationSize, sampling.step);
-        }
-        sf.preTable = sd.preTable = &cache.preTable;
-    }
-
-    // Empty-space leaping: which bricks can be passed over, decided so that no
-    // sample that could contribute is ever skipped.
-    // (Widened by a cell of the table the samples are classified with.)
-    const TransferFunction& tf = desc.transferFunction;
-    const auto visible = valueVisibility(desc, tLo, tHi,
-                                         exact             ? 0
-                                         : sf.preintegrate ? kPreintegrationSize
-                                                           : kTableSize);
-    using LevelData = Cache::LevelData;
-    auto levelData = [&](const BrickGrid& level) {
-        LevelData out{std::vector<std::uint8_t>(level.count(), 0),
-                      std::vector<glm::vec2>(level.count())};
-#pragma omp parallel for schedule(static)
-        for (std::size_t i = 0; i < level.count(); ++i) {
-            const Brick& b = level.bricks()[i];
-            out.skippable[i] = visible(b.minValue, b.maxValue) ? 0 : 1;
-            // Voxel min/max bound trilinear and nearest samples exactly; coefficient
-            // bounds went through float, so cubic keeps a margin.
-            const double margin =
-                cubic ? 1e-5 * (std::abs(b.minValue) + std::abs(b.maxValue) + 1.0) : 0.0;
-            out.range[i] = glm::vec2(float(b.minValue - margin), float(b.maxValue + margin));
-        }
-        return out;
-    };
-    if (!reuse) {
-        cache.coarse = levelData(grid);
-        cache.fine = levelData(cells);
-    }
-    const LevelData &coarse = cache.coarse, &fine = cache.fine;
-    // A fused render leaps (DVR only) where neither the base nor the overlay shows
-    // (OverlayLeaping.h); MIP, MinIP and average with an overlay take every sample.
-    const bool fusedDvr = overlay != nullptr && desc.mode == RenderMode::Dvr;
-    const std::vector<std::uint8_t>* coarseSkip = &coarse.skippable;
-    const std::vector<std::uint8_t>* fineSkip = &fine.skippable;
-    if (fusedDvr && sampling.emptySpaceLeaping) {
-        OverlayLeaping& o = cache.overlayLeaping;
-        coarseSkip = &o.skippable(*overlay, desc.overlay.style, grid, coarse.skippable, 0);
-        fineSkip = &o.skippable(*overlay, desc.overlay.style, cells, fine.skippable, 1);
-    }
-    auto setLevels = [&](auto& s) {
-        s.leap = sampling.emptySpaceLeaping && (overlay == nullptr || fusedDvr);
-        using Real = decltype(s.earlyTermination);
-        s.levels[0] = {grid.brickSize(), Real(1) / Real(grid.brickSize()), grid.bricksPerAxis(),
-                       coarseSkip, &coarse.range};
-        s.levels[1] = {cells.brickSize(), Real(1) / Real(cells.brickSize()), cells.bricksPerAxis(),
-                       fineSkip, &fine.range};
-    };
-    setLevels(sf);
-    setLevels(sd);
-    if (!reuse) {
-        cache.cellLeap = leapCodes(grid, coarse.skippable, cells, fine.skippable);
-        cache.reach = leapReach(cache.cellLeap, cells.bricksPerAxis());
-        cache.leapReach.resize(cache.cellLeap.size());
-        for (std::size_t i = 0; i < cache.cellLeap.size(); ++i) {
-            cache.leapReach[i] = std::int32_t(cache.cellLeap[i]) | std::int32_t(cache.reach[i])
-                                                                       << 8;
-        }
-        cache.key = std::move(key);
-    }
-    sf.cellLeap = &cache.cellLeap;
-    sf.cellReach = &cache.reach;
-    sf.cellLeapReach = &cache.leapReach;
-
-    // Values outside the transfer function's non-zero opacity need no lookup.
-    const double tableCell = exact ? 0.0 : (tHi - tLo) / double(kTableSize - 1);
-    const auto [visLo, visHi] = visibleValueRange(tf, tableCell);
-    sf.visibleLo = sd.visibleLo = visLo;
-    sf.visibleHi = sd.visibleHi = visHi;
-    // The fast kernels pass over samples in cells whose voxels all lie beyond
-    // the visible range by more than the float rounding of a trilinear sample
-    // (a table cell, or a few float ulps of the largest value).
-    if (fast && (std::isfinite(visLo) || std::isfinite(visHi))) {
-        const double margin = tableCell + 4e-6 * std::max(std::abs(tLo), std::abs(tHi));
-        const std::pair bounds(sf.visibleLo - margin, sf.visibleHi + margin);
-        if (cache.invisibleBounds != bounds) {
-            cache.invisibleBounds.reset();
-            cache.invisible = findInvisibleCells(volume_, bounds.first, bounds.second);
-            cache.invisibleBounds = bounds;
-        }
-        sf.invisibleCells = &cache.invisible;
-    }
+    CpuFrameSetup setup;
+    cache_->prepare(volume_, part_, desc, setup);
 
     RenderResult result;
-    recycledBuffers_ = cache.takeFrameBuffers(desc.width, desc.height, result);
+    recycledBuffers_ = cache_->takeFrameBuffers(desc.width, desc.height, result);
     // A part draws its box in its own indices, over transparent black, seen as
     // the whole volume is.
     RenderDescription local = desc;
     if (part_) {
-        local.clip = ClipBox{sf.clipLo, sf.clipHi};
+        local.clip = ClipBox{setup.sf.clipLo, setup.sf.clipHi};
         local.background = glm::dvec3(0.0);
     }
-    result.stats.bricksTotal = grid.count();
-    result.stats.bricksUsed = visibleBricks(grid, visible, local.clip).size();
-    const ViewFrame frame =
-        makeViewFrame(part_ ? part_->whole : g, desc.camera, desc.width, desc.height);
-
+    result.stats.bricksTotal = setup.grid->count();
+    result.stats.bricksUsed = visibleBricks(*setup.grid, setup.visible, local.clip).size();
     // A part's projections are composited from their values (and counts).
     const bool projecting =
         part_ && (desc.mode == RenderMode::Mip || desc.mode == RenderMode::MinIp ||
@@ -429,79 +216,22 @@ RenderResult CpuRayCaster::render(const RenderDescription& desc) {
     if (projecting) {
         result.projection.assign(result.premultiplied.size(), glm::vec2(0.0f));
     }
-    auto cast = [&](const auto& kernel) {
-        clock.timeCast([&] {
-            castImage(kernel, g, frame, local, result.image, result.premultiplied,
-                      result.stats.samples, projecting ? &result.projection : nullptr);
-        });
-    };
-    // The overlay along the same rays (the generic kernel: the fast ones draw the base alone).
-    const OverlayTable overlayEntries =
-        overlay != nullptr ? overlayTable(desc.overlay.style, sampling.step) : OverlayTable{};
-    auto castKernel = [&](const auto& setup, const auto& field) {
-        using Real = decltype(setup.earlyTermination);
-        using Field = std::remove_cvref_t<decltype(field)>;
-        if (overlay == nullptr) {
-            cast(RayKernel<Real, Field>(setup, field));
-            return;
-        }
-        OverlaySampler<Real> sampler{
-            LinearField<Real, float>{Grid<Real, float>(overlay->voxels<float>().data(), g.dims)},
-            &overlayEntries, 0.0, 1.0};
-        sampler.low = desc.overlay.style.center - 0.5 * desc.overlay.style.width;
-        sampler.width = std::max(desc.overlay.style.width, 1e-9);
-        cast(RayKernel<Real, Field, OverlaySampler<Real>>(setup, field, sampler));
-    };
-    auto run = [&](const auto& setup, auto tag) {
-        using Real = decltype(tag);
-        switch (sampling.interpolation) {
-        case Interpolation::Cubic: {
-            const Real* c = nullptr;
-            if constexpr (std::is_same_v<Real, double>) {
-                c = cache.coefficientsD.data();
-            } else {
-                c = cache.coefficientsF.data();
-            }
-            const CubicField<Real> field{Grid<Real, Real>(c, g.dims)};
-            castKernel(setup, field);
-            return;
-        }
-        case Interpolation::Nearest:
-        case Interpolation::Linear:
-            visitVoxels(volume_, [&](auto v) {
-                using T = std::remove_const_t<typename decltype(v)::element_type>;
-                const Grid<Real, T> grid(v.data(), g.dims);
-                if (sampling.interpolation == Interpolation::Nearest) {
-                    castKernel(setup, NearestField<Real, T>{grid});
-                    return;
-                }
-                if constexpr (std::is_same_v<Real, float>) {
-                    if (overlay == nullptr && sampling.simd && simdAllowed() &&
-                        PacketDvrKernel<T>::applies(setup, g.dims)) {
-                        cast(PacketDvrKernel<T>(setup, grid));
-                        return;
-                    }
-                    if (overlay == nullptr && FastDvrKernel<T>::applies(setup, g.dims)) {
-                        cast(FastDvrKernel<T>(setup, grid));
-                        return;
-                    }
-                }
-                castKernel(setup, LinearField<Real, T>{grid});
-            });
-            return;
-        }
-    };
     // A part whose box the clip box leaves out draws nothing.
-    if (part_ && glm::any(glm::lessThan(sf.clipHi, sf.clipLo))) {
+    if (part_ && glm::any(glm::lessThan(setup.sf.clipHi, setup.sf.clipLo))) {
         result.stats.bricksUsed = 0;
         std::fill(result.image.pixels.begin(), result.image.pixels.end(), std::uint8_t(0));
         std::fill(result.premultiplied.begin(), result.premultiplied.end(), glm::vec4(0.0f));
         return result;
     }
-    if (exact) {
-        run(sd, double{});
+    const FrameTarget target{makeViewFrame(part_ ? part_->whole : volume_.geometry(), desc.camera,
+                                           desc.width, desc.height),
+                             local, result, projecting ? &result.projection : nullptr, clock};
+    const KernelChoice choice{volume_, desc, cache_->coefficientsF.data(),
+                              cache_->coefficientsD.data()};
+    if (setup.exact) {
+        choice.cast(setup.sd, target);
     } else {
-        run(sf, float{});
+        choice.cast(setup.sf, target);
     }
     return result;
 }

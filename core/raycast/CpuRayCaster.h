@@ -11,6 +11,8 @@
 
 namespace lucent {
 
+struct CpuCasterCache; // core/raycast/CpuCasterCache.h
+
 // The reference renderer: a CPU ray caster over one volume, multithreaded over
 // image tiles. It keeps what depends only on the volume (B-spline
 // coefficients, brick min/max) between renders, so a sequence of frames pays
@@ -45,10 +47,9 @@ public:
     void recycle(RenderResult&& spent) override;
 
 private:
-    struct Cache;
     const Volume& volume_;
     std::optional<VolumePart> part_;
-    std::unique_ptr<Cache> cache_;
+    std::unique_ptr<CpuCasterCache> cache_;
     double outsideCastMs_ = 0.0, castMs_ = 0.0;
     bool recycledBuffers_ = false;
 };
