@@ -2,22 +2,31 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace lucent {
 
 std::size_t BrickTable::bytes() const {
-    return page.size() * sizeof(glm::ivec4) + box.size() * sizeof(glm::uvec4) + codes.size() +
-           ranges.size() * sizeof(glm::vec2);
+    return entries.size() * sizeof(glm::uvec4) + codes.size() + ranges.size() * sizeof(glm::vec2);
 }
 
-namespace {
-
-glm::uvec4 packBox(const SampleBox& b) {
-    const glm::uvec3 lo(b.lo), hi(b.hi);
-    return {lo.x | (lo.y << 16), lo.z | (hi.x << 16), hi.y | (hi.z << 16), 0U};
+glm::uvec4 pageEntry(glm::ivec4 page, const SampleBox& box, glm::ivec3 brickFirst) {
+    const glm::ivec3 slot(page);
+    const glm::ivec3 lo = box.lo - brickFirst, hi = box.hi - brickFirst;
+    if (glm::any(glm::lessThan(slot, glm::ivec3(-32768))) ||
+        glm::any(glm::greaterThan(slot, glm::ivec3(32767)))) {
+        throw std::invalid_argument("page entry: an atlas slot beyond 16 bits");
+    }
+    if (glm::any(glm::lessThan(glm::min(lo, hi), glm::ivec3(0))) ||
+        glm::any(glm::greaterThan(glm::max(lo, hi), glm::ivec3(1023)))) {
+        throw std::invalid_argument("page entry: a sample box beyond 1023 voxels of its brick");
+    }
+    const glm::uvec3 s = glm::uvec3(slot) & 0xffffu;
+    const auto tenBits = [](glm::ivec3 v) {
+        return std::uint32_t(v.x) | std::uint32_t(v.y) << 10 | std::uint32_t(v.z) << 20;
+    };
+    return {s.x | s.y << 16, s.z | std::uint32_t(page.w) << 16, tenBits(lo), tenBits(hi)};
 }
-
-} // namespace
 
 BrickTable makeBrickTable(const BrickBoxes& boxes, const std::vector<ShownBrick>& shown,
                           const std::vector<CellRanges>& levels,
@@ -28,7 +37,7 @@ BrickTable makeBrickTable(const BrickBoxes& boxes, const std::vector<ShownBrick>
     t.bricksPerAxis = boxes.bricksPerAxis();
     t.cellsPerAxis = boxes.cellsPerAxis();
     t.page.assign(shown.size(), glm::ivec4(0));
-    t.box.assign(shown.size(), glm::uvec4(0));
+    t.entries.assign(shown.size(), glm::uvec4(0));
     t.perLevel.assign(levels.size(), 0);
     std::vector<int> levelOf(shown.size(), -1);
     for (std::size_t b = 0; b < shown.size(); ++b) {
@@ -38,7 +47,10 @@ BrickTable makeBrickTable(const BrickBoxes& boxes, const std::vector<ShownBrick>
         }
         const int state = s.box.contributes ? 1 : 2;
         t.page[b] = glm::ivec4(s.entry->at - s.entry->box.lo, state | (s.entry->level << 2));
-        t.box[b] = packBox(s.box);
+        const glm::ivec3 brick(int(b) % t.bricksPerAxis.x,
+                               int(b) / t.bricksPerAxis.x % t.bricksPerAxis.y,
+                               int(b) / (t.bricksPerAxis.x * t.bricksPerAxis.y));
+        t.entries[b] = pageEntry(t.page[b], s.box, brick * t.brickSize);
         levelOf[b] = s.entry->level;
         ++t.perLevel[std::size_t(s.entry->level)];
     }

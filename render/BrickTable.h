@@ -21,9 +21,10 @@ struct BrickTable {
     // texel = xyz + level position; w = state | level << 2, state 0 absent,
     // 1 resident, 2 resident only for its border (rays leap over it).
     std::vector<glm::ivec4> page;
-    // Per brick: its sample box [lo, hi) in level-0 voxels, 16 bits each
-    // (x = lo.x | lo.y << 16, y = lo.z | hi.x << 16, z = hi.y | hi.z << 16, w = 0).
-    std::vector<glm::uvec4> box;
+    // Per brick, what the shader reads in one texel fetch (pageEntry): the
+    // page and its sample box [lo, hi) in level-0 voxels, the box from the
+    // brick's first voxel b * brickSize.
+    std::vector<glm::uvec4> entries;
     // Per cell: 2 leap the brick, 1 leap the cell, 0 sample it; its value
     // range at the level its brick is drawn from (a margin for the spline).
     std::vector<std::uint8_t> codes;
@@ -34,6 +35,13 @@ struct BrickTable {
     bool operator==(const BrickTable&) const = default;
     std::size_t bytes() const; // on the GPU: page, boxes, codes, ranges
 };
+
+// A brick's page entry: x = slot.x | slot.y << 16, y = slot.z | state << 16 |
+// level << 18 (slot: page.xyz, 16-bit two's complement), z = the box's lo and
+// w its hi from the brick's first voxel, 10 bits an axis (x lowest).
+// Throws std::invalid_argument where a field does not fit (a slot beyond
+// +-32767 texels, a box beyond 1023 voxels of the brick's first).
+glm::uvec4 pageEntry(glm::ivec4 page, const SampleBox& box, glm::ivec3 brickFirst);
 
 struct ShownBrick {
     const BrickPool::Entry* entry = nullptr; // null: absent

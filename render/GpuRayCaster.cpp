@@ -396,8 +396,7 @@ void GpuRayCaster::State::bindTextures(const ShaderProgram& p, bool preintegrate
     const BrickPool& pool = streamer->pool();
     // Texture units, in the order of the samplers' names.
     const std::pair<const char*, GLuint> units[] = {
-        {"uPageTable", scene.pageTable()},
-        {"uPageBox", scene.pageBox()},
+        {"uPageEntry", scene.pageEntry()},
         {"uCellCode", scene.cellCode()},
         {"uCellRange", scene.cellRange()},
         {"uPool", pool.texture()},

@@ -9,9 +9,8 @@ bool SceneTextures::updateBricks(const BrickTable& t, std::uint64_t generation) 
         generation_ = generation;
         return false;
     }
-    pageTable_ = makeTexture3D(GL_RGBA32I, t.bricksPerAxis, GL_RGBA_INTEGER, GL_INT, t.page.data());
-    pageBox_ =
-        makeTexture3D(GL_RGBA32UI, t.bricksPerAxis, GL_RGBA_INTEGER, GL_UNSIGNED_INT, t.box.data());
+    pageEntry_ = makeTexture3D(GL_RGBA32UI, t.bricksPerAxis, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
+                               t.entries.data());
     cellsPerAxis_ = t.cellsPerAxis;
     cellCode_ =
         makeTexture3D(GL_R8UI, cellsPerAxis_, GL_RED_INTEGER, GL_UNSIGNED_BYTE, t.codes.data());

@@ -28,8 +28,8 @@ public:
     void updateTables(const TransferFunction& tf, double lo, double hi, double stepRatio,
                       bool preintegrate, int tableSize, int preintegrationSize);
 
-    GLuint pageTable() const { return pageTable_.get(); }
-    GLuint pageBox() const { return pageBox_.get(); }
+    GLuint pageEntry() const { return pageEntry_.get(); } // BrickTable::entries
+
     GLuint cellCode() const { return cellCode_.get(); }
     GLuint cellRange() const { return cellRange_.get(); }
     GLuint table() const { return table_.get(); }
@@ -37,7 +37,7 @@ public:
     glm::ivec3 cellsPerAxis() const { return cellsPerAxis_; }
 
 private:
-    GlTexture pageTable_, pageBox_, cellCode_, cellRange_, table_, preTable_, spareTable_;
+    GlTexture pageEntry_, cellCode_, cellRange_, table_, preTable_, spareTable_;
     glm::ivec3 cellsPerAxis_{0};
     std::optional<BrickTable> bricksKey_;
     std::uint64_t generation_ = 0;

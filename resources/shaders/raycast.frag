@@ -74,16 +74,15 @@ uniform float uVisibleLo, uVisibleHi;
 // (p - (2^n - 1) / 2) / 2^n).
 uniform ivec3 uLevelDims[8];
 
-// Bricks (render/BrickTable.h): page entry xyz = the atlas texel of the
-// level's voxel 0, w = state | level << 2 (state 0 absent, 1 resident, 2
-// resident only for its border: leapt over, read there); box = the level-0
-// samples [lo, hi) it backs (16 bits each) and its gradient unit.
+// Bricks (render/BrickTable.h, pageEntry): one texel a brick, the atlas texel
+// of its level's voxel 0 (16 bits an axis, signed), its state (0 absent, 1
+// resident, 2 resident only for its border: leapt over, read there) and level,
+// and the level-0 samples [lo, hi) it backs from its first voxel (10 bits an axis).
 uniform int uBrickSize;
 uniform float uInvBrickSize;
 uniform ivec3 uBricksPerAxis;
 uniform vec3 uInvPoolSize;
-uniform isampler3D uPageTable;
-uniform usampler3D uPageBox;
+uniform usampler3D uPageEntry;
 uniform sampler3D uPool;
 uniform float uValueScale; // texture value -> data value
 uniform sampler3D uGradientPool;

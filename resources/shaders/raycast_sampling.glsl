@@ -20,14 +20,16 @@ ivec3 brickOf(vec3 p) {
 void enterBrick(ivec3 b) {
     if (b != gBrick) {
         gBrick = b;
-        ivec4 page = texelFetch(uPageTable, b, 0);
-        gState = page.w & 3;
-        gSlotBase = vec3(page.xyz);
-        uvec4 box = texelFetch(uPageBox, b, 0);
-        gBoxLo = vec3(uvec3(box.x & 0xffffu, box.x >> 16, box.y & 0xffffu));
-        gBoxHi = vec3(uvec3(box.y >> 16, box.z & 0xffffu, box.z >> 16));
+        // One fetch: a second one (the box apart) cost 7 % of the llvmpipe frame.
+        uvec4 e = texelFetch(uPageEntry, b, 0);
+        ivec3 slot = ivec3(int(e.x << 16u), int(e.x), int(e.y << 16u)) >> 16;
+        gState = int(e.y >> 16u) & 3;
+        gSlotBase = vec3(slot);
+        vec3 first = vec3(b * uBrickSize);
+        gBoxLo = first + vec3((uvec3(e.z) >> uvec3(0u, 10u, 20u)) & 1023u);
+        gBoxHi = first + vec3((uvec3(e.w) >> uvec3(0u, 10u, 20u)) & 1023u);
         if (!kOneLevel) {
-            int level = page.w >> 2;
+            int level = int(e.y >> 18u);
             gLevelScale = exp2(-float(level));
             gLevelOffset = 0.5 * (gLevelScale - 1.0);
             gDims = uLevelDims[level];

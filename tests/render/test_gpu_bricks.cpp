@@ -1,13 +1,18 @@
 // Tight bricks and per-brick levels on the GPU: a trimmed brick draws what the
 // whole brick drew; a wider transfer function re-fits the boxes; bricks of
 // different levels meet without seams; a tight budget still renders and says
-// so; bricks streamed in under an upload cap end where an uncapped frame is.
+// so; bricks streamed in under an upload cap end where an uncapped frame is;
+// a brick's page entry holds its page and box, as the shader decodes them.
 #include <QTest>
 
 #include <cmath>
+#include <cstdint>
 #include <set>
+#include <stdexcept>
+#include <tuple>
 
 #include "core/volume/LodPyramid.h"
+#include "render/BrickTable.h"
 #include "tests/core/raycast/RaycastScenes.h"
 #include "tests/render/GlTestSupport.h"
 #include "tests/render/RealOrMadeCt.h"
@@ -231,6 +236,43 @@ private slots:
         QVERIFY(frames > 2);
         const double p = comparedPsnr(r.frame.image, target.frame.image, "streamed", 60.0);
         QVERIFY2(p >= 60.0, qPrintable(QString("after %1 frames: %2 dB").arg(frames).arg(p)));
+    }
+
+    // pageEntry, decoded as raycast_sampling.glsl's enterBrick does: negative
+    // and large slots, every state and level, boxes up to 1023 voxels from
+    // the brick's first; a field that does not fit is refused.
+    void pageEntryHoldsPageAndBox() {
+        const auto decode = [](glm::uvec4 e, glm::ivec3 first) {
+            const auto signed16 = [](std::uint32_t v) { return int(std::int16_t(v & 0xffffu)); };
+            const glm::ivec3 slot(signed16(e.x), signed16(e.x >> 16), signed16(e.y));
+            const auto box = [&](std::uint32_t v) {
+                return first + glm::ivec3(glm::uvec3(v, v >> 10, v >> 20) & 1023u);
+            };
+            return std::tuple(glm::ivec4(slot, int(e.y >> 16)), box(e.z), box(e.w));
+        };
+        const glm::ivec3 first(128, 64, 1984);
+        for (const glm::ivec3 slot :
+             {glm::ivec3(0), glm::ivec3(-61, 7, -32768), glm::ivec3(32767, -1, 2047)}) {
+            for (int state = 0; state < 3; ++state) {
+                for (int level = 0; level < 8; ++level) {
+                    const glm::ivec4 page(slot, state | level << 2);
+                    const SampleBox box{first + glm::ivec3(0, 3, 17),
+                                        first + glm::ivec3(64, 1023, 40), true};
+                    const auto [p, lo, hi] = decode(pageEntry(page, box, first), first);
+                    QCOMPARE(p, page);
+                    QCOMPARE(lo, box.lo);
+                    QCOMPARE(hi, box.hi);
+                }
+            }
+        }
+        const SampleBox inside{first, first + 64, true};
+        QVERIFY_THROWS_EXCEPTION(std::invalid_argument,
+                                 pageEntry(glm::ivec4(32768, 0, 0, 1), inside, first));
+        QVERIFY_THROWS_EXCEPTION(
+            std::invalid_argument,
+            pageEntry(glm::ivec4(0, 0, 0, 1), {first, first + 1024, true}, first));
+        QVERIFY_THROWS_EXCEPTION(std::invalid_argument, pageEntry(glm::ivec4(0, 0, 0, 1),
+                                                                  {first - 1, first, true}, first));
     }
 };
 
