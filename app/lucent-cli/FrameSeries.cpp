@@ -17,6 +17,8 @@ FrameSeries renderFrames(Renderer& renderer, RenderDescription description, int 
         if (n == 0) {
             series.first = std::move(r);
             series.firstDetails = renderer.frameDetails();
+        } else {
+            renderer.recycle(std::move(r)); // as the workstation's view hands its frames back
         }
         description.camera.azimuth += 5.0;
     }

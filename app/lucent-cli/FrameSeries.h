@@ -17,6 +17,8 @@ struct FrameSeries {
     FrameDetails lastDetails;  // and after the last (steady state)
 };
 
+// Frames after the first are handed back (Renderer::recycle) once timed, as
+// the workstation's 3D view does.
 FrameSeries renderFrames(Renderer& renderer, RenderDescription description, int repeat);
 
 // "load_ms=.. [first_ms=..] render_ms=<median of the rest> samples=.. bricks_total=..

@@ -31,10 +31,7 @@ std::string mib(std::size_t bytes) {
     return QString::number(double(bytes) / 1048576.0, 'f', 1).toStdString();
 }
 
-} // namespace
-
-int runRender(const QStringList& args) {
-    QCommandLineParser parser;
+void addRenderOptions(QCommandLineParser& parser) {
     parser.setApplicationDescription("Renders a volume to a PNG image.");
     parser.addPositionalArgument("PATH", "DICOM folder, file or DICOMDIR, or a volume file");
     parser.addOptions({
@@ -72,6 +69,140 @@ int runRender(const QStringList& args) {
     addRenderFlags(parser);
     addOverlayFlags(parser);
     parser.addHelpOption();
+}
+
+// How a local render runs: flags beyond the description's. parseLocalRun
+// throws UsageError naming a flag that is wrong.
+struct LocalRun {
+    RendererKind kind = RendererKind::Cpu;
+    int repeat = 1;
+    GpuOptions gpu;
+    std::optional<QualityRequest> quality;
+};
+
+LocalRun parseLocalRun(const QCommandLineParser& parser) {
+    LocalRun run;
+    const QString backend = parser.value("backend");
+    try {
+        run.kind = parseRendererKind(backend.toStdString());
+    } catch (const std::invalid_argument&) {
+        throw UsageError("backend '" + backend.toStdString() +
+                         "' is not available (use --backend cpu, gl or ws://HOST:PORT)");
+    }
+    if (parser.isSet("quality")) {
+        for (const char* chosen : {"step", "interp", "preclassify", "preintegrate", "brick"}) {
+            if (parser.isSet(chosen)) {
+                throw UsageError(std::string("--quality chooses the sampling; leave out --") +
+                                 chosen);
+            }
+        }
+        try {
+            run.quality = parseQualityRequest(parser.value("quality").toStdString());
+        } catch (const std::invalid_argument& e) {
+            throw UsageError(std::string("--") + e.what());
+        }
+    }
+    run.repeat = static_cast<int>(numberFlag(parser, "repeat", 1));
+    if (run.repeat < 1 || run.repeat > 10000) {
+        throw UsageError("--repeat must be between 1 and 10000");
+    }
+    const double budget = numberFlag(parser, "gpu-budget", 0.0);
+    if (!(budget >= 0.0) || budget > 1e7) {
+        throw UsageError("--gpu-budget must be a number of MiB above 0");
+    }
+    run.gpu.budgetBytes = std::size_t(budget * 1024.0 * 1024.0);
+    if (parser.isSet("gradient-cache") && parser.isSet("no-gradient-cache")) {
+        throw UsageError("--gradient-cache and --no-gradient-cache exclude each other");
+    }
+    run.gpu.gradientCache = !parser.isSet("no-gradient-cache");
+    if (parser.isSet("gradient-cache")) {
+        run.gpu.gradientCacheShare = 0.0; // no limit
+    }
+    const QString lod = parser.value("lod");
+    if (lod != "per-brick" && lod != "uniform") {
+        throw UsageError("--lod must be per-brick or uniform, not '" + lod.toStdString() + "'");
+    }
+    run.gpu.lodPolicy = lod == "uniform" ? LodPolicy::Uniform : LodPolicy::PerBrick;
+    const double cap = numberFlag(parser, "upload-cap", 0.0);
+    if (!(cap >= 0.0) || cap > 1e7) {
+        throw UsageError("--upload-cap must be a number of MiB, 0 for none");
+    }
+    run.gpu.uploadBytesPerFrame = std::size_t(cap * 1024.0 * 1024.0);
+    return run;
+}
+
+// The --stats line: the first frame's figures, its times from the last frame (no uploads).
+void printStats(double loadMs, const FrameSeries& series, const RenderDescription& firstDesc,
+                int repeat, const std::string& qualityStats, const Renderer& renderer,
+                const Volume& volume) {
+    FrameDetails details = series.firstDetails;
+    for (const auto& [key, value] : series.lastDetails) {
+        if (key == "uploads" && repeat > 1) {
+            details.emplace_back("uploads_after_first", value);
+        }
+        for (auto& [firstKey, firstValue] : details) {
+            if (firstKey == key && key.ends_with("_ms")) {
+                firstValue = value;
+            }
+        }
+    }
+    QTextStream out(stdout);
+    out << seriesStats(loadMs, series) << " brute_samples=" << bruteForceSamples(firstDesc)
+        << " frames=" << repeat << QString::fromStdString(qualityStats)
+        << " backend=" << QString::fromStdString(renderer.backend());
+    for (const auto& [key, value] : details) {
+        out << " " << QString::fromStdString(key) << "=" << QString::fromStdString(value);
+    }
+    if (renderer.backend() == "gl") {
+        out << " volume_mib=" << QString::fromStdString(mib(volume.byteCount())) << " renderer=\""
+            << QString::fromStdString(renderer.device()) << "\"";
+    }
+    out << "\n";
+}
+
+// Renders the loaded volume (and overlay) on this machine and writes the PNG.
+void renderHere(const QCommandLineParser& parser, const LocalRun& run, const Volume& volume,
+                const std::optional<Volume>& overlay, double loadMs, QTextStream& err) {
+    RenderDescription desc = describeFromFlags(parser, volume);
+    if (overlay) {
+        desc.overlay.volume = &*overlay;
+        resolveOverlayWindow(desc.overlay);
+    }
+    desc.validate();
+    // The GL backend needs an EGL context; without one the CPU renders, and says so.
+    const std::unique_ptr<RenderDevice> device = RenderDevice::open(run.kind);
+    RenderDevice::Opened opened = device->openRenderer(volume, run.gpu);
+    for (const std::string& reason : {device->fallbackReason(), opened.fallbackReason}) {
+        if (!reason.empty()) {
+            err << "lucent-cli render: " << QString::fromStdString(reason)
+                << "; rendering on the CPU instead\n";
+        }
+    }
+    Renderer& renderer = *opened.renderer;
+    std::string qualityStats;
+    if (run.quality) {
+        qualityStats = applyQuality(
+            *run.quality, desc, renderer.backend(),
+            [&](const RenderDescription& d) { return renderer.render(d); }, err);
+    }
+    const RenderDescription firstDesc = desc; // the frame whose figures --stats prints
+    const FrameSeries series = renderFrames(renderer, desc, run.repeat);
+    const RenderResult& first = series.first;
+    if (!first.stats.lodReason.empty()) {
+        err << "lucent-cli render: rendered from level " << first.stats.lod << ": "
+            << QString::fromStdString(first.stats.lodReason) << "\n";
+    }
+    writePng(first.image, parser.value("output").toStdString());
+    if (parser.isSet("stats")) {
+        printStats(loadMs, series, firstDesc, run.repeat, qualityStats, renderer, volume);
+    }
+}
+
+} // namespace
+
+int runRender(const QStringList& args) {
+    QCommandLineParser parser;
+    addRenderOptions(parser);
     QTextStream err(stderr);
     if (!parser.parse(args)) {
         err << "lucent-cli render: " << parser.errorText() << "\n";
@@ -96,57 +227,9 @@ int runRender(const QStringList& args) {
     if (backend.startsWith("ws://") || backend.startsWith("wss://")) {
         return renderRemote(parser, err);
     }
-    RendererKind kind = RendererKind::Cpu;
+    LocalRun run;
     try {
-        kind = parseRendererKind(backend.toStdString());
-    } catch (const std::invalid_argument&) {
-        err << "lucent-cli render: backend '" << backend
-            << "' is not available (use --backend cpu, gl or ws://HOST:PORT)\n";
-        return kUsage;
-    }
-    int repeat = 1;
-    GpuOptions gpuOptions;
-    std::optional<QualityRequest> quality;
-    try {
-        if (parser.isSet("quality")) {
-            for (const char* chosen : {"step", "interp", "preclassify", "preintegrate", "brick"}) {
-                if (parser.isSet(chosen)) {
-                    throw UsageError(std::string("--quality chooses the sampling; leave out --") +
-                                     chosen);
-                }
-            }
-            try {
-                quality = parseQualityRequest(parser.value("quality").toStdString());
-            } catch (const std::invalid_argument& e) {
-                throw UsageError(std::string("--") + e.what());
-            }
-        }
-        repeat = static_cast<int>(numberFlag(parser, "repeat", 1));
-        if (repeat < 1 || repeat > 10000) {
-            throw UsageError("--repeat must be between 1 and 10000");
-        }
-        const double budget = numberFlag(parser, "gpu-budget", 0.0);
-        if (!(budget >= 0.0) || budget > 1e7) {
-            throw UsageError("--gpu-budget must be a number of MiB above 0");
-        }
-        gpuOptions.budgetBytes = std::size_t(budget * 1024.0 * 1024.0);
-        if (parser.isSet("gradient-cache") && parser.isSet("no-gradient-cache")) {
-            throw UsageError("--gradient-cache and --no-gradient-cache exclude each other");
-        }
-        gpuOptions.gradientCache = !parser.isSet("no-gradient-cache");
-        if (parser.isSet("gradient-cache")) {
-            gpuOptions.gradientCacheShare = 0.0; // no limit
-        }
-        const QString lod = parser.value("lod");
-        if (lod != "per-brick" && lod != "uniform") {
-            throw UsageError("--lod must be per-brick or uniform, not '" + lod.toStdString() + "'");
-        }
-        gpuOptions.lodPolicy = lod == "uniform" ? LodPolicy::Uniform : LodPolicy::PerBrick;
-        const double cap = numberFlag(parser, "upload-cap", 0.0);
-        if (!(cap >= 0.0) || cap > 1e7) {
-            throw UsageError("--upload-cap must be a number of MiB, 0 for none");
-        }
-        gpuOptions.uploadBytesPerFrame = std::size_t(cap * 1024.0 * 1024.0);
+        run = parseLocalRun(parser);
     } catch (const UsageError& e) {
         err << "lucent-cli render: " << e.what() << "\n";
         return kUsage;
@@ -174,62 +257,7 @@ int runRender(const QStringList& args) {
     const double loadMs = double(timer.nsecsElapsed()) / 1e6;
 
     try {
-        RenderDescription desc = describeFromFlags(parser, volume);
-        if (overlay) {
-            desc.overlay.volume = &*overlay;
-            resolveOverlayWindow(desc.overlay);
-        }
-        desc.validate();
-        // The GL backend needs an EGL context; without one the CPU renders, and says so.
-        const std::unique_ptr<RenderDevice> device = RenderDevice::open(kind);
-        RenderDevice::Opened opened = device->openRenderer(volume, gpuOptions);
-        for (const std::string& reason : {device->fallbackReason(), opened.fallbackReason}) {
-            if (!reason.empty()) {
-                err << "lucent-cli render: " << QString::fromStdString(reason)
-                    << "; rendering on the CPU instead\n";
-            }
-        }
-        Renderer& renderer = *opened.renderer;
-        std::string qualityStats;
-        if (quality) {
-            qualityStats = applyQuality(
-                *quality, desc, renderer.backend(),
-                [&](const RenderDescription& d) { return renderer.render(d); }, err);
-        }
-        const RenderDescription firstDesc = desc; // the frame whose figures --stats prints
-        const FrameSeries series = renderFrames(renderer, desc, repeat);
-        const RenderResult& first = series.first;
-        if (!first.stats.lodReason.empty()) {
-            err << "lucent-cli render: rendered from level " << first.stats.lod << ": "
-                << QString::fromStdString(first.stats.lodReason) << "\n";
-        }
-        writePng(first.image, parser.value("output").toStdString());
-        if (parser.isSet("stats")) {
-            // The first frame's figures, its times from the last frame (no uploads).
-            FrameDetails details = series.firstDetails;
-            for (const auto& [key, value] : series.lastDetails) {
-                if (key == "uploads" && repeat > 1) {
-                    details.emplace_back("uploads_after_first", value);
-                }
-                for (auto& [firstKey, firstValue] : details) {
-                    if (firstKey == key && key.ends_with("_ms")) {
-                        firstValue = value;
-                    }
-                }
-            }
-            QTextStream out(stdout);
-            out << seriesStats(loadMs, series) << " brute_samples=" << bruteForceSamples(firstDesc)
-                << " frames=" << repeat << QString::fromStdString(qualityStats)
-                << " backend=" << QString::fromStdString(renderer.backend());
-            for (const auto& [key, value] : details) {
-                out << " " << QString::fromStdString(key) << "=" << QString::fromStdString(value);
-            }
-            if (renderer.backend() == "gl") {
-                out << " volume_mib=" << QString::fromStdString(mib(volume.byteCount()))
-                    << " renderer=\"" << QString::fromStdString(renderer.device()) << "\"";
-            }
-            out << "\n";
-        }
+        renderHere(parser, run, volume, overlay, loadMs, err);
     } catch (const UsageError& e) {
         err << "lucent-cli render: " << e.what() << "\n";
         return kUsage;
