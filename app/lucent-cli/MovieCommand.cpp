@@ -151,10 +151,7 @@ WindowLevel windowOf(const QCommandLineParser& p, const Volume& volume) {
     return window;
 }
 
-} // namespace
-
-int runMovie(const QStringList& args) {
-    QCommandLineParser parser;
+void addMovieOptions(QCommandLineParser& parser) {
     parser.setApplicationDescription(
         "Writes a movie: a turntable of the volume rendering (the default: a full turn), or a "
         "cine through the slices along an index axis. MP4 (H.264), WebM (VP9) or GIF, by the "
@@ -193,6 +190,55 @@ int runMovie(const QStringList& args) {
     });
     addRenderFlags(parser);
     parser.addHelpOption();
+}
+
+// What makes the frames, and what it needs kept alive while they are made
+// (frames last: they go first).
+struct MovieSource {
+    std::unique_ptr<RenderDevice> device;
+    std::unique_ptr<Renderer> renderer;
+    std::unique_ptr<MovieFrames> frames;
+};
+
+// A cine of the volume's slices, or frames rendered from it (a turntable, or
+// a recording's views), on the requested backend where it opens.
+MovieSource sourceOf(const QCommandLineParser& parser, MovieRequest& request, const Volume& volume,
+                     QTextStream& err) {
+    MovieSource source;
+    if (request.cine) {
+        source.frames = std::make_unique<CineFrames>(
+            volume, request.axis, request.frames, windowOf(parser, volume), request.settings.width,
+            request.settings.height);
+        return source;
+    }
+    source.device = RenderDevice::open(request.backend);
+    RenderDevice::Opened opened = source.device->openRenderer(volume);
+    for (const std::string& reason : {source.device->fallbackReason(), opened.fallbackReason}) {
+        if (!reason.empty()) {
+            err << "lucent-cli movie: " << QString::fromStdString(reason)
+                << "; rendering on the CPU instead\n";
+        }
+    }
+    source.renderer = std::move(opened.renderer);
+    if (request.replay) {
+        source.frames = std::make_unique<ReplayFrames>(
+            *source.renderer, volume, std::move(*request.replay), request.pace,
+            request.settings.framesPerSecond, request.settings.width, request.settings.height);
+    } else {
+        RenderDescription start = describeFromFlags(parser, volume);
+        start.validate();
+        source.frames = std::make_unique<TurntableFrames>(
+            *source.renderer, start, request.degrees,
+            request.frames > 0 ? request.frames : kDefaultTurntableFrames);
+    }
+    return source;
+}
+
+} // namespace
+
+int runMovie(const QStringList& args) {
+    QCommandLineParser parser;
+    addMovieOptions(parser);
     QTextStream err(stderr);
     if (!parser.parse(args)) {
         err << "lucent-cli movie: " << parser.errorText() << "\n";
@@ -247,37 +293,8 @@ int runMovie(const QStringList& args) {
                            : loadPath(path.toStdString(), parser.value("series").toStdString(),
                                       progress.control());
         progress.finish();
-        std::unique_ptr<RenderDevice> device;
-        std::unique_ptr<Renderer> renderer;
-        std::unique_ptr<MovieFrames> frames;
-        if (request.cine) {
-            frames = std::make_unique<CineFrames>(volume, request.axis, request.frames,
-                                                  windowOf(parser, volume), request.settings.width,
-                                                  request.settings.height);
-        } else {
-            device = RenderDevice::open(request.backend);
-            RenderDevice::Opened opened = device->openRenderer(volume);
-            for (const std::string& reason : {device->fallbackReason(), opened.fallbackReason}) {
-                if (!reason.empty()) {
-                    err << "lucent-cli movie: " << QString::fromStdString(reason)
-                        << "; rendering on the CPU instead\n";
-                }
-            }
-            renderer = std::move(opened.renderer);
-            if (request.replay) {
-                frames =
-                    std::make_unique<ReplayFrames>(*renderer, volume, std::move(*request.replay),
-                                                   request.pace, request.settings.framesPerSecond,
-                                                   request.settings.width, request.settings.height);
-            } else {
-                RenderDescription start = describeFromFlags(parser, volume);
-                start.validate();
-                frames = std::make_unique<TurntableFrames>(
-                    *renderer, start, request.degrees,
-                    request.frames > 0 ? request.frames : kDefaultTurntableFrames);
-            }
-        }
-        writeMovie(*frames, writer, [&](int done, int total) {
+        const MovieSource source = sourceOf(parser, request, volume, err);
+        writeMovie(*source.frames, writer, [&](int done, int total) {
             if (progress.control().onProgress) {
                 progress.control().onProgress({"frame", std::size_t(done), std::size_t(total)});
             }
