@@ -8,6 +8,12 @@
 #include <QStandardPaths>
 #include <QTextStream>
 
+#include <algorithm>
+#include <optional>
+#include <string>
+#include <tuple>
+#include <vector>
+
 #include "CliCommand.h"
 #include "core/hanging/HangingProtocolJson.h"
 #include "core/io/Catalog.h"
@@ -151,6 +157,44 @@ const HangingProtocol* findProtocol(const std::vector<HangingProtocol>& protocol
     return nullptr;
 }
 
+// The series with their study order (current, priors 1, 2, ..., others last),
+// then by series number.
+std::vector<HangingSeries> studiesInOrder(std::vector<HangingSeries> series,
+                                          const std::string& current) {
+    series = orderStudies(std::move(series), current);
+    std::stable_sort(series.begin(), series.end(),
+                     [](const HangingSeries& a, const HangingSeries& b) {
+                         const auto rank = [](int order) { return order < 0 ? 1 << 30 : order; };
+                         return std::make_tuple(rank(a.studyOrder), a.seriesNumber) <
+                                std::make_tuple(rank(b.studyOrder), b.seriesNumber);
+                     });
+    return series;
+}
+
+// --json: the ranking, the series, the protocol files' errors and the result (null: none).
+void printJson(const std::vector<HangingResult>& ranking, const std::vector<HangingSeries>& series,
+               const std::vector<std::string>& errors, const std::optional<HangingResult>& result,
+               QTextStream& out) {
+    QJsonArray rankingJson, seriesList, errorList;
+    for (const HangingResult& r : ranking) {
+        rankingJson.append(QJsonObject{{"protocol", q(r.protocol->name)},
+                                       {"file", q(r.protocol->file)},
+                                       {"score", r.score},
+                                       {"applicable", r.applicable},
+                                       {"reason", q(r.reason)},
+                                       {"filled_viewports", r.filledViewports()}});
+    }
+    for (const HangingSeries& s : series) {
+        seriesList.append(seriesJson(s));
+    }
+    for (const std::string& e : errors) {
+        errorList.append(q(e));
+    }
+    QJsonObject root{{"ranking", rankingJson}, {"series", seriesList}, {"errors", errorList}};
+    root["result"] = result ? QJsonValue(resultJson(*result)) : QJsonValue();
+    out << QJsonDocument(root).toJson(QJsonDocument::Indented);
+}
+
 } // namespace
 
 int runHang(const QStringList& args) {
@@ -212,13 +256,7 @@ int runHang(const QStringList& args) {
         err << "lucent-cli hang: nothing loadable under the paths\n";
         return kBadInput;
     }
-    series = orderStudies(std::move(series), parser.value("current").toStdString());
-    std::stable_sort(series.begin(), series.end(),
-                     [](const HangingSeries& a, const HangingSeries& b) {
-                         const auto rank = [](int order) { return order < 0 ? 1 << 30 : order; };
-                         return std::make_tuple(rank(a.studyOrder), a.seriesNumber) <
-                                std::make_tuple(rank(b.studyOrder), b.seriesNumber);
-                     });
+    series = studiesInOrder(std::move(series), parser.value("current").toStdString());
     const RankOptions options{!parser.isSet("priors-pending")};
     const int set = parser.isSet("set") ? static_cast<int>(numberFlag(parser, "set", 0)) : 0;
     try {
@@ -242,25 +280,7 @@ int runHang(const QStringList& args) {
         const std::optional<HangingResult> result =
             chosen ? std::optional(applyProtocol(*chosen, series, set, options)) : std::nullopt;
         if (parser.isSet("json")) {
-            QJsonArray rankingJson, seriesList, errorList;
-            for (const HangingResult& r : ranking) {
-                rankingJson.append(QJsonObject{{"protocol", q(r.protocol->name)},
-                                               {"file", q(r.protocol->file)},
-                                               {"score", r.score},
-                                               {"applicable", r.applicable},
-                                               {"reason", q(r.reason)},
-                                               {"filled_viewports", r.filledViewports()}});
-            }
-            for (const HangingSeries& s : series) {
-                seriesList.append(seriesJson(s));
-            }
-            for (const std::string& e : errors) {
-                errorList.append(q(e));
-            }
-            QJsonObject root{
-                {"ranking", rankingJson}, {"series", seriesList}, {"errors", errorList}};
-            root["result"] = result ? QJsonValue(resultJson(*result)) : QJsonValue();
-            out << QJsonDocument(root).toJson(QJsonDocument::Indented);
+            printJson(ranking, series, errors, result, out);
         } else {
             printSeries(series, out);
             printRanking(ranking, out);
