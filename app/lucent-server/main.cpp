@@ -168,38 +168,43 @@ int main(int argc, char** argv) {
 
 namespace {
 
-// Everything after the command line: checks, the store, the server until it quits.
-int serve(const QCommandLineParser& parser, const ServeHooks& hooks) {
-    QTextStream err(stderr);
+// The server's settings from the command line: 0, or the exit code after
+// saying what is wrong.
+struct ServeSettings {
     lucent::remote::ServerOptions options;
-    if (!parseListen(parser.value("listen"), &options.address, &options.port)) {
+    int dicomPort = -1; // -1: no DICOM storage SCP
+    double arrivalQuiet = 0.0;
+};
+
+int readSettings(const QCommandLineParser& parser, ServeSettings& settings, QTextStream& err) {
+    if (!parseListen(parser.value("listen"), &settings.options.address, &settings.options.port)) {
         err << "lucent-server: --listen: '" << parser.value("listen") << "' is not HOST:PORT\n";
         return kUsage;
     }
     try {
-        options.backend = lucent::parseRendererKind(parser.value("backend").toStdString());
+        settings.options.backend = lucent::parseRendererKind(parser.value("backend").toStdString());
     } catch (const std::invalid_argument& e) {
         err << "lucent-server: --" << e.what() << "\n";
         return kUsage;
     }
     bool ok = false;
-    options.maxClients = parser.value("max-clients").toInt(&ok);
-    if (!ok || options.maxClients < 1) {
+    settings.options.maxClients = parser.value("max-clients").toInt(&ok);
+    if (!ok || settings.options.maxClients < 1) {
         err << "lucent-server: --max-clients must be a positive number\n";
         return kUsage;
     }
-    options.maxSessions = parser.value("max-sessions").toInt(&ok);
-    if (!ok || options.maxSessions < 1) {
+    settings.options.maxSessions = parser.value("max-sessions").toInt(&ok);
+    if (!ok || settings.options.maxSessions < 1) {
         err << "lucent-server: --max-sessions must be a positive number\n";
         return kUsage;
     }
-    options.maxSessionMembers = parser.value("max-session-members").toInt(&ok);
-    if (!ok || options.maxSessionMembers < 2) {
+    settings.options.maxSessionMembers = parser.value("max-session-members").toInt(&ok);
+    if (!ok || settings.options.maxSessionMembers < 2) {
         err << "lucent-server: --max-session-members must be a number from 2\n";
         return kUsage;
     }
-    options.maxFreeLook = parser.value("max-free-look").toInt(&ok);
-    if (!ok || options.maxFreeLook < 0 || options.maxFreeLook > 4096) {
+    settings.options.maxFreeLook = parser.value("max-free-look").toInt(&ok);
+    if (!ok || settings.options.maxFreeLook < 0 || settings.options.maxFreeLook > 4096) {
         err << "lucent-server: --max-free-look must be a number from 0 to 4096\n";
         return kUsage;
     }
@@ -207,8 +212,8 @@ int serve(const QCommandLineParser& parser, const ServeHooks& hooks) {
         err << "lucent-server: --store DIR and --token-file FILE are required\n";
         return kUsage;
     }
-    options.keepaliveSeconds = parser.value("keepalive").toInt(&ok);
-    if (!ok || options.keepaliveSeconds < 1 || options.keepaliveSeconds > 3600) {
+    settings.options.keepaliveSeconds = parser.value("keepalive").toInt(&ok);
+    if (!ok || settings.options.keepaliveSeconds < 1 || settings.options.keepaliveSeconds > 3600) {
         err << "lucent-server: --keepalive must be a number of seconds from 1 to 3600\n";
         return kUsage;
     }
@@ -217,18 +222,17 @@ int serve(const QCommandLineParser& parser, const ServeHooks& hooks) {
         err << "lucent-server: --upload-limit must be a number of MiB from 1 to 16384\n";
         return kUsage;
     }
-    options.uploadLimitBytes = uploadLimitMib << 20;
-    int dicomPort = -1;
+    settings.options.uploadLimitBytes = uploadLimitMib << 20;
     if (parser.isSet("dicom-listen")) {
-        dicomPort = parser.value("dicom-listen").toInt(&ok);
-        if (!ok || dicomPort < 0 || dicomPort > 65535) {
+        settings.dicomPort = parser.value("dicom-listen").toInt(&ok);
+        if (!ok || settings.dicomPort < 0 || settings.dicomPort > 65535) {
             err << "lucent-server: --dicom-listen: '" << parser.value("dicom-listen")
                 << "' is not a port number (0 to 65535)\n";
             return kUsage;
         }
     }
-    const double arrivalQuiet = parser.value("arrival-quiet").toDouble(&ok);
-    if (!ok || !(arrivalQuiet >= 0.2 && arrivalQuiet <= 600.0)) {
+    settings.arrivalQuiet = parser.value("arrival-quiet").toDouble(&ok);
+    if (!ok || !(settings.arrivalQuiet >= 0.2 && settings.arrivalQuiet <= 600.0)) {
         err << "lucent-server: --arrival-quiet must be a number of seconds from 0.2 to 600\n";
         return kUsage;
     }
@@ -237,14 +241,29 @@ int serve(const QCommandLineParser& parser, const ServeHooks& hooks) {
         return kUsage;
     }
     if (parser.isSet("tls-cert")) {
-        options.tls = lucent::remote::TlsFiles{parser.value("tls-cert"), parser.value("tls-key")};
+        settings.options.tls =
+            lucent::remote::TlsFiles{parser.value("tls-cert"), parser.value("tls-key")};
         try {
-            (void)lucent::remote::loadServerTls(*options.tls); // fail before the slow start
+            (void)lucent::remote::loadServerTls(
+                *settings.options.tls); // fail before the slow start
         } catch (const std::exception& e) {
             err << "lucent-server: " << e.what() << "\n";
             return kBadInput;
         }
     }
+    return 0;
+}
+
+// Everything after the command line: checks, the store, the server until it quits.
+int serve(const QCommandLineParser& parser, const ServeHooks& hooks) {
+    QTextStream err(stderr);
+    ServeSettings settings;
+    if (const int code = readSettings(parser, settings, err); code != 0) {
+        return code;
+    }
+    lucent::remote::ServerOptions& options = settings.options;
+    const int dicomPort = settings.dicomPort;
+    const double arrivalQuiet = settings.arrivalQuiet;
     lucent::remote::ServedSeries stored;
     lucent::remote::ServedSeries fromData;
     try {
