@@ -1,5 +1,8 @@
 #include "protocol/ServerMessages.h"
 
+#include <optional>
+#include <string>
+
 #include <nlohmann/json.hpp>
 
 #include "protocol/ClientMessageJson.h"
@@ -206,36 +209,8 @@ struct Writer {
     }
 };
 
-ServerMessage read(const Json& m, const std::string& type) {
-    if (type == "hello") {
-        return Hello{jsonInteger<int>(m.at("version"), "version"),
-                     m.at("backend").get<std::string>(),
-                     m.contains("window_presets") ? readWindowPresets(m.at("window_presets"))
-                                                  : std::vector<WindowPresetInfo>{}};
-    }
-    if (type == "series") {
-        SeriesListReply l;
-        for (const Json& s : m.at("series")) {
-            l.series.push_back({s.at("uid").get<std::string>(),
-                                s.value("description", std::string()),
-                                s.at("modality").get<std::string>(), readDims(s.at("dims"))});
-        }
-        return l;
-    }
-    if (type == "opened") {
-        Opened o{m.at("series").get<std::string>(), readDims(m.at("dims")),
-                 m.value("radius_mm", 0.0), m.value("preset", std::string()), std::nullopt};
-        if (m.contains("centre")) {
-            const Json& c = m.at("centre");
-            o.centre =
-                glm::dvec3(c.at(0).get<double>(), c.at(1).get<double>(), c.at(2).get<double>());
-        }
-        return o;
-    }
-    if (type == "error") {
-        return ErrorReply{m.at("code").get<std::string>(), m.at("message").get<std::string>(),
-                          m.at("fatal").get<bool>()};
-    }
+// A teaching session's messages: the session, invites, pointer and marks, free look.
+std::optional<ServerMessage> readSessionMessage(const Json& m, const std::string& type) {
     if (type == "session-created") {
         return SessionCreated{m.at("session").get<std::string>()};
     }
@@ -295,6 +270,11 @@ ServerMessage read(const Json& m, const std::string& type) {
         return FreeLookState{jsonInteger<int>(m.at("looking"), "looking"),
                              jsonInteger<int>(m.at("limit"), "limit")};
     }
+    return std::nullopt;
+}
+
+// Recordings and their replay.
+std::optional<ServerMessage> readRecordingMessage(const Json& m, const std::string& type) {
     if (type == "recording-started") {
         return RecordingStarted{m.at("recording").get<std::string>()};
     }
@@ -324,6 +304,45 @@ ServerMessage read(const Json& m, const std::string& type) {
     if (type == "replay-ended") {
         return ReplayEnded{m.at("recording").get<std::string>(), m.at("reason").get<std::string>(),
                            m.contains("camera") ? readCamera(m.at("camera")) : CameraUpdate{}};
+    }
+    return std::nullopt;
+}
+
+ServerMessage read(const Json& m, const std::string& type) {
+    if (type == "hello") {
+        return Hello{jsonInteger<int>(m.at("version"), "version"),
+                     m.at("backend").get<std::string>(),
+                     m.contains("window_presets") ? readWindowPresets(m.at("window_presets"))
+                                                  : std::vector<WindowPresetInfo>{}};
+    }
+    if (type == "series") {
+        SeriesListReply l;
+        for (const Json& s : m.at("series")) {
+            l.series.push_back({s.at("uid").get<std::string>(),
+                                s.value("description", std::string()),
+                                s.at("modality").get<std::string>(), readDims(s.at("dims"))});
+        }
+        return l;
+    }
+    if (type == "opened") {
+        Opened o{m.at("series").get<std::string>(), readDims(m.at("dims")),
+                 m.value("radius_mm", 0.0), m.value("preset", std::string()), std::nullopt};
+        if (m.contains("centre")) {
+            const Json& c = m.at("centre");
+            o.centre =
+                glm::dvec3(c.at(0).get<double>(), c.at(1).get<double>(), c.at(2).get<double>());
+        }
+        return o;
+    }
+    if (type == "error") {
+        return ErrorReply{m.at("code").get<std::string>(), m.at("message").get<std::string>(),
+                          m.at("fatal").get<bool>()};
+    }
+    if (std::optional<ServerMessage> session = readSessionMessage(m, type)) {
+        return std::move(*session);
+    }
+    if (std::optional<ServerMessage> recording = readRecordingMessage(m, type)) {
+        return std::move(*recording);
     }
     throw ProtocolError("unknown-type", "unknown server message type '" + type.substr(0, 64) + "'",
                         false);

@@ -32,6 +32,113 @@ double median(std::vector<double> v) {
     return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+// plan.order: the images ascending along the normal n; plan.dropped: those at
+// a position already taken.
+void orderImages(const StackInput& in, const glm::dvec3& n, StackPlan& plan) {
+    std::vector<int> idx(in.positions.size());
+    std::iota(idx.begin(), idx.end(), 0);
+    // Stable: among equal positions the earlier input (lower InstanceNumber) is kept.
+    // (Along n from any one point: the order does not depend on which.)
+    std::stable_sort(idx.begin(), idx.end(), [&](int a, int b) {
+        return glm::dot(in.positions[a] - in.positions.front(), n) <
+               glm::dot(in.positions[b] - in.positions.front(), n);
+    });
+    for (int i : idx) {
+        if (!plan.order.empty() &&
+            glm::length(in.positions[i] - in.positions[plan.order.back()]) < kDuplicateMm) {
+            plan.dropped.push_back(i);
+        } else {
+            plan.order.push_back(i);
+        }
+    }
+}
+
+// plan.missingSlices and the warning of a stack resampled at sz mm into nk
+// slices because its gaps are uneven.
+void describeUnevenGaps(const std::vector<double>& gaps, double typical, double tolerance,
+                        double sz, int nk, StackPlan& plan) {
+    int missing = 0;
+    std::ostringstream list;
+    for (std::size_t s = 0; s < gaps.size(); ++s) {
+        const double ratio = gaps[s] / typical;
+        const long whole = std::lround(ratio);
+        if (whole >= 2 && std::abs(ratio - static_cast<double>(whole)) < 0.05) {
+            missing += static_cast<int>(whole - 1);
+        }
+    }
+    plan.missingSlices = missing;
+    // Runs of equal gaps in one phrase: "6.999 mm after slices 14-26".
+    for (std::size_t s = 0; s < gaps.size();) {
+        if (std::abs(gaps[s] - typical) <= tolerance) {
+            ++s;
+            continue;
+        }
+        std::size_t e = s;
+        while (e + 1 < gaps.size() && std::abs(gaps[e + 1] - gaps[s]) <= tolerance) {
+            ++e;
+        }
+        list << (list.tellp() > 0 ? ", " : "") << mm(gaps[s]) << " mm after slice"
+             << (e > s ? "s " + std::to_string(s) + "-" + std::to_string(e)
+                       : " " + std::to_string(s));
+        s = e + 1;
+    }
+    std::string what = missing > 0 ? std::to_string(missing) + " missing slice(s); " : "";
+    plan.warnings.push_back("uneven slice gaps (" + what + "typical " + mm(typical) + " mm; " +
+                            list.str() + "): resampled along the normal at " + mm(sz) + " mm, " +
+                            std::to_string(nk) +
+                            " slices, interpolating linearly between acquired slices");
+}
+
+struct Footprint {
+    double i0, j0; // its first pixel on the first image's lattice
+    int ni, nj;    // pixels
+};
+
+// The union of the images' footprints (slice offsets f in the frame of the
+// first image, mm), on the first image's pixel lattice.
+Footprint footprintOf(const std::vector<glm::dvec3>& f, const StackInput& in) {
+    const double sx = in.pixelSpacing.x, sy = in.pixelSpacing.y;
+    double uMin = 0.0, uMax = 0.0, wMin = 0.0, wMax = 0.0;
+    for (const glm::dvec3& v : f) {
+        uMin = std::min(uMin, v.x);
+        wMin = std::min(wMin, v.y);
+        uMax = std::max(uMax, v.x + (in.columns - 1) * sx);
+        wMax = std::max(wMax, v.y + (in.rows - 1) * sy);
+    }
+    const double i0 = std::floor(uMin / sx + 1e-6);
+    const double j0 = std::floor(wMin / sy + 1e-6);
+    return {i0, j0, static_cast<int>(std::ceil(uMax / sx - 1e-6) - i0) + 1,
+            static_cast<int>(std::ceil(wMax / sy - 1e-6) - j0) + 1};
+}
+
+// What keeping the acquired grid would cost: each slice's distance from its
+// place on that grid, in plane (in pixels) and along the normal (in spacings).
+// Gap variation alone does not bound this: a slow trend of small variations
+// adds up along the stack. Slice offsets f in mm from the first; `even` the
+// mean gap.
+void measureGrid(const std::vector<glm::dvec3>& f, double even, double extent,
+                 glm::dvec2 pixelSpacing, StackPlan& plan) {
+    double shiftPixels = 0.0;
+    double gridDeviation = 0.0;
+    for (std::size_t s = 0; s < f.size(); ++s) {
+        shiftPixels = std::max(
+            {shiftPixels, std::abs(f[s].x) / pixelSpacing.x, std::abs(f[s].y) / pixelSpacing.y});
+        gridDeviation = std::max(gridDeviation, std::abs(f[s].z - even * double(s)) / even);
+    }
+    plan.unevenGaps = gridDeviation > kGridTolerance;
+    plan.shiftPixels = shiftPixels;
+    plan.gridDeviation = gridDeviation;
+    plan.tiltDegrees = glm::degrees(std::atan2(glm::length(glm::dvec2(f.back())), extent));
+}
+
+// The warning of a stack kept on its grid although its gaps vary.
+std::string gapsVaryWarning(double minGap, double maxGap, double even, double gridDeviation) {
+    return "slice gaps vary from " + mm(minGap) + " to " + mm(maxGap) + " mm (" +
+           mm(100.0 * (maxGap - minGap) / even) + "% of " + mm(even) + " mm; every slice within " +
+           mm(100.0 * gridDeviation) + "% of a spacing of an even " + "grid, tolerance " +
+           mm(100.0 * kGridTolerance) + "%): kept the acquired grid";
+}
+
 } // namespace
 
 StackPlan planStack(const StackInput& in) {
@@ -49,20 +156,7 @@ StackPlan planStack(const StackInput& in) {
         return glm::dvec3(glm::dot(d, r), glm::dot(d, c), glm::dot(d, n));
     };
 
-    std::vector<int> idx(in.positions.size());
-    std::iota(idx.begin(), idx.end(), 0);
-    // Stable: among equal positions the earlier input (lower InstanceNumber) is kept.
-    std::stable_sort(idx.begin(), idx.end(), [&](int a, int b) {
-        return frame(in.positions[a]).z < frame(in.positions[b]).z;
-    });
-    for (int i : idx) {
-        if (!plan.order.empty() &&
-            glm::length(in.positions[i] - in.positions[plan.order.back()]) < kDuplicateMm) {
-            plan.dropped.push_back(i);
-        } else {
-            plan.order.push_back(i);
-        }
-    }
+    orderImages(in, n, plan);
 
     const std::size_t count = plan.order.size();
     VolumeGeometry& g = plan.geometry;
@@ -104,21 +198,9 @@ StackPlan planStack(const StackInput& in) {
     const double tolerance = std::max(0.01, 0.01 * typical); // gaps "equal" in the warning text
     const double even = extent / static_cast<double>(count - 1);
 
-    // What keeping the acquired grid would cost: each slice's distance from
-    // its place on that grid, in plane (in pixels) and along the normal (in
-    // spacings). Gap variation alone does not bound this: a slow trend of
-    // small variations adds up along the stack.
-    double shiftPixels = 0.0;
-    double gridDeviation = 0.0;
-    for (std::size_t s = 0; s < count; ++s) {
-        shiftPixels = std::max({shiftPixels, std::abs(f[s].x) / sx, std::abs(f[s].y) / sy});
-        gridDeviation = std::max(gridDeviation, std::abs(f[s].z - even * double(s)) / even);
-    }
+    measureGrid(f, even, extent, glm::dvec2(sx, sy), plan);
+    const double shiftPixels = plan.shiftPixels, gridDeviation = plan.gridDeviation;
     const bool tilted = shiftPixels > kShiftTolerancePixels;
-    plan.unevenGaps = gridDeviation > kGridTolerance;
-    plan.shiftPixels = shiftPixels;
-    plan.gridDeviation = gridDeviation;
-    plan.tiltDegrees = glm::degrees(std::atan2(glm::length(glm::dvec2(f.back())), extent));
     if (!tilted) {
         if (shiftPixels > kSilentShiftPixels) {
             plan.warnings.push_back("slices drift " + mm(glm::length(glm::dvec2(f.back()))) +
@@ -132,11 +214,7 @@ StackPlan planStack(const StackInput& in) {
         }
     }
     if (!tilted && !plan.unevenGaps && maxGap - minGap > tolerance) {
-        plan.warnings.push_back("slice gaps vary from " + mm(minGap) + " to " + mm(maxGap) +
-                                " mm (" + mm(100.0 * (maxGap - minGap) / even) + "% of " +
-                                mm(even) + " mm; every slice within " + mm(100.0 * gridDeviation) +
-                                "% of a spacing of an even " + "grid, tolerance " +
-                                mm(100.0 * kGridTolerance) + "%): kept the acquired grid");
+        plan.warnings.push_back(gapsVaryWarning(minGap, maxGap, even, gridDeviation));
     }
 
     if (!tilted && !plan.unevenGaps) {
@@ -160,17 +238,7 @@ StackPlan planStack(const StackInput& in) {
         sz = extent / static_cast<double>(nk - 1);
     }
     // In the plane: the union of every image's footprint, on the first image's pixel lattice.
-    double uMin = 0.0, uMax = 0.0, wMin = 0.0, wMax = 0.0;
-    for (const glm::dvec3& v : f) {
-        uMin = std::min(uMin, v.x);
-        wMin = std::min(wMin, v.y);
-        uMax = std::max(uMax, v.x + (in.columns - 1) * sx);
-        wMax = std::max(wMax, v.y + (in.rows - 1) * sy);
-    }
-    const double i0 = std::floor(uMin / sx + 1e-6);
-    const double j0 = std::floor(wMin / sy + 1e-6);
-    const int ni = static_cast<int>(std::ceil(uMax / sx - 1e-6) - i0) + 1;
-    const int nj = static_cast<int>(std::ceil(wMax / sy - 1e-6) - j0) + 1;
+    const auto [i0, j0, ni, nj] = footprintOf(f, in);
 
     g.dims = {ni, nj, nk};
     g.spacing = {sx, sy, sz};
@@ -187,36 +255,7 @@ StackPlan planStack(const StackInput& in) {
             std::to_string(ni) + "x" + std::to_string(nj) + " pixels to keep every slice whole");
     }
     if (plan.unevenGaps) {
-        int missing = 0;
-        std::ostringstream list;
-        for (std::size_t s = 0; s < gaps.size(); ++s) {
-            const double ratio = gaps[s] / typical;
-            const long whole = std::lround(ratio);
-            if (whole >= 2 && std::abs(ratio - static_cast<double>(whole)) < 0.05) {
-                missing += static_cast<int>(whole - 1);
-            }
-        }
-        plan.missingSlices = missing;
-        // Runs of equal gaps in one phrase: "6.999 mm after slices 14-26".
-        for (std::size_t s = 0; s < gaps.size();) {
-            if (std::abs(gaps[s] - typical) <= tolerance) {
-                ++s;
-                continue;
-            }
-            std::size_t e = s;
-            while (e + 1 < gaps.size() && std::abs(gaps[e + 1] - gaps[s]) <= tolerance) {
-                ++e;
-            }
-            list << (list.tellp() > 0 ? ", " : "") << mm(gaps[s]) << " mm after slice"
-                 << (e > s ? "s " + std::to_string(s) + "-" + std::to_string(e)
-                           : " " + std::to_string(s));
-            s = e + 1;
-        }
-        std::string what = missing > 0 ? std::to_string(missing) + " missing slice(s); " : "";
-        plan.warnings.push_back("uneven slice gaps (" + what + "typical " + mm(typical) + " mm; " +
-                                list.str() + "): resampled along the normal at " + mm(sz) +
-                                " mm, " + std::to_string(nk) +
-                                " slices, interpolating linearly between acquired slices");
+        describeUnevenGaps(gaps, typical, tolerance, sz, nk, plan);
     }
     return plan;
 }
