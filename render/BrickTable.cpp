@@ -18,7 +18,7 @@ glm::uvec4 pageEntry(glm::ivec4 page, const SampleBox& box, glm::ivec3 brickFirs
         throw std::invalid_argument("page entry: an atlas slot beyond 16 bits");
     }
     if (glm::any(glm::lessThan(glm::min(lo, hi), glm::ivec3(0))) ||
-        glm::any(glm::greaterThan(glm::max(lo, hi), glm::ivec3(1023)))) {
+        glm::any(glm::greaterThan(glm::max(lo, hi), glm::ivec3(kMaxPageBrickSize)))) {
         throw std::invalid_argument("page entry: a sample box beyond 1023 voxels of its brick");
     }
     const glm::uvec3 s = glm::uvec3(slot) & 0xffffu;

@@ -36,6 +36,9 @@ struct BrickTable {
     std::size_t bytes() const; // on the GPU: page, boxes, codes, ranges
 };
 
+// The largest brick a page entry describes (its box in 10 bits an axis).
+inline constexpr int kMaxPageBrickSize = 1023;
+
 // A brick's page entry: x = slot.x | slot.y << 16, y = slot.z | state << 16 |
 // level << 18 (slot: page.xyz, 16-bit two's complement), z = the box's lo and
 // w its hi from the brick's first voxel, 10 bits an axis (x lowest).

@@ -9,11 +9,13 @@
 #include <map>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <tuple>
 
 #include "core/raycast/BrickVisibility.h"
 #include "core/scene/ViewFrame.h"
 #include "render/BrickStreamer.h"
+#include "render/BrickTable.h"
 #include "render/CastKey_p.h"
 #include "render/GlError.h"
 #include "render/GlObjects_p.h"
@@ -434,6 +436,11 @@ GpuRenderResult GpuRayCaster::State::castSurfaceAlone(const RenderDescription& d
 GpuRenderResult GpuRayCaster::cast(const RenderDescription& asked, bool countRows) {
     const auto started = std::chrono::steady_clock::now();
     asked.validate();
+    if (asked.sampling.brickSize > kMaxPageBrickSize) {
+        throw std::invalid_argument("brick: the GPU ray caster takes bricks of at most " +
+                                    std::to_string(kMaxPageBrickSize) + " voxels, not " +
+                                    std::to_string(asked.sampling.brickSize));
+    }
     State& s = *state_;
     // A part draws its owned box (in its own indices) over transparent black.
     const PartFrame part = partFrame(s.part, s.volume, asked);

@@ -318,7 +318,7 @@ void addCastingRows(std::vector<RenderOption>& t) {
                  .cliFlag = "brick",
                  .valueName = "N",
                  .help = "Brick size in voxels (bricks are what leaping skips and the GPU pool "
-                         "holds).",
+                         "holds; the GPU takes at most 1023).",
                  .read = [](const D& d) { return std::to_string(d.sampling.brickSize); },
                  .write = [](D& d, sv v) { d.sampling.brickSize = int(parseNumber(v)); }});
 }

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <set>
 #include <stdexcept>
+#include <string>
 #include <tuple>
 
 #include "core/volume/LodPyramid.h"
@@ -273,6 +274,18 @@ private slots:
             pageEntry(glm::ivec4(0, 0, 0, 1), {first, first + 1024, true}, first));
         QVERIFY_THROWS_EXCEPTION(std::invalid_argument, pageEntry(glm::ivec4(0, 0, 0, 1),
                                                                   {first - 1, first, true}, first));
+        // So the GPU ray caster refuses bricks over kMaxPageBrickSize, naming the option.
+        GpuRayCaster gpu(volume_);
+        RenderDescription d = describe(volume_, loadPreset("ct-bone"), 32);
+        d.sampling.brickSize = kMaxPageBrickSize + 1;
+        try {
+            gpu.render(d);
+            QFAIL("a brick of 1024 voxels was taken");
+        } catch (const std::invalid_argument& e) {
+            QVERIFY2(std::string(e.what()).starts_with("brick: "), e.what());
+        }
+        d.sampling.brickSize = kMaxPageBrickSize;
+        QVERIFY(!gpu.render(d).image.pixels.empty());
     }
 };
 
