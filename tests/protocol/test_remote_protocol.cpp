@@ -1,42 +1,23 @@
 // The protocol's messages: one writer and one reader each way, the options table
-// behind camera, mode and sampling, versions, the frame layout (no network).
+// behind camera, mode and sampling (no network; versions in
+// test_protocol_versions.cpp, frames in test_frame_protocol.cpp).
 #include <QTest>
 
-#include <QImage>
 #include <QJsonDocument>
 #include <QJsonObject>
 
 #include <fstream>
 #include <iterator>
-#include <random>
 #include <set>
 
-#include "protocol/AdaptiveQuality.h"
-#include "protocol/PngEncoder.h"
 #include "protocol/ProtocolMessages.h"
+#include "tests/protocol/ProtocolErrors.h"
 
 using namespace lucent;
 using namespace lucent::remote;
+using lucent::remote::test::errorCode;
 
 namespace {
-
-// The code of the ProtocolError the text raises, "" when it parses; fatal and the
-// message through `fatal` and `message`.
-std::string errorCode(std::string_view text, bool* fatal = nullptr, int version = kProtocolVersion,
-                      std::string* message = nullptr) {
-    try {
-        parseClientMessage(text, version);
-    } catch (const ProtocolError& e) {
-        if (fatal) {
-            *fatal = e.fatal();
-        }
-        if (message) {
-            *message = e.what();
-        }
-        return e.code();
-    }
-    return "";
-}
 
 // A description with every wire-carried setting away from its default.
 RenderDescription unusualDescription() {
@@ -175,44 +156,6 @@ private slots:
         QCOMPARE(errorCode(longId), "bad-request");
     }
 
-    void adaptiveQualityHoldsTheFrameRate() {
-        AdaptiveQuality adaptive; // 50 ms a frame
-        const InteractiveSetting start = adaptive.current();
-        QCOMPARE(start.scale, 0.5);
-        // Slow frames step down to the cheapest setting and stay there.
-        for (int n = 0; n < 20; ++n) {
-            adaptive.record(200.0);
-        }
-        QCOMPARE(adaptive.level(), kInteractiveLevels - 1);
-        QCOMPARE(adaptive.current().scale, 0.35);
-        QCOMPARE(adaptive.current().jpegQuality, 60);
-        // Fast frames climb back to full size, JPEG quality 85.
-        for (int n = 0; n < 40; ++n) {
-            adaptive.record(5.0);
-        }
-        QCOMPARE(adaptive.level(), std::size_t(0));
-        QCOMPARE(adaptive.current().scale, 1.0);
-        QCOMPARE(adaptive.current().jpegQuality, 85);
-        // Frames that cost what they may (between 45 % and 100 % of the
-        // target) leave the setting alone.
-        AdaptiveQuality steady;
-        for (int n = 0; n < 20; ++n) {
-            steady.record(40.0);
-        }
-        QCOMPARE(steady.level(), std::size_t(4));
-        // A cost model: each level's frame costs its pixels; 100 ms at full
-        // size settles on the best level under 50 ms.
-        AdaptiveQuality modelled;
-        for (int n = 0; n < 40; ++n) {
-            const InteractiveSetting s = modelled.current();
-            modelled.record(100.0 * s.scale * s.scale);
-        }
-        QCOMPARE(modelled.current().scale, 0.5);
-        for (const InteractiveSetting& s : kInteractiveLadder) {
-            QVERIFY(s.jpegQuality >= 50 && s.jpegQuality <= 85);
-        }
-    }
-
     void structuralErrorsAreFatal() {
         bool fatal = false;
         QCOMPARE(errorCode("{not json", &fatal), "malformed");
@@ -261,31 +204,6 @@ private slots:
         }
     }
 
-    void frameRoundTrip() {
-        FrameHeader h;
-        h.width = 320;
-        h.height = 200;
-        h.format = "jpeg";
-        h.seq = 42;
-        h.quality = Quality::Interactive;
-        const std::string image("\xff\xd8 image bytes", 14);
-        const std::string message = frameMessage(h, image);
-        const ParsedFrame f = parseFrameMessage(message);
-        QCOMPARE(f.header.width, 320);
-        QCOMPARE(f.header.seq, std::uint64_t(42));
-        QCOMPARE(f.header.format, "jpeg");
-        QVERIFY(f.header.quality == Quality::Interactive);
-        QCOMPARE(f.image, std::string_view(image));
-        QCOMPARE(f.header.scale, 1.0);
-        h.scale = 0.35;
-        h.jpegQuality = 55;
-        const ParsedFrame g = parseFrameMessage(frameMessage(h, image));
-        QCOMPARE(g.header.scale, 0.35);
-        QCOMPARE(g.header.jpegQuality, 55);
-        QVERIFY_THROWS_EXCEPTION(ProtocolError, parseFrameMessage(message.substr(0, 10)));
-        QVERIFY_THROWS_EXCEPTION(ProtocolError, parseFrameMessage("\xff\xff"));
-    }
-
     // fuzz_protocol found a float where an integer belongs (fuzz-regressions/): its
     // conversion was undefined; any number that is no integer in range is malformed.
     void integerFieldsOutOfRangeAreMalformed() {
@@ -330,35 +248,6 @@ private slots:
                      },
                      "member_ids"),
                  QString("malformed"));
-    }
-
-    void pngEncoderIsLossless() {
-        std::mt19937 random(7);
-        for (const auto& [w, h] : {std::pair{1, 1}, {17, 5}, {256, 193}}) {
-            std::vector<std::uint8_t> rgba(std::size_t(w) * h * 4);
-            for (int y = 0; y < h; ++y) {
-                for (int x = 0; x < w; ++x) {
-                    std::uint8_t* p = &rgba[(std::size_t(y) * w + x) * 4];
-                    const bool dark = (x / 8 + y / 8) % 2 == 0; // runs and noise
-                    p[0] = dark ? 0 : std::uint8_t(random());
-                    p[1] = dark ? 0 : std::uint8_t(x * 3 + y);
-                    p[2] = dark ? 0 : std::uint8_t(200 - y);
-                    p[3] = 255;
-                }
-            }
-            const std::string png = encodePng(rgba, w, h);
-            const QImage decoded =
-                QImage::fromData(QByteArray(png.data(), qsizetype(png.size())), "PNG")
-                    .convertToFormat(QImage::Format_RGBA8888);
-            QCOMPARE(decoded.width(), w);
-            QCOMPARE(decoded.height(), h);
-            for (int y = 0; y < h; ++y) {
-                QVERIFY(std::equal(rgba.begin() + std::ptrdiff_t(y) * w * 4,
-                                   rgba.begin() + std::ptrdiff_t(y + 1) * w * 4,
-                                   decoded.constScanLine(y)));
-            }
-        }
-        QVERIFY_THROWS_EXCEPTION(std::invalid_argument, encodePng({}, 2, 2));
     }
 
     // Every client message, every field set, through the one writer and the one reader.
@@ -577,146 +466,6 @@ private slots:
         QVERIFY(!fatal);
         QVERIFY2(QString::fromStdString(message).startsWith("sampling: "), message.c_str());
         QVERIFY2(QString::fromStdString(message).contains("'" + key + "'"), message.c_str());
-    }
-
-    void versionsAreNegotiated() {
-        QCOMPARE(kProtocolVersion, 4);
-        QCOMPARE(subprotocolName(2), "lucent.v2");
-        QCOMPARE(subprotocolVersion("lucent.v1"), std::optional<int>(1));
-        QCOMPARE(subprotocolVersion("lucent.v2"), std::optional<int>(2));
-        QCOMPARE(subprotocolVersion("lucent.v3"), std::optional<int>(3));
-        QCOMPARE(subprotocolVersion("lucent.v4"), std::optional<int>(4));
-        for (const char* other : {"lucent.v5", "lucent.v0", "lucent.v", "lucent.v02", "lucent.v2x",
-                                  "lucent.token.abc", "v2"}) {
-            QVERIFY2(!subprotocolVersion(other), other);
-        }
-        QCOMPARE(supportedSubprotocols(),
-                 (std::vector<std::string>{"lucent.v4", "lucent.v3", "lucent.v2", "lucent.v1"}));
-        // Sampling came with version 2: a version 1 connection does not know the type.
-        const char* sampling = R"({"type":"sampling","step":0.25,"interp":"cubic"})";
-        bool fatal = false;
-        std::string message;
-        QCOMPARE(errorCode(sampling, &fatal, 1, &message), "unknown-type");
-        QVERIFY(fatal);
-        QVERIFY2(QString::fromStdString(message).contains("version 1"), message.c_str());
-        QCOMPARE(errorCode(sampling, nullptr, 2), "");
-        QCOMPARE(messageVersion(SamplingUpdate{}), 2);
-        QCOMPARE(messageTypeVersion("sampling"), 2);
-        QCOMPARE(messageTypeVersion("reboot"), 0);
-        for (const char* v1 : {R"({"type":"camera","azimuth":3})", R"({"type":"list"})",
-                               R"({"type":"session-leave"})"}) {
-            QCOMPARE(errorCode(v1, nullptr, 1), "");
-            QCOMPARE(messageVersion(parseClientMessage(v1, 1)), 1);
-        }
-    }
-
-    // Invites came with version 3: an older connection that presents one is refused
-    // with auth-failed saying so (fatal); its other messages are unknown types there.
-    void invitesNeedVersionThree() {
-        const char* inviteAuth = R"({"type":"auth","invite":"Zm9vYmFy"})";
-        for (const int old : {1, 2}) {
-            bool fatal = false;
-            std::string message;
-            QCOMPARE(errorCode(inviteAuth, &fatal, old, &message), "auth-failed");
-            QVERIFY(fatal);
-            QVERIFY2(message.find("version 3") != std::string::npos, message.c_str());
-            QCOMPARE(errorCode(R"({"type":"invite-create"})", nullptr, old), "unknown-type");
-            QCOMPARE(errorCode(R"({"type":"auth","token":"t"})", nullptr, old), "");
-        }
-        QCOMPARE(errorCode(inviteAuth, nullptr, 3), "");
-        QCOMPARE(messageTypeVersion("invite-create"), 3);
-        QCOMPARE(messageTypeVersion("invite-revoke"), 3);
-        const std::string longCode(kMaxInviteCodeBytes + 1, 'a');
-        const std::string tooLong = "{\"type\":\"auth\",\"invite\":\"" + longCode + "\"}";
-        for (const char* bad :
-             {R"({"type":"auth","invite":"a","token":"b"})", R"({"type":"auth"})",
-              R"({"type":"auth","invite":""})", tooLong.c_str(),
-              R"({"type":"invite-create","lifetime":0})",
-              R"({"type":"invite-create","lifetime":86401})",
-              R"({"type":"invite-create","lifetime":1.5})",
-              R"({"type":"invite-create","origin":"https://h/path"})",
-              "{\"type\":\"invite-create\",\"origin\":\"javascript:alert(1)\"}",
-              R"({"type":"invite-create","code":"x"})", R"({"type":"invite-revoke","invite":0})",
-              R"({"type":"invite-revoke"})"}) {
-            bool fatal = true;
-            QVERIFY2(errorCode(bad, &fatal, 3) == "bad-request", bad);
-            QVERIFY(!fatal);
-        }
-    }
-
-    // Free look came with version 4: older connections know no such type (fatal
-    // unknown-type, as an old server answers); bad fields are bad-request naming them.
-    void freeLookNeedsVersionFour() {
-        const char* start = R"({"type":"free-look","state":"start"})";
-        const char* recall = R"({"type":"free-look-recall"})";
-        for (const int old : {1, 2, 3}) {
-            bool fatal = false;
-            std::string message;
-            QCOMPARE(errorCode(start, &fatal, old, &message), "unknown-type");
-            QVERIFY(fatal);
-            QVERIFY2(message.find("version 4") != std::string::npos, message.c_str());
-            QCOMPARE(errorCode(recall, nullptr, old), "unknown-type");
-        }
-        QVERIFY(parseClientMessage(start, 4) == ClientMessage{FreeLook{true}});
-        QVERIFY(parseClientMessage(R"({"type":"free-look","state":"end"})", 4) ==
-                ClientMessage{FreeLook{false}});
-        QVERIFY(parseClientMessage(recall, 4) == ClientMessage{FreeLookRecall{}});
-        QCOMPARE(messageTypeVersion("free-look"), 4);
-        QCOMPARE(messageTypeVersion("free-look-recall"), 4);
-        QVERIFY(!isViewMessage(FreeLook{true}));
-        QCOMPARE(writeClientMessage(FreeLook{true}), R"({"state":"start","type":"free-look"})");
-        const std::pair<const char*, const char*> bad[] = {
-            {R"({"type":"free-look"})", "'state'"},
-            {R"({"type":"free-look","state":"on"})", "'state'"},
-            {R"({"type":"free-look","state":1})", "'state'"},
-            {R"({"type":"free-look","state":"start","camera":{}})", "'camera'"},
-            {R"({"type":"free-look-recall","all":true})", "'all'"},
-        };
-        for (const auto& [text, key] : bad) {
-            bool fatal = true;
-            std::string message;
-            QVERIFY2(errorCode(text, &fatal, 4, &message) == "bad-request", text);
-            QVERIFY(!fatal);
-            QVERIFY2(message.find(key) != std::string::npos, message.c_str());
-            QVERIFY2(message.starts_with("free-look"), message.c_str());
-        }
-        QCOMPARE(writeServerMessage(FreeLookEnded{"own"}),
-                 R"({"reason":"own","type":"free-look-ended"})");
-        QCOMPARE(writeServerMessage(FreeLookState{2, 16}),
-                 R"({"limit":16,"looking":2,"type":"free-look-state"})");
-    }
-
-    // libqrencode's matrix against the format's invariants (ISO/IEC 18004): a
-    // side of 17 + 4 * version, the three finder patterns with their separators,
-    // the timing patterns and the dark module (zbarimg reads whole codes back in
-    // test_remote_invites).
-    void qrCodesKeepTheFormatsInvariants() {
-        for (const std::string& text :
-             {std::string("http://127.0.0.1:8765/#invite=Zm9vYmFyYmF6cXV4cXV1eGNvcmdlZ3JhdWx0"),
-              std::string(300, 'x')}) {
-            const QrCode qr = encodeQrCode(text);
-            QVERIFY(qr.size >= 21 && (qr.size - 17) % 4 == 0);
-            QCOMPARE(qr.modules.size(), std::size_t(qr.size * qr.size));
-            const int version = (qr.size - 17) / 4;
-            for (const auto& [ox, oy] : {std::pair{0, 0}, {qr.size - 7, 0}, {0, qr.size - 7}}) {
-                for (int y = -1; y <= 7; ++y) {
-                    for (int x = -1; x <= 7; ++x) {
-                        if (ox + x < 0 || oy + y < 0 || ox + x >= qr.size || oy + y >= qr.size) {
-                            continue;
-                        }
-                        // Rings about the centre: 0, 1 and 3 dark; 2 and 4 (the separator) light.
-                        const int ring = std::max(std::abs(x - 3), std::abs(y - 3));
-                        QCOMPARE(qr.dark(ox + x, oy + y), ring != 2 && ring != 4);
-                    }
-                }
-            }
-            for (int n = 8; n < qr.size - 8; ++n) {
-                QCOMPARE(qr.dark(n, 6), n % 2 == 0);
-                QCOMPARE(qr.dark(6, n), n % 2 == 0);
-            }
-            QVERIFY(qr.dark(8, 4 * version + 9));
-        }
-        QVERIFY_THROWS_EXCEPTION(std::runtime_error, encodeQrCode(std::string(8000, 'x')));
     }
 
     // A description, sent as view messages and applied by a server, arrives whole.
