@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace lucent {
 
@@ -19,7 +20,8 @@ glm::uvec4 pageEntry(glm::ivec4 page, const SampleBox& box, glm::ivec3 brickFirs
     }
     if (glm::any(glm::lessThan(glm::min(lo, hi), glm::ivec3(0))) ||
         glm::any(glm::greaterThan(glm::max(lo, hi), glm::ivec3(kMaxPageBrickSize)))) {
-        throw std::invalid_argument("page entry: a sample box beyond 1023 voxels of its brick");
+        throw std::invalid_argument("page entry: a sample box beyond " +
+                                    std::to_string(kMaxPageBrickSize) + " voxels of its brick");
     }
     const glm::uvec3 s = glm::uvec3(slot) & 0xffffu;
     const auto tenBits = [](glm::ivec3 v) {
@@ -47,10 +49,7 @@ BrickTable makeBrickTable(const BrickBoxes& boxes, const std::vector<ShownBrick>
         }
         const int state = s.box.contributes ? 1 : 2;
         t.page[b] = glm::ivec4(s.entry->at - s.entry->box.lo, state | (s.entry->level << 2));
-        const glm::ivec3 brick(int(b) % t.bricksPerAxis.x,
-                               int(b) / t.bricksPerAxis.x % t.bricksPerAxis.y,
-                               int(b) / (t.bricksPerAxis.x * t.bricksPerAxis.y));
-        t.entries[b] = pageEntry(t.page[b], s.box, brick * t.brickSize);
+        t.entries[b] = pageEntry(t.page[b], s.box, boxes.brickIndex(b) * t.brickSize);
         levelOf[b] = s.entry->level;
         ++t.perLevel[std::size_t(s.entry->level)];
     }
