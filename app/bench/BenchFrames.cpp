@@ -20,12 +20,8 @@ double msSince(Clock::time_point t0) {
 constexpr int kDragFrames = 12;
 
 double detailMs(const FrameDetails& details, const std::string& key) {
-    for (const auto& [name, value] : details) {
-        if (name == key) {
-            return std::stod(value);
-        }
-    }
-    return 0.0;
+    const std::optional<std::string> value = frameDetail(details, key);
+    return value ? std::stod(*value) : 0.0;
 }
 
 } // namespace

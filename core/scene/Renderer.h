@@ -6,7 +6,9 @@
 
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -50,6 +52,16 @@ struct FramebufferTarget {
 
 // Figures of the last frame beyond RenderStats, in the order --stats prints them.
 using FrameDetails = std::vector<std::pair<std::string, std::string>>;
+
+// The figure named `key`, or nullopt where the renderer gives none.
+inline std::optional<std::string> frameDetail(const FrameDetails& details, std::string_view key) {
+    for (const auto& [name, value] : details) {
+        if (name == key) {
+            return value;
+        }
+    }
+    return std::nullopt;
+}
 
 class Renderer {
 public:

@@ -23,15 +23,6 @@ namespace {
 
 const char* const kCt = "dcm_qa_ct/Philips_S21570/S2010";
 
-std::string detail(const FrameDetails& details, const std::string& key) {
-    for (const auto& [name, value] : details) {
-        if (name == key) {
-            return value;
-        }
-    }
-    return "(none)";
-}
-
 } // namespace
 
 class TestLocalRenderBackend : public QObject {
@@ -58,22 +49,25 @@ private slots:
             QCOMPARE(int(shown.size()), n + 1);
             const RenderDescription d = interactiveDescription(still, drag.quality);
             QVERIFY(shown.back() == CpuRayCaster(*volume).render(d).image);
-            QCOMPARE(detail(backend.lastFrameDetails(), "frame_buffers"),
+            QCOMPARE(frameDetail(backend.lastFrameDetails(), "frame_buffers").value_or("(none)"),
                      std::string(n == 0 ? "new" : "recycled"));
         }
         // Let go: the still frame is twice the size, so its buffers are new.
         backend.request(still, {});
         backend.renderPending();
         QVERIFY(shown.back() == CpuRayCaster(*volume).render(still).image);
-        QCOMPARE(detail(backend.lastFrameDetails(), "frame_buffers"), std::string("new"));
+        QCOMPARE(frameDetail(backend.lastFrameDetails(), "frame_buffers").value_or("(none)"),
+                 std::string("new"));
         // A new drag: its first frame gets new buffers (the spare ones are the still frame's
         // size), the next ones the frame shown before it.
         backend.request(still, drag);
         backend.renderPending();
-        QCOMPARE(detail(backend.lastFrameDetails(), "frame_buffers"), std::string("new"));
+        QCOMPARE(frameDetail(backend.lastFrameDetails(), "frame_buffers").value_or("(none)"),
+                 std::string("new"));
         backend.request(still, drag);
         backend.renderPending();
-        QCOMPARE(detail(backend.lastFrameDetails(), "frame_buffers"), std::string("recycled"));
+        QCOMPARE(frameDetail(backend.lastFrameDetails(), "frame_buffers").value_or("(none)"),
+                 std::string("recycled"));
     }
 };
 

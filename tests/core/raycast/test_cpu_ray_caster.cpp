@@ -3,7 +3,6 @@
 #include <QTest>
 
 #include <algorithm>
-#include <filesystem>
 #include <numbers>
 #include <random>
 #include <set>
@@ -15,9 +14,14 @@
 #include "core/scene/ViewFrame.h"
 #include "core/volume/VolumePart.h"
 #include "tests/core/raycast/RaycastScenes.h"
+#include "tests/support/RealData.h"
 
 using namespace lucent;
 using namespace lucent::test;
+
+namespace {
+const char* const kPhilipsS2010 = "dcm_qa_ct/Philips_S21570/S2010";
+} // namespace
 
 class TestCpuRayCaster : public QObject {
     Q_OBJECT
@@ -226,12 +230,8 @@ private slots:
     }
 
     void presetsRenderRealCt() {
-        const std::filesystem::path dir =
-            std::filesystem::path(LUCENT_TEST_DATA_DIR) / "dcm_qa_ct/Philips_S21570/S2010";
-        if (!std::filesystem::exists(dir)) {
-            QSKIP("real test data not found: ../shared/data/dcm_qa_ct/Philips_S21570/S2010");
-        }
-        const Volume v = loadPath(dir);
+        REQUIRE_DATA(kPhilipsS2010);
+        const Volume v = loadPath(kRealData / kPhilipsS2010);
         CpuRayCaster caster(v);
         for (const std::string& name : presetNames()) {
             RenderDescription d = describe(v, loadPreset(name), 96);
@@ -256,12 +256,8 @@ private slots:
     // the step (tables, pre-integration, leaping): frames that change them in
     // turn equal those of a fresh caster.
     void derivedTablesFollowEachChange() {
-        const std::filesystem::path dir =
-            std::filesystem::path(LUCENT_TEST_DATA_DIR) / "dcm_qa_ct/Philips_S21570/S2010";
-        if (!std::filesystem::exists(dir)) {
-            QSKIP("real test data not found: ../shared/data/dcm_qa_ct/Philips_S21570/S2010");
-        }
-        const Volume v = loadPath(dir);
+        REQUIRE_DATA(kPhilipsS2010);
+        const Volume v = loadPath(kRealData / kPhilipsS2010);
         CpuRayCaster kept(v);
         std::vector<RenderDescription> views;
         for (const char* preset : {"ct-soft-tissue", "ct-bone"}) {
@@ -285,12 +281,8 @@ private slots:
     // cover less of it, then another size: each equal to a fresh caster's
     // (image and premultiplied colours), on the real CT through the SIMD kernel.
     void handedBackFramesEqualFreshOnes() {
-        const std::filesystem::path dir =
-            std::filesystem::path(LUCENT_TEST_DATA_DIR) / "dcm_qa_ct/Philips_S21570/S2010";
-        if (!std::filesystem::exists(dir)) {
-            QSKIP("real test data not found: ../shared/data/dcm_qa_ct/Philips_S21570/S2010");
-        }
-        const Volume v = loadPath(dir);
+        REQUIRE_DATA(kPhilipsS2010);
+        const Volume v = loadPath(kRealData / kPhilipsS2010);
         RenderDescription close = describe(v, loadPreset("ct-soft-tissue"), 96);
         close.camera.zoom = 3.0;
         RenderDescription far = close;
@@ -302,12 +294,7 @@ private slots:
         other.width = 80;
         CpuRayCaster kept(v);
         const auto buffers = [&] {
-            for (const auto& [key, value] : kept.frameDetails()) {
-                if (key == "frame_buffers") {
-                    return value;
-                }
-            }
-            return std::string("(none)");
+            return frameDetail(kept.frameDetails(), "frame_buffers").value_or("(none)");
         };
         // frame_buffers: the first frame and one of another size get new ones.
         const char* expected[] = {"new", "recycled", "recycled", "recycled", "new", "new"};

@@ -227,12 +227,8 @@ private slots:
         CpuRayCaster caster(v);
         RenderDescription d = describe(v, rampTf(true), 64);
         const auto figure = [&](const std::string& key) {
-            for (const auto& [name, value] : caster.frameDetails()) {
-                if (name == key) {
-                    return std::stod(value);
-                }
-            }
-            return -1.0;
+            const std::optional<std::string> value = frameDetail(caster.frameDetails(), key);
+            return value ? std::stod(*value) : -1.0;
         };
         QCOMPARE(figure("cast_ms"), 0.0); // no frame yet
         caster.render(d);
