@@ -31,6 +31,11 @@ public:
     // failure, with a message for the client.
     virtual ImageRGBA8 render(const std::shared_ptr<const SeriesEntry>& series,
                               const RenderDescription& description) = 0;
+    // The image `render` gave for `series`, encoded and no longer needed: a
+    // source may draw its next frame of that size into it (Renderer::recycle).
+    // The default drops it.
+    virtual void recycle(const std::shared_ptr<const SeriesEntry>& /*series*/,
+                         ImageRGBA8&& /*image*/) {}
     // A mark's points (fractions of the image of `description`) anchored on the
     // surface they show (core/raycast/SurfaceDepth.h). Throws on failure, with a
     // message for the client.

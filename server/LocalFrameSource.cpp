@@ -16,6 +16,10 @@ struct LocalFrameSource::LoadedSeries {
     std::shared_ptr<const SeriesEntry> entry; // held: its address identifies it
     std::unique_ptr<Volume> volume;
     std::unique_ptr<Renderer> renderer;
+    // The last frame but its image (which went to the encoder), until the image
+    // comes back; `lent` while it is out.
+    RenderResult rest;
+    bool lent = false;
 };
 
 LocalFrameSource::LocalFrameSource(RendererKind backend) : backend_(backend) {}
@@ -36,6 +40,16 @@ QString LocalFrameSource::start() {
 void LocalFrameSource::stop() {
     loaded_.clear(); // each GL renderer frees its textures in its own context
     device_.reset();
+}
+
+LocalFrameSource::LoadedSeries*
+LocalFrameSource::findLoaded(const std::shared_ptr<const SeriesEntry>& entry) const {
+    for (const auto& series : loaded_) {
+        if (series->entry == entry) {
+            return series.get();
+        }
+    }
+    return nullptr;
 }
 
 LocalFrameSource::LoadedSeries&
@@ -63,7 +77,30 @@ ImageRGBA8 LocalFrameSource::render(const std::shared_ptr<const SeriesEntry>& en
     LoadedSeries& series = loaded(entry);
     RenderDescription d = description;
     d.volume = series.volume.get();
-    return series.renderer->render(d).image;
+    RenderResult frame = series.renderer->render(d);
+    ImageRGBA8 image = std::move(frame.image);
+    series.rest = std::move(frame);
+    series.lent = true;
+    return image;
+}
+
+void LocalFrameSource::recycle(const std::shared_ptr<const SeriesEntry>& entry,
+                               ImageRGBA8&& image) {
+    LoadedSeries* series = findLoaded(entry);
+    if (series == nullptr || !series->lent) {
+        return;
+    }
+    RenderResult frame = std::move(series->rest);
+    series->rest = {};
+    series->lent = false;
+    frame.image = std::move(image);
+    series->renderer->recycle(std::move(frame));
+}
+
+FrameDetails
+LocalFrameSource::lastFrameDetails(const std::shared_ptr<const SeriesEntry>& entry) const {
+    const LoadedSeries* series = findLoaded(entry);
+    return series != nullptr ? series->renderer->frameDetails() : FrameDetails{};
 }
 
 std::vector<glm::dvec3>

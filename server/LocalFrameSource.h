@@ -6,6 +6,7 @@
 #include <list>
 #include <memory>
 
+#include "core/scene/Renderer.h"
 #include "render/RenderDevice.h"
 #include "server/FrameSource.h"
 
@@ -20,16 +21,25 @@ public:
     void stop() override;
     ImageRGBA8 render(const std::shared_ptr<const SeriesEntry>& series,
                       const RenderDescription& description) override;
+    // Hands the image back to the series' renderer with the rest of its frame
+    // (the CPU caster draws the next frame of its size into them); dropped where
+    // the series is no longer loaded.
+    void recycle(const std::shared_ptr<const SeriesEntry>& series, ImageRGBA8&& image) override;
     std::vector<glm::dvec3> surfaceAnchors(const std::shared_ptr<const SeriesEntry>& series,
                                            const RenderDescription& description,
                                            const std::vector<glm::dvec2>& fractions) override;
     const Volume& volume(const std::shared_ptr<const SeriesEntry>& series) override;
+    // The renderer's figures of the last frame of `series` (Renderer::frameDetails);
+    // empty where it is not loaded.
+    FrameDetails lastFrameDetails(const std::shared_ptr<const SeriesEntry>& series) const;
 
 private:
     struct LoadedSeries;
     // The loaded volume of exactly this entry: a series the store has grown since
     // (a new entry with the same id) is loaded again.
     LoadedSeries& loaded(const std::shared_ptr<const SeriesEntry>& entry);
+    // That entry where it is loaded, without loading it; null otherwise.
+    LoadedSeries* findLoaded(const std::shared_ptr<const SeriesEntry>& entry) const;
 
     RendererKind backend_;
     std::unique_ptr<RenderDevice> device_;            // made on the render thread by start()

@@ -70,7 +70,7 @@ void RenderWorker::render(const RenderJob& job) {
         }
         QElapsedTimer timer;
         timer.start();
-        const ImageRGBA8 image = frames_->render(job.series, description);
+        ImageRGBA8 image = frames_->render(job.series, description);
         FrameHeader header;
         header.renderMs = millisecondsSince(timer);
         timer.restart();
@@ -90,6 +90,7 @@ void RenderWorker::render(const RenderJob& job) {
         const std::string message = frameMessage(
             header, std::string_view(encoded.constData(), std::size_t(encoded.size())));
         frame.message = QByteArray(message.data(), qsizetype(message.size()));
+        frames_->recycle(job.series, std::move(image)); // encoded: its buffers may draw the next
     } catch (const std::exception& e) {
         frame.error = QString::fromUtf8(e.what());
     }
