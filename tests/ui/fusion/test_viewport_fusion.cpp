@@ -72,6 +72,97 @@ class TestViewportFusion : public QObject {
     glm::dmat4 move_{1.0};
     QTemporaryDir store_;
 
+    // Each pixel of the blend is the colour map of the overlay's value there
+    // (sampled by hand through the transform) over the grey.
+    void verifyBlendedPixels(SliceView& view, const QImage& grey, const FusionStyle& style) {
+        const QImage blended = view.fusedImage();
+        const SlicePlane plane = view.plane();
+        const glm::dmat4 toIndex = moved_->geometry().patientToIndex() * move_;
+        int checked = 0;
+        for (int y = 5; y < grey.height(); y += 37) {
+            for (int x = 3; x < grey.width(); x += 29) {
+                const double value =
+                    sampleAt(*moved_, glm::dvec3(toIndex * glm::dvec4(plane.pointAt(x, y), 1.0)));
+                if (std::isnan(value)) {
+                    QCOMPARE(blended.pixel(x, y), grey.pixel(x, y));
+                    continue;
+                }
+                QVERIFY(std::abs(view.overlayValueAt(QPointF(x, y)) - value) < 1e-2);
+                const auto c = mapColour(style.colourMap, value, style.center, style.width);
+                const int g = qRed(grey.pixel(x, y));
+                for (int ch = 0; ch < 3; ++ch) {
+                    const int expected = int(std::lround(g + (c[ch] - g) * 0.4));
+                    QVERIFY(std::abs(channel(blended.pixel(x, y), ch) - expected) <= 1);
+                }
+                ++checked;
+            }
+        }
+        QVERIFY(checked > 20);
+    }
+
+    // Nudged by hand: a drag of 12 pixels to the right moves the overlay's content with
+    // it, and the nudge is kept as the pair's transform (in the study store).
+    void verifyNudges(ViewportWorkspace& workspace, FusionPanel& panel, ViewportFusion& fusion,
+                      SliceView& sliceView) {
+        SliceView* view = &sliceView;
+        Viewport* left = workspace.grid()->viewports()[0];
+        panel.opacitySlider()->setValue(100);
+        panel.nudgeSwitch()->setChecked(true);
+        QVERIFY(fusion.nudging());
+        const glm::dvec3 crosshair = left->session()->cursor()->point();
+        const double x0 = 180.0, y0 = 200.0;
+        std::vector<double> before;
+        for (int dx = 0; dx < 60; dx += 6) {
+            before.push_back(view->overlayValueAt(QPointF(x0 + dx, y0)));
+        }
+        QTest::mousePress(view, Qt::LeftButton, Qt::NoModifier, QPoint(300, 300));
+        QTest::mouseMove(view, QPoint(306, 300));
+        QTest::mouseRelease(view, Qt::LeftButton, Qt::NoModifier, QPoint(312, 300));
+        QCOMPARE(left->session()->cursor()->point(), crosshair); // not a crosshair drag
+        const glm::dmat4 expected =
+            nudgedTransform(move_, view->plane().u * (12.0 * view->plane().pixelSize));
+        const auto kept = workspace.links()->transform(ct_->seriesUid, moved_->seriesUid);
+        QVERIFY(kept.has_value());
+        for (int c = 0; c < 4; ++c) {
+            QVERIFY(glm::length((*kept)[c] - expected[c]) < 1e-9);
+        }
+        for (int i = 0; i < int(before.size()); ++i) {
+            const double now = view->overlayValueAt(QPointF(x0 + 6 * i + 12, y0));
+            QVERIFY(std::isnan(before[i]) || std::abs(now - before[i]) < 1e-2);
+        }
+        {
+            const StudyStore store(store_.path().toStdString());
+            const auto stored = store.seriesTransform(ct_->seriesUid, moved_->seriesUid);
+            QVERIFY(stored.has_value());
+            QVERIFY(glm::length((*stored)[3] - expected[3]) < 1e-6);
+        }
+        // An arrow key moves it 1 mm more along the plane's v (down).
+        QTest::keyClick(view, Qt::Key_Down);
+        const glm::dmat4 down = nudgedTransform(expected, view->plane().v);
+        QVERIFY(glm::length((*workspace.links()->transform(ct_->seriesUid, moved_->seriesUid))[3] -
+                            down[3]) < 1e-9);
+        panel.nudgeSwitch()->setChecked(false);
+    }
+
+    // A 3D view of the series draws the overlay as a second volume, resampled onto the
+    // base's grid through the kept transform on a worker thread.
+    void verifyOverlayIn3d(ViewportWorkspace& workspace, ViewportFusion& fusion, Viewport& left) {
+        QSignalSpy shown3d(&fusion, &ViewportFusion::overlayShownIn3d);
+        left.show(left.session(), ViewportView::Volume3D);
+        QVERIFY(left.volumeView() != nullptr);
+        QVERIFY(shown3d.wait(60000));
+        const std::shared_ptr<const Volume>& onGrid = left.volumeView()->overlay();
+        QVERIFY(onGrid != nullptr);
+        QCOMPARE(onGrid->dims(), ct_->dims());
+        QCOMPARE(left.volumeView()->description().overlay.volume, onGrid.get());
+        const glm::dmat4 keptNow = *workspace.links()->transform(ct_->seriesUid, moved_->seriesUid);
+        const glm::ivec3 voxel(256, 240, 14);
+        const glm::dvec3 at(keptNow *
+                            glm::dvec4(ct_->geometry().toPatient(glm::dvec3(voxel)), 1.0));
+        const double expected3d = sampleAt(*moved_, moved_->geometry().toIndex(at));
+        QVERIFY(std::abs(onGrid->value(voxel.x, voxel.y, voxel.z) - expected3d) < 1e-2);
+    }
+
 private slots:
     void initTestCase() {
         REQUIRE_DATA(kCt);
@@ -143,29 +234,10 @@ private slots:
         const FusionStyle style = *fusion.styleOf(left);
         QCOMPARE(style.colourMap, FusionColourMap::HotIron);
         QCOMPARE(style.opacity, 0.4);
-        const QImage blended = view->fusedImage();
-        const SlicePlane plane = view->plane();
-        const glm::dmat4 toIndex = moved_->geometry().patientToIndex() * move_;
-        int checked = 0;
-        for (int y = 5; y < grey.height(); y += 37) {
-            for (int x = 3; x < grey.width(); x += 29) {
-                const double value =
-                    sampleAt(*moved_, glm::dvec3(toIndex * glm::dvec4(plane.pointAt(x, y), 1.0)));
-                if (std::isnan(value)) {
-                    QCOMPARE(blended.pixel(x, y), grey.pixel(x, y));
-                    continue;
-                }
-                QVERIFY(std::abs(view->overlayValueAt(QPointF(x, y)) - value) < 1e-2);
-                const auto c = mapColour(style.colourMap, value, style.center, style.width);
-                const int g = qRed(grey.pixel(x, y));
-                for (int ch = 0; ch < 3; ++ch) {
-                    const int expected = int(std::lround(g + (c[ch] - g) * 0.4));
-                    QVERIFY(std::abs(channel(blended.pixel(x, y), ch) - expected) <= 1);
-                }
-                ++checked;
-            }
+        verifyBlendedPixels(*view, grey, style);
+        if (QTest::currentTestFailed()) {
+            return;
         }
-        QVERIFY(checked > 20);
         // Alt+right-drag sets the overlay's window, not the base's: 40 pixels right widens it
         // by a tenth, 20 down raises the level by a twentieth of the width.
         const double baseCenter = left->session()->cursor()->windowCenter();
@@ -182,64 +254,18 @@ private slots:
         panel.opacitySlider()->setValue(0);
         QVERIFY(view->fusedImage() == grey);
 
-        // Nudged by hand: a drag of 12 pixels to the right moves the overlay's content with
-        // it, and the nudge is kept as the pair's transform (in the study store).
-        panel.opacitySlider()->setValue(100);
-        panel.nudgeSwitch()->setChecked(true);
-        QVERIFY(fusion.nudging());
-        const glm::dvec3 crosshair = left->session()->cursor()->point();
-        const double x0 = 180.0, y0 = 200.0;
-        std::vector<double> before;
-        for (int dx = 0; dx < 60; dx += 6) {
-            before.push_back(view->overlayValueAt(QPointF(x0 + dx, y0)));
+        verifyNudges(workspace, panel, fusion, *view);
+        if (QTest::currentTestFailed()) {
+            return;
         }
-        QTest::mousePress(view, Qt::LeftButton, Qt::NoModifier, QPoint(300, 300));
-        QTest::mouseMove(view, QPoint(306, 300));
-        QTest::mouseRelease(view, Qt::LeftButton, Qt::NoModifier, QPoint(312, 300));
-        QCOMPARE(left->session()->cursor()->point(), crosshair); // not a crosshair drag
-        const glm::dmat4 expected =
-            nudgedTransform(move_, view->plane().u * (12.0 * view->plane().pixelSize));
-        const auto kept = workspace.links()->transform(ct_->seriesUid, moved_->seriesUid);
-        QVERIFY(kept.has_value());
-        for (int c = 0; c < 4; ++c) {
-            QVERIFY(glm::length((*kept)[c] - expected[c]) < 1e-9);
-        }
-        for (int i = 0; i < int(before.size()); ++i) {
-            const double now = view->overlayValueAt(QPointF(x0 + 6 * i + 12, y0));
-            QVERIFY(std::isnan(before[i]) || std::abs(now - before[i]) < 1e-2);
-        }
-        {
-            const StudyStore store(store_.path().toStdString());
-            const auto stored = store.seriesTransform(ct_->seriesUid, moved_->seriesUid);
-            QVERIFY(stored.has_value());
-            QVERIFY(glm::length((*stored)[3] - expected[3]) < 1e-6);
-        }
-        // An arrow key moves it 1 mm more along the plane's v (down).
-        QTest::keyClick(view, Qt::Key_Down);
-        const glm::dmat4 down = nudgedTransform(expected, view->plane().v);
-        QVERIFY(glm::length((*workspace.links()->transform(ct_->seriesUid, moved_->seriesUid))[3] -
-                            down[3]) < 1e-9);
-        panel.nudgeSwitch()->setChecked(false);
 
         // The viewport turns to coronal: the overlay stays.
         left->show(left->session(), ViewportView::Coronal);
         QVERIFY(left->sliceView()->fusion().active());
-        // A 3D view of the series draws the overlay as a second volume, resampled onto the
-        // base's grid through the kept transform on a worker thread.
-        QSignalSpy shown3d(&fusion, &ViewportFusion::overlayShownIn3d);
-        left->show(left->session(), ViewportView::Volume3D);
-        QVERIFY(left->volumeView() != nullptr);
-        QVERIFY(shown3d.wait(60000));
-        const std::shared_ptr<const Volume>& onGrid = left->volumeView()->overlay();
-        QVERIFY(onGrid != nullptr);
-        QCOMPARE(onGrid->dims(), ct_->dims());
-        QCOMPARE(left->volumeView()->description().overlay.volume, onGrid.get());
-        const glm::dmat4 keptNow = *workspace.links()->transform(ct_->seriesUid, moved_->seriesUid);
-        const glm::ivec3 voxel(256, 240, 14);
-        const glm::dvec3 at(keptNow *
-                            glm::dvec4(ct_->geometry().toPatient(glm::dvec3(voxel)), 1.0));
-        const double expected3d = sampleAt(*moved_, moved_->geometry().toIndex(at));
-        QVERIFY(std::abs(onGrid->value(voxel.x, voxel.y, voxel.z) - expected3d) < 1e-2);
+        verifyOverlayIn3d(workspace, fusion, *left);
+        if (QTest::currentTestFailed()) {
+            return;
+        }
         // Isosurfaces draw the base alone.
         left->volumeView()->setMode(RenderMode::Isosurface);
         QVERIFY(left->volumeView()->description().overlay.volume == nullptr);

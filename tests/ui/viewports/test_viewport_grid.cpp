@@ -146,20 +146,7 @@ private slots:
         QVERIFY(right->session() == nullptr);
         QVERIFY(left->sliceView() != nullptr);
 
-        // The prior, listed by the study browser, dragged onto the right viewport.
-        auto* browser = window.findChild<StudyBrowser*>();
-        QVERIFY(browser != nullptr);
-        browser->addFolder(priorDir.path());
-        QTRY_VERIFY_WITH_TIMEOUT(browser->pending() == 0, 30000);
-        QTreeWidgetItem* item =
-            browser->findSeries(priorDir.path(), QString::fromStdString(prior.seriesUid));
-        QVERIFY(item != nullptr);
-        const QModelIndex index = browser->tree()->indexFromItem(item);
-        std::unique_ptr<QMimeData> mime(browser->tree()->model()->mimeData({index}));
-        QVERIFY(mime != nullptr);
-        QSignalSpy shown(workspace, &ViewportWorkspace::seriesShown);
-        drop(right, mime.get());
-        QVERIFY(shown.wait(60000));
+        dropPriorOn(window, right, priorDir.path(), prior);
         QVERIFY(right->session() != nullptr);
         QCOMPARE(right->session()->volume()->seriesUid, prior.seriesUid);
         QCOMPARE(right->session()->volume()->studyDate, std::string("20190101"));
@@ -194,60 +181,17 @@ private slots:
 
         // Every scroll lands within half a prior slice of the true position.
         const double half = right->session()->volume()->geometry().spacing.z / 2.0 + 1e-3;
-        QImage before = b->image();
-        for (int step = 0; step < 12; ++step) {
-            scroll(a, step % 2 == 0 ? 4 : 3);
-            const double truth = left->session()->cursor()->point().z + kShift.z;
-            const double landed = right->session()->cursor()->point().z;
-            QVERIFY2(std::abs(landed - truth) <= half,
-                     qPrintable(QString("step %1: %2 vs %3").arg(step).arg(landed).arg(truth)));
-        }
+        const QImage before = b->image();
+        verifyLinkedScrolls(*left, *right, 12, 4, 3, half, "linked here");
         QCoreApplication::processEvents();
-
-        // Pixels: the linked viewport shows the prior's slice at that position, the one a
-        // viewport of its own placed there shows, and not the slice it showed before.
-        const QImage after = b->image();
-        QVERIFY(differingPixels(before, after) > after.width() * after.height() / 100);
-        MprCursor cursor;
-        cursor.setWindow(right->session()->cursor()->windowCenter(),
-                         right->session()->cursor()->windowWidth());
-        cursor.setPoint(right->session()->cursor()->point());
-        SliceView reference(Orientation::Axial, &cursor);
-        reference.resize(b->size());
-        reference.setVolume(right->session()->volume());
-        reference.setZoomAndPan(b->zoom(), b->pan());
-        QCOMPARE(differingPixels(reference.image(), after), 0);
+        verifyPriorSliceShown(*right, before);
 
         // "Register" (Ctrl+Alt+R) aligns the pair by itself: its transform (the shift,
         // found from the images) is kept in the store, links the pair before the offset,
         // and every scroll still lands within half a prior slice (plus the 0.5 mm the
         // registration may be off by: the nearest slice may then be the other one).
-        QSignalSpy registered(workspace->registration(), &ViewportRegistration::finished);
-        QCOMPARE(workspace->registration()->registerWith(left), 1);
-        QVERIFY(registered.wait(180000));
-        QVERIFY2(registered.first().at(0).toBool(),
-                 qPrintable(registered.first().at(1).toString()));
-        {
-            StudyStore store(storeDir.path().toStdString());
-            const auto m =
-                store.seriesTransform(left->session()->volume()->seriesUid, prior.seriesUid);
-            QVERIFY(m.has_value());
-            const glm::dvec3 landed = glm::dvec3(*m * glm::dvec4(anatomy, 1.0));
-            QVERIFY2(glm::length(landed - (anatomy + kShift)) < 0.5,
-                     qPrintable(QString("registered %1 mm from the truth")
-                                    .arg(glm::length(landed - (anatomy + kShift)))));
-        }
-        QVERIFY(workspace->links()->linkBetween(*left->session(), *right->session()).kind ==
-                SeriesLink::Kind::Registered);
-        for (int step = 0; step < 6; ++step) {
-            scroll(a, step % 2 == 0 ? -5 : -2);
-            const double truth = left->session()->cursor()->point().z + kShift.z;
-            const double landed = right->session()->cursor()->point().z;
-            QVERIFY2(
-                std::abs(landed - truth) <= half + 0.5,
-                qPrintable(
-                    QString("registered, step %1: %2 vs %3").arg(step).arg(landed).arg(truth)));
-        }
+        registerThePair(*workspace, *left, *right, storeDir.path(), anatomy);
+        verifyLinkedScrolls(*left, *right, 6, -5, -2, half + 0.5, "registered");
 
         // Planes that are not parallel do not scroll together, and say why.
         right->show(right->session(), ViewportView::Coronal);
@@ -261,7 +205,79 @@ private slots:
         QCOMPARE(left->sliceView()->referencePlanes().size(), std::size_t{1});
     }
 
+    // The prior, listed by the study browser, dragged onto `right`.
 private:
+    static void dropPriorOn(MainWindow& window, Viewport* right, const QString& priorDir,
+                            const test::PriorStudy& prior) {
+        auto* browser = window.findChild<StudyBrowser*>();
+        QVERIFY(browser != nullptr);
+        browser->addFolder(priorDir);
+        QTRY_VERIFY_WITH_TIMEOUT(browser->pending() == 0, 30000);
+        QTreeWidgetItem* item =
+            browser->findSeries(priorDir, QString::fromStdString(prior.seriesUid));
+        QVERIFY(item != nullptr);
+        const QModelIndex index = browser->tree()->indexFromItem(item);
+        std::unique_ptr<QMimeData> mime(browser->tree()->model()->mimeData({index}));
+        QVERIFY(mime != nullptr);
+        QSignalSpy shown(window.workspace(), &ViewportWorkspace::seriesShown);
+        drop(right, mime.get());
+        QVERIFY(shown.wait(60000));
+    }
+
+    // `steps` scrolls of the left viewport, `even` and `odd` notches in turn: the
+    // right one's cursor lands within `tolerance` mm of the same anatomy each time.
+    static void verifyLinkedScrolls(const Viewport& left, const Viewport& right, int steps,
+                                    int even, int odd, double tolerance, const QString& what) {
+        for (int step = 0; step < steps; ++step) {
+            scroll(left.sliceView(), step % 2 == 0 ? even : odd);
+            const double truth = left.session()->cursor()->point().z + kShift.z;
+            const double landed = right.session()->cursor()->point().z;
+            QVERIFY2(
+                std::abs(landed - truth) <= tolerance,
+                qPrintable(
+                    QString("%1, step %2: %3 vs %4").arg(what).arg(step).arg(landed).arg(truth)));
+        }
+    }
+
+    // Pixels: the linked viewport shows the prior's slice at its cursor, the one a
+    // viewport of its own placed there shows, and not the slice it showed `before`.
+    static void verifyPriorSliceShown(const Viewport& right, const QImage& before) {
+        SliceView* b = right.sliceView();
+        const QImage after = b->image();
+        QVERIFY(differingPixels(before, after) > after.width() * after.height() / 100);
+        MprCursor cursor;
+        cursor.setWindow(right.session()->cursor()->windowCenter(),
+                         right.session()->cursor()->windowWidth());
+        cursor.setPoint(right.session()->cursor()->point());
+        SliceView reference(Orientation::Axial, &cursor);
+        reference.resize(b->size());
+        reference.setVolume(right.session()->volume());
+        reference.setZoomAndPan(b->zoom(), b->pan());
+        QCOMPARE(differingPixels(reference.image(), after), 0);
+    }
+
+    // "Register" on the left viewport: the transform kept in the store takes
+    // `anatomy` within 0.5 mm of where the prior shows it, and the pair's link is
+    // the registration's.
+    static void registerThePair(ViewportWorkspace& workspace, Viewport& left, const Viewport& right,
+                                const QString& storeDir, const glm::dvec3& anatomy) {
+        QSignalSpy registered(workspace.registration(), &ViewportRegistration::finished);
+        QCOMPARE(workspace.registration()->registerWith(&left), 1);
+        QVERIFY(registered.wait(180000));
+        QVERIFY2(registered.first().at(0).toBool(),
+                 qPrintable(registered.first().at(1).toString()));
+        StudyStore store(storeDir.toStdString());
+        const auto m = store.seriesTransform(left.session()->volume()->seriesUid,
+                                             right.session()->volume()->seriesUid);
+        QVERIFY(m.has_value());
+        const glm::dvec3 landed = glm::dvec3(*m * glm::dvec4(anatomy, 1.0));
+        QVERIFY2(glm::length(landed - (anatomy + kShift)) < 0.5,
+                 qPrintable(QString("registered %1 mm from the truth")
+                                .arg(glm::length(landed - (anatomy + kShift)))));
+        QVERIFY(workspace.links()->linkBetween(*left.session(), *right.session()).kind ==
+                SeriesLink::Kind::Registered);
+    }
+
     QTemporaryDir settings_;
 };
 

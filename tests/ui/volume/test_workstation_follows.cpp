@@ -103,6 +103,19 @@ struct Follower {
     }
 };
 
+// The presenter's lecture as the followers meet it.
+struct Lecture {
+    explicit Lecture(const ServerProcess& s) : server(s) {}
+    const ServerProcess& server;
+    std::shared_ptr<const Volume> volume;
+    QString session;
+    QJsonObject invite;                  // invite-created: the code and its join link
+    std::optional<SessionFollow> byLink; // the link read as the dialog reads it
+    ImageRGBA8 teacher;                  // the presenter's newest frame
+    glm::dvec3 tip{};                    // the arrow's anchor on the skull
+    Camera turned;                       // the presenter's camera after the turn
+};
+
 QJsonObject arrow(double x0, double y0, double x1, double y1) {
     return {{"type", "mark"},
             {"kind", "arrow"},
@@ -136,6 +149,214 @@ class TestWorkstationFollows : public QObject {
                  qPrintable(QString("%1: %2 at the tip").arg(when, tipColour.name())));
         QVERIFY2(near(dot, kPointerColour),
                  qPrintable(QString("%1: %2 at the pointer").arg(when, dot.name())));
+    }
+
+    // The presenter: a session showing the head at kSide with ct-bone, an invite.
+    static void openLecture(Lecture& lecture, RemoteTestClient& presenter) {
+        QVERIFY(presenter.waitConnected() && presenter.authenticate());
+        presenter.send({{"type", "session-create"}});
+        lecture.session = presenter.waitForText("session-created")["session"].toString();
+        QVERIFY(!lecture.session.isEmpty());
+        QVERIFY(!openOnlySeries(presenter, kSide).isEmpty());
+        QVERIFY(presenter.waitForCurrentFrame());
+        presenter.send({{"type", "invite-create"}});
+        lecture.invite = presenter.waitForText("invite-created");
+        const QString link = lecture.invite["link"].toString();
+        QVERIFY2(link.contains("#invite="), qPrintable(link));
+        QString why;
+        lecture.byLink = SessionFollow::fromLink(link, &why);
+        QVERIFY2(lecture.byLink, qPrintable(why));
+        QCOMPARE(lecture.byLink->url.port(), int(lecture.server.port()));
+    }
+
+    // The workstation follows by the link ("Follow a Session..."): the presenter's frame.
+    static void followByTheLink(Lecture& lecture, RemoteTestClient& presenter, Follower& student,
+                                FollowSessionDialog& dialog) {
+        QObject::connect(&dialog, &FollowSessionDialog::followRequested,
+                         [&](const SessionFollow& f) { student.backend.followSession(f); });
+        dialog.show();
+        dialog.linkEdit()->setText(lecture.invite["link"].toString());
+        QTest::mouseClick(dialog.followButton(), Qt::LeftButton);
+        QVERIFY2(student.waitState(FollowState::Following),
+                 qPrintable(student.backend.statusMessage()));
+        QCOMPARE(student.firstState, FollowState::Joining);
+        QCOMPARE(student.backend.status(), BackendStatus::Connected);
+        QVERIFY(student.backend.statusMessage().startsWith("following a session"));
+        lecture.teacher = presenter.frames.back().decoded();
+        const double got = student.waitFrameLike(lecture.teacher);
+        QVERIFY2(got >= 50.0,
+                 qPrintable(verdict(
+                     got, student.frames.isEmpty() ? ImageRGBA8{} : student.frames.back().image,
+                     "workstation_follows_join")));
+        QVERIFY(student.frames.back().current);
+    }
+
+    // The presenter marks the skull and points, then turns 90 degrees: the new
+    // frame, the mark still on its anchor.
+    static void marksStayOnTheirAnchors(Lecture& lecture, RemoteTestClient& presenter,
+                                        Follower& student) {
+        presenter.send(arrow(0.5, 0.4, 0.7, 0.25));
+        presenter.send({{"type", "pointer"}, {"x", 0.3}, {"y", 0.62}});
+        QVERIFY(QTest::qWaitFor(
+            [&] {
+                return student.backend.teachingMarks().marks().size() == 1 &&
+                       student.backend.teachingMarks().pointer().has_value();
+            },
+            30000));
+        const Volume& volume = *lecture.volume;
+        lecture.tip = student.backend.teachingMarks().marks().begin()->second.anchors[0];
+        QVERIFY2(maxValueNear(volume, lecture.tip, 2.0) > 300.0, "the arrow's tip is not on bone");
+        verifyOverlay(student.frames.back(), student.backend.teachingMarks(), volume, Camera{},
+                      lecture.tip, "azimuth 0");
+        QVERIFY(!QTest::currentTestFailed());
+
+        presenter.change({{"type", "camera"}, {"azimuth", 90}});
+        QVERIFY(presenter.waitForCurrentFrame());
+        lecture.teacher = presenter.frames.back().decoded();
+        const double got = student.waitFrameLike(lecture.teacher);
+        QVERIFY2(got >= 50.0, qPrintable(verdict(got, student.frames.back().image,
+                                                 "workstation_follows_turned")));
+        lecture.turned.azimuth = 90.0;
+        verifyOverlay(student.frames.back(), student.backend.teachingMarks(), volume,
+                      lecture.turned, lecture.tip, "azimuth 90");
+    }
+
+    // Look around: from the session's camera, then the workstation's own view.
+    // Back to teacher: the next frame is the presenter's newest.
+    static void lookAroundThenBack(const Lecture& lecture, Follower& student,
+                                   FollowSessionDialog& dialog) {
+        QVERIFY(dialog.lookAroundButton()->isEnabled() && !dialog.backButton()->isEnabled());
+        QTest::mouseClick(dialog.lookAroundButton(), Qt::LeftButton);
+        QVERIFY2(student.waitState(FollowState::LookingAround),
+                 qPrintable(student.backend.statusMessage()));
+        QVERIFY(student.lookedFrom);
+        QCOMPARE(student.lookedFrom->azimuth, 90.0);
+        RenderDescription own;
+        own.width = own.height = kSide;
+        own.camera = *student.lookedFrom;
+        own.camera.azimuth = -60.0;
+        student.backend.request(own, {});
+        QVERIFY(QTest::qWaitFor(
+            [&] {
+                const BackendFrame& f = student.frames.back();
+                return f.current && !f.interactive && f.image.width == kSide &&
+                       db(f.image, lecture.teacher) < 30.0;
+            },
+            60000));
+        verifyOverlay(student.frames.back(), student.backend.teachingMarks(), *lecture.volume,
+                      own.camera, lecture.tip, "looking around");
+        QVERIFY(!QTest::currentTestFailed());
+
+        QVERIFY(dialog.backButton()->isEnabled());
+        QTest::mouseClick(dialog.backButton(), Qt::LeftButton);
+        QVERIFY(student.waitState(FollowState::Following));
+        const qsizetype looked = student.followingFrom;
+        QVERIFY(QTest::qWaitFor([&] { return student.frames.size() > looked; }, 30000));
+        const double got = db(student.frames[looked].image, lecture.teacher);
+        qInfo("back to teacher: %.1f dB against the presenter's frame", got);
+        QVERIFY2(got >= 50.0, qPrintable(verdict(got, student.frames[looked].image,
+                                                 "workstation_follows_back")));
+    }
+
+    // The 3D view follows too, with no volume loaded: the teacher's frame with the
+    // mark on it; a drag looks around, from the teacher's camera.
+    static void theViewFollowsWithNoVolume(const Lecture& lecture) {
+        VolumeView view(nullptr, VolumeView::Backend::Cpu);
+        view.resize(kSide, kSide);
+        view.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&view));
+        view.followSession(*lecture.byLink);
+        QVERIFY2(QTest::qWaitFor(
+                     [&] {
+                         return view.followsSession() && !view.lastFrame().pixels.empty() &&
+                                db(view.lastFrame(), lecture.teacher) >= 50.0;
+                     },
+                     60000),
+                 qPrintable(view.notice()));
+        QVERIFY(QTest::qWaitFor(
+            [&] { return view.remoteBackend().teachingMarks().marks().size() == 1; }, 20000));
+        const auto tipInView =
+            projectToImage(imageProjection(makeViewFrame(lecture.volume->geometry(), lecture.turned,
+                                                         kSide, kSide)),
+                           lecture.tip);
+        QVERIFY(tipInView);
+        // Within 2 pixels: the view's notice line is drawn over the frame too.
+        const QImage shown = view.grabImage();
+        bool marked = false;
+        for (int dy = -2; dy <= 2; ++dy) {
+            for (int dx = -2; dx <= 2; ++dx) {
+                marked = marked || near(shown.pixelColor(int(tipInView->x * kSide) + dx,
+                                                         int(tipInView->y * kSide) + dy),
+                                        kMarkColour);
+            }
+        }
+        if (!marked) {
+            shown.save(QDir::temp().filePath("workstation_follows_view.png"));
+        }
+        QVERIFY2(marked, "the view does not draw the mark at its anchor");
+        QTest::mousePress(&view, Qt::LeftButton, {}, QPoint(64, 64));
+        QVERIFY(QTest::qWaitFor(
+            [&] { return view.remoteBackend().followState() == FollowState::LookingAround; },
+            20000));
+        QTest::mouseMove(&view, QPoint(84, 64));
+        QTest::mouseMove(&view, QPoint(104, 64));
+        QTest::mouseRelease(&view, Qt::LeftButton, {}, QPoint(104, 64));
+        QCOMPARE(view.camera().azimuth, 90.0 + 40 * VolumeView::kDegreesPerPixel);
+        QVERIFY(QTest::qWaitFor(
+            [&] {
+                return view.lastFrameCurrent() && !view.lastFrame().pixels.empty() &&
+                       db(view.lastFrame(), lecture.teacher) < 30.0;
+            },
+            60000));
+    }
+
+    // A colleague with a token follows by the session's id; a wrong id is refused.
+    // The invite revoked: the student is dropped, saying why; the link lets no one
+    // in. The session ends (its token holders leave): a follower by invite is told so.
+    static void othersFollowUntilTheEnd(const Lecture& lecture, RemoteTestClient& presenter,
+                                        Follower& student, const FollowSessionDialog& dialog) {
+        const ServerProcess& server = lecture.server;
+        Follower colleague;
+        colleague.backend.followSession({server.url(), {}, kToken, "no-such-session"});
+        QVERIFY(colleague.waitFailed());
+        QVERIFY2(colleague.backend.statusMessage().contains("no session no-such-session"),
+                 qPrintable(colleague.backend.statusMessage()));
+        colleague.backend.followSession({server.url(), {}, kToken, lecture.session});
+        QVERIFY2(colleague.waitState(FollowState::Following),
+                 qPrintable(colleague.backend.statusMessage()));
+        const double got = colleague.waitFrameLike(lecture.teacher);
+        QVERIFY2(got >= 50.0, qPrintable(QString("by token: %1 dB").arg(got)));
+
+        presenter.send({{"type", "invite-revoke"}, {"invite", lecture.invite["invite"]}});
+        QVERIFY(student.waitFailed());
+        QVERIFY2(student.backend.statusMessage().contains("the invite was revoked"),
+                 qPrintable(student.backend.statusMessage()));
+        QCOMPARE(student.backend.followState(), FollowState::NotFollowing);
+        QVERIFY2(dialog.statusLabel()->text().contains("the invite was revoked"),
+                 qPrintable(dialog.statusLabel()->text()));
+        Follower late;
+        late.backend.followSession(*lecture.byLink);
+        QVERIFY(late.waitFailed());
+        QVERIFY2(late.backend.statusMessage().contains("refused the invite") &&
+                     late.backend.statusMessage().contains("the invite was revoked"),
+                 qPrintable(late.backend.statusMessage()));
+        QVERIFY(late.frames.isEmpty());
+
+        const qsizetype before = presenter.texts.size();
+        presenter.send({{"type", "invite-create"}});
+        const QString second =
+            presenter.waitForText("invite-created", 20000, before)["link"].toString();
+        QString why;
+        const auto again = SessionFollow::fromLink(second, &why);
+        QVERIFY2(again, qPrintable(why));
+        Follower last;
+        last.backend.followSession(*again);
+        QVERIFY2(last.waitState(FollowState::Following), qPrintable(last.backend.statusMessage()));
+        colleague.backend.disconnectFromServer();
+        presenter.send({{"type", "session-leave"}});
+        QVERIFY(last.waitFailed());
+        QVERIFY2(last.backend.statusMessage().contains("has ended"),
+                 qPrintable(last.backend.statusMessage()));
     }
 
 private slots:
@@ -192,199 +413,32 @@ private slots:
         }
         ServerProcess server("cpu", kDemoHead);
         QVERIFY2(server.started(), qPrintable(server.startError()));
-        const auto volume = std::make_shared<const Volume>(readInVesalius(kDemoHead.toStdString()));
-
-        // The presenter: a session showing the head at kSide with ct-bone, an invite.
+        Lecture lecture{server};
+        lecture.volume = std::make_shared<const Volume>(readInVesalius(kDemoHead.toStdString()));
         RemoteTestClient presenter(server.port(), kV4);
-        QVERIFY(presenter.waitConnected() && presenter.authenticate());
-        presenter.send({{"type", "session-create"}});
-        const QString session = presenter.waitForText("session-created")["session"].toString();
-        QVERIFY(!session.isEmpty());
-        QVERIFY(!openOnlySeries(presenter, kSide).isEmpty());
-        QVERIFY(presenter.waitForCurrentFrame());
-        presenter.send({{"type", "invite-create"}});
-        const QJsonObject invite = presenter.waitForText("invite-created");
-        const QString link = invite["link"].toString();
-        QVERIFY2(link.contains("#invite="), qPrintable(link));
-        QString why;
-        const auto byLink = SessionFollow::fromLink(link, &why);
-        QVERIFY2(byLink, qPrintable(why));
-        QCOMPARE(byLink->url.port(), int(server.port()));
-
-        // The workstation follows by the link ("Follow a Session..."): the presenter's frame.
+        openLecture(lecture, presenter);
+        if (QTest::currentTestFailed()) {
+            return;
+        }
         Follower student;
         FollowSessionDialog dialog(student.backend);
-        QObject::connect(&dialog, &FollowSessionDialog::followRequested,
-                         [&](const SessionFollow& f) { student.backend.followSession(f); });
-        dialog.show();
-        dialog.linkEdit()->setText(link);
-        QTest::mouseClick(dialog.followButton(), Qt::LeftButton);
-        QVERIFY2(student.waitState(FollowState::Following),
-                 qPrintable(student.backend.statusMessage()));
-        QCOMPARE(student.firstState, FollowState::Joining);
-        QCOMPARE(student.backend.status(), BackendStatus::Connected);
-        QVERIFY(student.backend.statusMessage().startsWith("following a session"));
-        ImageRGBA8 teacher = presenter.frames.back().decoded();
-        double got = student.waitFrameLike(teacher);
-        QVERIFY2(got >= 50.0,
-                 qPrintable(verdict(
-                     got, student.frames.isEmpty() ? ImageRGBA8{} : student.frames.back().image,
-                     "workstation_follows_join")));
-        QVERIFY(student.frames.back().current);
-
-        // The presenter marks the skull and points.
-        presenter.send(arrow(0.5, 0.4, 0.7, 0.25));
-        presenter.send({{"type", "pointer"}, {"x", 0.3}, {"y", 0.62}});
-        QVERIFY(QTest::qWaitFor(
-            [&] {
-                return student.backend.teachingMarks().marks().size() == 1 &&
-                       student.backend.teachingMarks().pointer().has_value();
-            },
-            30000));
-        const glm::dvec3 tip = student.backend.teachingMarks().marks().begin()->second.anchors[0];
-        QVERIFY2(maxValueNear(*volume, tip, 2.0) > 300.0, "the arrow's tip is not on bone");
-        verifyOverlay(student.frames.back(), student.backend.teachingMarks(), *volume, Camera{},
-                      tip, "azimuth 0");
-        QVERIFY(!QTest::currentTestFailed());
-
-        // The presenter turns 90 degrees: the new frame, the mark still on its anchor.
-        presenter.change({{"type", "camera"}, {"azimuth", 90}});
-        QVERIFY(presenter.waitForCurrentFrame());
-        teacher = presenter.frames.back().decoded();
-        got = student.waitFrameLike(teacher);
-        QVERIFY2(got >= 50.0, qPrintable(verdict(got, student.frames.back().image,
-                                                 "workstation_follows_turned")));
-        Camera turned;
-        turned.azimuth = 90.0;
-        verifyOverlay(student.frames.back(), student.backend.teachingMarks(), *volume, turned, tip,
-                      "azimuth 90");
-        QVERIFY(!QTest::currentTestFailed());
-
-        // Look around: from the session's camera, then the workstation's own view.
-        QVERIFY(dialog.lookAroundButton()->isEnabled() && !dialog.backButton()->isEnabled());
-        QTest::mouseClick(dialog.lookAroundButton(), Qt::LeftButton);
-        QVERIFY2(student.waitState(FollowState::LookingAround),
-                 qPrintable(student.backend.statusMessage()));
-        QVERIFY(student.lookedFrom);
-        QCOMPARE(student.lookedFrom->azimuth, 90.0);
-        RenderDescription own;
-        own.width = own.height = kSide;
-        own.camera = *student.lookedFrom;
-        own.camera.azimuth = -60.0;
-        student.backend.request(own, {});
-        QVERIFY(QTest::qWaitFor(
-            [&] {
-                const BackendFrame& f = student.frames.back();
-                return f.current && !f.interactive && f.image.width == kSide &&
-                       db(f.image, teacher) < 30.0;
-            },
-            60000));
-        verifyOverlay(student.frames.back(), student.backend.teachingMarks(), *volume, own.camera,
-                      tip, "looking around");
-        QVERIFY(!QTest::currentTestFailed());
-
-        // Back to teacher: the next frame is the presenter's newest.
-        QVERIFY(dialog.backButton()->isEnabled());
-        QTest::mouseClick(dialog.backButton(), Qt::LeftButton);
-        QVERIFY(student.waitState(FollowState::Following));
-        const qsizetype looked = student.followingFrom;
-        QVERIFY(QTest::qWaitFor([&] { return student.frames.size() > looked; }, 30000));
-        got = db(student.frames[looked].image, teacher);
-        qInfo("back to teacher: %.1f dB against the presenter's frame", got);
-        QVERIFY2(got >= 50.0, qPrintable(verdict(got, student.frames[looked].image,
-                                                 "workstation_follows_back")));
-
-        // The 3D view follows too, with no volume loaded: the teacher's frame with the
-        // mark on it; a drag looks around, from the teacher's camera.
-        VolumeView view(nullptr, VolumeView::Backend::Cpu);
-        view.resize(kSide, kSide);
-        view.show();
-        QVERIFY(QTest::qWaitForWindowExposed(&view));
-        view.followSession(*byLink);
-        QVERIFY2(QTest::qWaitFor(
-                     [&] {
-                         return view.followsSession() && !view.lastFrame().pixels.empty() &&
-                                db(view.lastFrame(), teacher) >= 50.0;
-                     },
-                     60000),
-                 qPrintable(view.notice()));
-        QVERIFY(QTest::qWaitFor(
-            [&] { return view.remoteBackend().teachingMarks().marks().size() == 1; }, 20000));
-        const auto tipInView = projectToImage(
-            imageProjection(makeViewFrame(volume->geometry(), turned, kSide, kSide)), tip);
-        QVERIFY(tipInView);
-        // Within 2 pixels: the view's notice line is drawn over the frame too.
-        const QImage shown = view.grabImage();
-        bool marked = false;
-        for (int dy = -2; dy <= 2; ++dy) {
-            for (int dx = -2; dx <= 2; ++dx) {
-                marked = marked || near(shown.pixelColor(int(tipInView->x * kSide) + dx,
-                                                         int(tipInView->y * kSide) + dy),
-                                        kMarkColour);
-            }
+        followByTheLink(lecture, presenter, student, dialog);
+        if (QTest::currentTestFailed()) {
+            return;
         }
-        if (!marked) {
-            shown.save(QDir::temp().filePath("workstation_follows_view.png"));
+        marksStayOnTheirAnchors(lecture, presenter, student);
+        if (QTest::currentTestFailed()) {
+            return;
         }
-        QVERIFY2(marked, "the view does not draw the mark at its anchor");
-        QTest::mousePress(&view, Qt::LeftButton, {}, QPoint(64, 64));
-        QVERIFY(QTest::qWaitFor(
-            [&] { return view.remoteBackend().followState() == FollowState::LookingAround; },
-            20000));
-        QTest::mouseMove(&view, QPoint(84, 64));
-        QTest::mouseMove(&view, QPoint(104, 64));
-        QTest::mouseRelease(&view, Qt::LeftButton, {}, QPoint(104, 64));
-        QCOMPARE(view.camera().azimuth, 90.0 + 40 * VolumeView::kDegreesPerPixel);
-        QVERIFY(QTest::qWaitFor(
-            [&] {
-                return view.lastFrameCurrent() && !view.lastFrame().pixels.empty() &&
-                       db(view.lastFrame(), teacher) < 30.0;
-            },
-            60000));
-
-        // A colleague with a token follows by the session's id; a wrong id is refused.
-        Follower colleague;
-        colleague.backend.followSession({server.url(), {}, kToken, "no-such-session"});
-        QVERIFY(colleague.waitFailed());
-        QVERIFY2(colleague.backend.statusMessage().contains("no session no-such-session"),
-                 qPrintable(colleague.backend.statusMessage()));
-        colleague.backend.followSession({server.url(), {}, kToken, session});
-        QVERIFY2(colleague.waitState(FollowState::Following),
-                 qPrintable(colleague.backend.statusMessage()));
-        got = colleague.waitFrameLike(teacher);
-        QVERIFY2(got >= 50.0, qPrintable(QString("by token: %1 dB").arg(got)));
-
-        // The invite revoked: the student is dropped, saying why; the link lets no one in.
-        presenter.send({{"type", "invite-revoke"}, {"invite", invite["invite"]}});
-        QVERIFY(student.waitFailed());
-        QVERIFY2(student.backend.statusMessage().contains("the invite was revoked"),
-                 qPrintable(student.backend.statusMessage()));
-        QCOMPARE(student.backend.followState(), FollowState::NotFollowing);
-        QVERIFY2(dialog.statusLabel()->text().contains("the invite was revoked"),
-                 qPrintable(dialog.statusLabel()->text()));
-        Follower late;
-        late.backend.followSession(*byLink);
-        QVERIFY(late.waitFailed());
-        QVERIFY2(late.backend.statusMessage().contains("refused the invite") &&
-                     late.backend.statusMessage().contains("the invite was revoked"),
-                 qPrintable(late.backend.statusMessage()));
-        QVERIFY(late.frames.isEmpty());
-
-        // The session ends (its token holders leave): a follower by invite is told so.
-        const qsizetype before = presenter.texts.size();
-        presenter.send({{"type", "invite-create"}});
-        const QString second =
-            presenter.waitForText("invite-created", 20000, before)["link"].toString();
-        const auto again = SessionFollow::fromLink(second, &why);
-        QVERIFY2(again, qPrintable(why));
-        Follower last;
-        last.backend.followSession(*again);
-        QVERIFY2(last.waitState(FollowState::Following), qPrintable(last.backend.statusMessage()));
-        colleague.backend.disconnectFromServer();
-        presenter.send({{"type", "session-leave"}});
-        QVERIFY(last.waitFailed());
-        QVERIFY2(last.backend.statusMessage().contains("has ended"),
-                 qPrintable(last.backend.statusMessage()));
+        lookAroundThenBack(lecture, student, dialog);
+        if (QTest::currentTestFailed()) {
+            return;
+        }
+        theViewFollowsWithNoVolume(lecture);
+        if (QTest::currentTestFailed()) {
+            return;
+        }
+        othersFollowUntilTheEnd(lecture, presenter, student, dialog);
     }
 };
 
