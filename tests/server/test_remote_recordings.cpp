@@ -82,6 +82,106 @@ class TestRemoteRecordings : public QObject {
     QString recordingId_;
     QList<ImageRGBA8> live_;
 
+    // In the store, whole; nothing left in its tmp/; listed.
+    void verifyStoredRecording(RemoteTestClient& presenter, const QString& uid) {
+        recordingFile_ = server_->storeDir() + "/recordings/" + recordingId_ + ".jsonl";
+        QVERIFY2(QFile::exists(recordingFile_), qPrintable(recordingFile_));
+        const remote::Recording recording = remote::readRecording(recordingFile_.toStdString());
+        QCOMPARE(recording.header.series, uid.toStdString());
+        QCOMPARE(recording.header.views, int(changes().size()) + 1);
+        QCOMPARE(recording.header.width, kSide);
+        QVERIFY(QDir(server_->storeDir() + "/tmp")
+                    .entryList({"recording-*"}, QDir::Files | QDir::Hidden)
+                    .isEmpty());
+        const qsizetype from = presenter.texts.size();
+        presenter.send({{"type", "recording-list"}});
+        const QJsonArray listed = textAfter(presenter, "recordings", from)["recordings"].toArray();
+        QCOMPARE(listed.size(), 1);
+        QCOMPARE(listed[0].toObject()["id"].toString(), recordingId_);
+        QCOMPARE(listed[0].toObject()["series"].toString(), uid);
+    }
+
+    // The stepped replay: one lossless frame per recorded view, each its live
+    // frame, in their order; the token follower watches it.
+    void verifySteppedReplay(RemoteTestClient& presenter, RemoteTestClient& follower) {
+        const qsizetype framesBefore = presenter.frames.size();
+        const qsizetype followerFramesBefore = follower.frames.size();
+        qsizetype from = presenter.texts.size();
+        presenter.send({{"type", "replay"}, {"recording", recordingId_}, {"pace", "step"}});
+        for (int k = 0; k < live_.size(); ++k) {
+            if (k > 0) {
+                presenter.send({{"type", "replay-step"}});
+            }
+            const QJsonObject progress = textAfter(presenter, "replay-progress", from);
+            from = presenter.texts.indexOf(progress) + 1;
+            QCOMPARE(progress["view"].toInt(), k);
+            QCOMPARE(progress["views"].toInt(), int(live_.size()));
+            presenter.seq = std::uint64_t(progress["seq"].toInteger());
+            const ReceivedFrame* frame = presenter.waitForCurrentFrame();
+            QVERIFY2(frame, qPrintable(presenter.allText()));
+            QCOMPARE(frame->header.format, std::string("png"));
+            const ImageRGBA8 replayed = frame->decoded();
+            const double db = psnr(replayed, live_[k]);
+            qInfo("replayed view %d against its live frame: %.2f dB", k, db);
+            if (k > 0) { // the views come in their order: not the one before
+                const double previous = psnr(replayed, live_[k - 1]);
+                QVERIFY2(previous < kMinReplayPsnr,
+                         qPrintable(
+                             QString("view %1 is view %2: %3 dB").arg(k).arg(k - 1).arg(previous)));
+            }
+            if (db < kMinReplayPsnr) {
+                const QString dir = failureDir();
+                writePng(replayed, QString("%1/replayed-%2.png").arg(dir).arg(k).toStdString());
+                writePng(live_[k], QString("%1/live-%2.png").arg(dir).arg(k).toStdString());
+                QFAIL(qPrintable(
+                    QString("view %1: %2 dB (images in %3)").arg(k).arg(db).arg(failureDir())));
+            }
+        }
+        const QJsonObject ended = textAfter(presenter, "replay-ended", from);
+        QCOMPARE(ended["reason"].toString(), QString("end"));
+        QTest::qWait(500); // no late frame
+        QCOMPARE(presenter.frames.size() - framesBefore, live_.size());
+        // The token follower watched the replay (frames of the de-identified copy).
+        QVERIFY(QTest::qWaitFor([&] {
+            return follower.frames.size() > followerFramesBefore &&
+                   follower.frames.back().header.seq == presenter.frames.back().header.seq;
+        }));
+    }
+
+    // Refusals that keep the connection: an unknown recording, a step without a
+    // replay, a recording file that is not whole; a follower by token does not
+    // control the view.
+    void verifyReplayRefusals(RemoteTestClient& presenter, RemoteTestClient& follower) {
+        for (const auto& [message, code] :
+             {std::pair{QJsonObject{{"type", "replay"}, {"recording", "nosuchrecording"}},
+                        QString("not-found")},
+              std::pair{QJsonObject{{"type", "replay"}, {"recording", "../../etc/passwd"}},
+                        QString("bad-request")},
+              std::pair{QJsonObject{{"type", "replay-step"}}, QString("bad-request")},
+              std::pair{QJsonObject{{"type", "record"}, {"state", "stop"}},
+                        QString("bad-request")}}) {
+            const qsizetype before = presenter.texts.size();
+            presenter.send(message);
+            QCOMPARE(textAfter(presenter, "error", before)["code"].toString(), code);
+        }
+        // A recording file that is not whole: refused naming its line, the view kept.
+        QFile broken(server_->storeDir() + "/recordings/broken.jsonl");
+        QVERIFY(broken.open(QIODevice::WriteOnly));
+        broken.write("{\"lucent_recording\":1}\n");
+        broken.close();
+        const qsizetype from = presenter.texts.size();
+        presenter.send({{"type", "replay"}, {"recording", "broken"}});
+        const QJsonObject unreadable = textAfter(presenter, "error", from);
+        QCOMPARE(unreadable["code"].toString(), QString("render-failed"));
+        QVERIFY2(unreadable["message"].toString().contains("broken.jsonl:1: 'series'"),
+                 qPrintable(unreadable["message"].toString()));
+        QVERIFY(broken.remove());
+        // A follower by token does not control the view.
+        const qsizetype before = follower.texts.size();
+        follower.send({{"type", "record"}, {"state", "start"}});
+        QCOMPARE(textAfter(follower, "error", before)["code"].toString(), QString("not-presenter"));
+    }
+
 private slots:
     void initTestCase() {
         REQUIRE_DATA(kCt);
@@ -144,22 +244,10 @@ private slots:
         QCOMPARE(stopped["reason"].toString(), QString("stopped"));
         QVERIFY(stopped["duration_ms"].toInteger() >= 150 * changes().size());
 
-        // In the store, whole; nothing left in its tmp/.
-        recordingFile_ = server_->storeDir() + "/recordings/" + recordingId_ + ".jsonl";
-        QVERIFY2(QFile::exists(recordingFile_), qPrintable(recordingFile_));
-        const remote::Recording recording = remote::readRecording(recordingFile_.toStdString());
-        QCOMPARE(recording.header.series, uid.toStdString());
-        QCOMPARE(recording.header.views, int(changes().size()) + 1);
-        QCOMPARE(recording.header.width, kSide);
-        QVERIFY(QDir(server_->storeDir() + "/tmp")
-                    .entryList({"recording-*"}, QDir::Files | QDir::Hidden)
-                    .isEmpty());
-        from = presenter.texts.size();
-        presenter.send({{"type", "recording-list"}});
-        const QJsonArray listed = textAfter(presenter, "recordings", from)["recordings"].toArray();
-        QCOMPARE(listed.size(), 1);
-        QCOMPARE(listed[0].toObject()["id"].toString(), recordingId_);
-        QCOMPARE(listed[0].toObject()["series"].toString(), uid);
+        verifyStoredRecording(presenter, uid);
+        if (QTest::currentTestFailed()) {
+            return;
+        }
 
         // The invite's holder: forbidden, and still following.
         for (const QJsonObject& refused :
@@ -174,79 +262,12 @@ private slots:
         }
         QVERIFY(!student.disconnected);
 
-        // The stepped replay: one lossless frame per recorded view, each its live frame.
-        const qsizetype framesBefore = presenter.frames.size();
-        const qsizetype followerFramesBefore = follower.frames.size();
-        from = presenter.texts.size();
-        presenter.send({{"type", "replay"}, {"recording", recordingId_}, {"pace", "step"}});
-        for (int k = 0; k < live_.size(); ++k) {
-            if (k > 0) {
-                presenter.send({{"type", "replay-step"}});
-            }
-            const QJsonObject progress = textAfter(presenter, "replay-progress", from);
-            from = presenter.texts.indexOf(progress) + 1;
-            QCOMPARE(progress["view"].toInt(), k);
-            QCOMPARE(progress["views"].toInt(), int(live_.size()));
-            presenter.seq = std::uint64_t(progress["seq"].toInteger());
-            const ReceivedFrame* frame = presenter.waitForCurrentFrame();
-            QVERIFY2(frame, qPrintable(presenter.allText()));
-            QCOMPARE(frame->header.format, std::string("png"));
-            const ImageRGBA8 replayed = frame->decoded();
-            const double db = psnr(replayed, live_[k]);
-            qInfo("replayed view %d against its live frame: %.2f dB", k, db);
-            if (k > 0) { // the views come in their order: not the one before
-                const double previous = psnr(replayed, live_[k - 1]);
-                QVERIFY2(previous < kMinReplayPsnr,
-                         qPrintable(
-                             QString("view %1 is view %2: %3 dB").arg(k).arg(k - 1).arg(previous)));
-            }
-            if (db < kMinReplayPsnr) {
-                const QString dir = failureDir();
-                writePng(replayed, QString("%1/replayed-%2.png").arg(dir).arg(k).toStdString());
-                writePng(live_[k], QString("%1/live-%2.png").arg(dir).arg(k).toStdString());
-                QFAIL(qPrintable(
-                    QString("view %1: %2 dB (images in %3)").arg(k).arg(db).arg(failureDir())));
-            }
+        verifySteppedReplay(presenter, follower);
+        if (QTest::currentTestFailed()) {
+            return;
         }
-        const QJsonObject ended = textAfter(presenter, "replay-ended", from);
-        QCOMPARE(ended["reason"].toString(), QString("end"));
-        QTest::qWait(500); // no late frame
-        QCOMPARE(presenter.frames.size() - framesBefore, live_.size());
-        // The token follower watched the replay (frames of the de-identified copy).
-        QVERIFY(QTest::qWaitFor([&] {
-            return follower.frames.size() > followerFramesBefore &&
-                   follower.frames.back().header.seq == presenter.frames.back().header.seq;
-        }));
 
-        // Refusals that keep the connection: an unknown recording, a step without a replay.
-        for (const auto& [message, code] :
-             {std::pair{QJsonObject{{"type", "replay"}, {"recording", "nosuchrecording"}},
-                        QString("not-found")},
-              std::pair{QJsonObject{{"type", "replay"}, {"recording", "../../etc/passwd"}},
-                        QString("bad-request")},
-              std::pair{QJsonObject{{"type", "replay-step"}}, QString("bad-request")},
-              std::pair{QJsonObject{{"type", "record"}, {"state", "stop"}},
-                        QString("bad-request")}}) {
-            const qsizetype before = presenter.texts.size();
-            presenter.send(message);
-            QCOMPARE(textAfter(presenter, "error", before)["code"].toString(), code);
-        }
-        // A recording file that is not whole: refused naming its line, the view kept.
-        QFile broken(server_->storeDir() + "/recordings/broken.jsonl");
-        QVERIFY(broken.open(QIODevice::WriteOnly));
-        broken.write("{\"lucent_recording\":1}\n");
-        broken.close();
-        from = presenter.texts.size();
-        presenter.send({{"type", "replay"}, {"recording", "broken"}});
-        const QJsonObject unreadable = textAfter(presenter, "error", from);
-        QCOMPARE(unreadable["code"].toString(), QString("render-failed"));
-        QVERIFY2(unreadable["message"].toString().contains("broken.jsonl:1: 'series'"),
-                 qPrintable(unreadable["message"].toString()));
-        QVERIFY(broken.remove());
-        // A follower by token does not control the view.
-        const qsizetype before = follower.texts.size();
-        follower.send({{"type", "record"}, {"state", "start"}});
-        QCOMPARE(textAfter(follower, "error", before)["code"].toString(), QString("not-presenter"));
+        verifyReplayRefusals(presenter, follower);
     }
 
     // Original pace into the presenter's own view: the views come in order and

@@ -58,6 +58,13 @@ private slots:
 
 private:
     bool waitForNewStill(WebDriver& driver, int before, QJsonObject* pixels);
+    // After a mouse drag (`afterMouse`): a touch drag turns the view again, a pinch
+    // zooms, a right drag pans and arrow keys turn it, each with a new frame.
+    void verifyTouchPinchPanKeys(WebDriver& driver, const QString& canvas,
+                                 const QJsonObject& afterMouse);
+    // The server goes away and comes back on the same port: the page reconnects,
+    // opens the same series again and shows the same view.
+    void verifyReconnect(WebDriver& driver, ServerProcess& server);
 };
 
 bool TestWebBrowser::waitForNewStill(WebDriver& driver, int before, QJsonObject* pixels) {
@@ -123,8 +130,32 @@ void TestWebBrowser::dragRotatesTheRemoteView() {
              "the canvas did not change after the drag");
     QVERIFY(driver.execute("return window.lucent.view.azimuth;").toDouble() != 0.0);
 
-    // A touch drag turns it again.
+    verifyTouchPinchPanKeys(driver, canvas, afterMouse);
+    if (QTest::currentTestFailed()) {
+        return;
+    }
+
+    // Phone size: the canvas still fills the width and gets frames of its new size.
     drawn = framesDrawn(driver);
+    QVERIFY(driver.setWindowSize(390, 800));
+    QJsonObject phone;
+    QVERIFY2(waitForNewStill(driver, drawn, &phone), "no frame at phone size");
+    const double cssWidth =
+        driver.execute("return document.getElementById('view').getBoundingClientRect().width;")
+            .toDouble();
+    QVERIFY2(cssWidth > 300 && cssWidth <= 390, qPrintable(QString::number(cssWidth)));
+
+    // No script errors so far (the console holds no SEVERE entries).
+    const QString console = driver.consoleLog();
+    QVERIFY2(!console.contains("SEVERE"), qPrintable(console));
+
+    verifyReconnect(driver, *server);
+}
+
+void TestWebBrowser::verifyTouchPinchPanKeys(WebDriver& driver, const QString& canvas,
+                                             const QJsonObject& afterMouse) {
+    // A touch drag turns it again.
+    int drawn = framesDrawn(driver);
     QVERIFY2(driver.drag(canvas, "touch", 0, -30, -20, 90, 6), qPrintable(driver.error()));
     QJsonObject afterTouch;
     QVERIFY2(waitForNewStill(driver, drawn, &afterTouch), "no frame after the touch drag");
@@ -160,30 +191,17 @@ void TestWebBrowser::dragRotatesTheRemoteView() {
     QVERIFY2(waitForNewStill(driver, drawn, &afterKeys), "no frame after the arrow keys");
     QCOMPARE(driver.execute("return window.lucent.view.azimuth;").toDouble(),
              std::fmod(azimuth + 10.0, 360.0));
+}
 
-    // Phone size: the canvas still fills the width and gets frames of its new size.
-    drawn = framesDrawn(driver);
-    QVERIFY(driver.setWindowSize(390, 800));
-    QJsonObject phone;
-    QVERIFY2(waitForNewStill(driver, drawn, &phone), "no frame at phone size");
-    const double cssWidth =
-        driver.execute("return document.getElementById('view').getBoundingClientRect().width;")
-            .toDouble();
-    QVERIFY2(cssWidth > 300 && cssWidth <= 390, qPrintable(QString::number(cssWidth)));
-
-    // No script errors so far (the console holds no SEVERE entries).
-    const QString console = driver.consoleLog();
-    QVERIFY2(!console.contains("SEVERE"), qPrintable(console));
-
-    // The server goes away and comes back on the same port: the page reconnects,
-    // opens the same series again and shows the same view.
-    server->stop();
+void TestWebBrowser::verifyReconnect(WebDriver& driver, ServerProcess& server) {
+    const quint16 port = server.port();
+    server.stop();
     QVERIFY(driver.waitUntil(
         "return document.getElementById('status').textContent.includes('reconnecting');", 20000));
-    drawn = framesDrawn(driver);
-    const QString restarted = server->start();
+    const int drawn = framesDrawn(driver);
+    const QString restarted = server.start();
     QVERIFY2(restarted.isEmpty(), qPrintable(restarted));
-    QCOMPARE(server->port(), port);
+    QCOMPARE(server.port(), port);
     QJsonObject reconnected;
     QVERIFY2(
         waitForNewStill(driver, drawn, &reconnected),

@@ -92,6 +92,12 @@ private slots:
 private:
     // Compares a view's canvas with the desktop's image (>= 45 dB); its header.
     QJsonObject compareWithDesktop(WebDriver& driver, const QString& view, const QString& step);
+    // compareWithDesktop for each of the three views; false at the first that differs.
+    bool allLikeDesktop(WebDriver& driver, const QString& step);
+    // Phone width: the slices stack, each as wide as the page, sized anew.
+    void verifyPhoneWidth(WebDriver& driver);
+    // The server goes away and comes back: the page restores the slices' crosshair and window.
+    void verifyReconnect(WebDriver& driver, ServerProcess& server);
     bool waitForSlices(WebDriver& driver, const QString& condition, int timeoutMs = 30000);
 
     BrowserTools tools_;
@@ -202,18 +208,14 @@ void TestWebSlices::slicesEqualTheDesktopsMpr() {
                  driver,
                  QString("Math.abs(h.crosshair[2] - (%1)) < 1e-6").arg(z0 + 2 * step, 0, 'g', 17)),
              "the crosshair did not move two voxels towards the head");
-    for (const char* view : kViews) {
-        QVERIFY2(!compareWithDesktop(driver, view, "wheel").isEmpty(), view);
-    }
+    QVERIFY(allLikeDesktop(driver, "wheel"));
 
     // Key 8 on the focused axial slice: the bone window (400/1800), as the desktop's.
     QVERIFY(driver.sendKeys(driver.findElement("#slice-axial .slice-overlay"), "8"));
     QVERIFY(waitForSlices(driver, "h.window.center === 400 && h.window.width === 1800"));
     QCOMPARE(driver.execute("return document.getElementById('window-preset').value;").toString(),
              QString("Bone"));
-    for (const char* view : kViews) {
-        QVERIFY2(!compareWithDesktop(driver, view, "preset").isEmpty(), view);
-    }
+    QVERIFY(allLikeDesktop(driver, "preset"));
 
     // A click on the coronal view moves the crosshair there: all three follow.
     const QJsonObject before = driver.execute(kReadSlice, {"sagittal"})["header"].toObject();
@@ -222,9 +224,7 @@ void TestWebSlices::slicesEqualTheDesktopsMpr() {
         qPrintable(driver.error()));
     QVERIFY(waitForSlices(driver, QString("Math.abs(h.crosshair[0] - (%1)) > 1")
                                       .arg(vec3(before["crosshair"]).x, 0, 'g', 17)));
-    for (const char* view : kViews) {
-        QVERIFY2(!compareWithDesktop(driver, view, "click").isEmpty(), view);
-    }
+    QVERIFY(allLikeDesktop(driver, "click"));
 
     // A right drag: right widens the window, down raises the level, one unit a pixel.
     QVERIFY2(
@@ -233,11 +233,26 @@ void TestWebSlices::slicesEqualTheDesktopsMpr() {
     QVERIFY2(waitForSlices(driver, "h.window.center === 420 && h.window.width === 1840"),
              qPrintable(QJsonDocument(driver.execute(kReadSlice, {"axial"})["header"].toObject())
                             .toJson(QJsonDocument::Compact)));
-    for (const char* view : kViews) {
-        QVERIFY2(!compareWithDesktop(driver, view, "right-drag").isEmpty(), view);
-    }
+    QVERIFY(allLikeDesktop(driver, "right-drag"));
 
-    // Phone width: the slices stack, each as wide as the page, sized anew.
+    verifyPhoneWidth(driver);
+    if (QTest::currentTestFailed()) {
+        return;
+    }
+    verifyReconnect(driver, server);
+}
+
+bool TestWebSlices::allLikeDesktop(WebDriver& driver, const QString& step) {
+    for (const char* view : kViews) {
+        if (compareWithDesktop(driver, view, step).isEmpty()) {
+            qWarning() << "the" << view << "slice differs from the desktop's after" << step;
+            return false;
+        }
+    }
+    return true;
+}
+
+void TestWebSlices::verifyPhoneWidth(WebDriver& driver) {
     const int wide = driver.execute(kReadSlice, {"axial"})["header"].toObject()["width"].toInt();
     QVERIFY(driver.setWindowSize(390, 800));
     QVERIFY2(
@@ -246,13 +261,12 @@ void TestWebSlices::slicesEqualTheDesktopsMpr() {
                                       "width)")
                                   .arg(wide)),
         qPrintable(driver.consoleLog()));
-    for (const char* view : kViews) {
-        QVERIFY2(!compareWithDesktop(driver, view, "phone").isEmpty(), view);
-    }
+    QVERIFY(allLikeDesktop(driver, "phone"));
     const QString console = driver.consoleLog();
     QVERIFY2(!console.contains("SEVERE"), qPrintable(console));
+}
 
-    // The server goes away and comes back: the page restores the slices' crosshair and window.
+void TestWebSlices::verifyReconnect(WebDriver& driver, ServerProcess& server) {
     const QJsonObject last = driver.execute(kReadSlice, {"axial"})["header"].toObject();
     const int drawn = driver.execute("return window.lucent.slices.stats.framesDrawn;").toInt();
     server.stop();
@@ -271,9 +285,7 @@ void TestWebSlices::slicesEqualTheDesktopsMpr() {
                                .arg(at.z, 0, 'g', 17),
                            60000),
              qPrintable(driver.consoleLog()));
-    for (const char* view : kViews) {
-        QVERIFY2(!compareWithDesktop(driver, view, "reconnect").isEmpty(), view);
-    }
+    QVERIFY(allLikeDesktop(driver, "reconnect"));
 }
 
 void TestWebSlices::followerSeesThePresentersSlices() {
@@ -305,9 +317,7 @@ void TestWebSlices::followerSeesThePresentersSlices() {
              qPrintable(driver.consoleLog()));
     QCOMPARE(driver.execute("return document.getElementById('layout').value;").toString(),
              QString("both"));
-    for (const char* view : kViews) {
-        QVERIFY2(!compareWithDesktop(driver, view, "joined").isEmpty(), view);
-    }
+    QVERIFY(allLikeDesktop(driver, "joined"));
     // A follower's gestures change nothing: the presenter holds the slices.
     QVERIFY(driver.sendKeys(driver.findElement("#slice-axial .slice-overlay"), "1"));
     QTest::qWait(500);
@@ -322,9 +332,7 @@ void TestWebSlices::followerSeesThePresentersSlices() {
     QVERIFY(waitForSlices(driver, QString("h.window.width === 80 && "
                                           "Math.abs(h.crosshair[2] - (%1)) < 1e-6")
                                       .arg(centre[2].toDouble() - 20.0, 0, 'g', 17)));
-    for (const char* view : kViews) {
-        QVERIFY2(!compareWithDesktop(driver, view, "followed").isEmpty(), view);
-    }
+    QVERIFY(allLikeDesktop(driver, "followed"));
 }
 
 int main(int argc, char** argv) {
