@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -105,7 +106,9 @@ inline std::vector<std::string> sceneNames() {
             "brick-border"};
 }
 
-inline Scene makeScene(const std::string& name) {
+// Scenes of extreme sampling: tiny and huge steps, opacities, spikes, pre-integration
+// of equal values, constant shaded volumes, samples on brick borders.
+inline std::optional<Scene> samplingScene(const std::string& name) {
     const auto blobVolume = [] { return makeVolume({32, 32, 32}, blobs, VoxelType::Int16); };
     const auto constant = [](double value) {
         return makeVolume({16, 16, 16}, [value](int, int, int) { return value; });
@@ -129,6 +132,33 @@ inline Scene makeScene(const std::string& name) {
         s.desc.sampling.preintegrate = name == "spike-preint";
         return s;
     }
+    if (name == "preint-equal") {
+        Scene s = scene(constant(120.0), rampTf(false));
+        s.desc.sampling.preintegrate = true;
+        return s;
+    }
+    if (name.rfind("constant-shaded-", 0) == 0) {
+        Scene s = scene(constant(120.0), rampTf(true));
+        s.desc.sampling.interpolation =
+            name == "constant-shaded-cubic" ? Interpolation::Cubic : Interpolation::Linear;
+        return s;
+    }
+    if (name == "brick-border") {
+        // Brick borders at multiples of 8 voxels; the centre ray runs along j
+        // from j = 0, so with step 1 its samples fall exactly on them.
+        Scene s = scene(makeVolume({33, 33, 33}, blobs, VoxelType::Int16), rampTf(true), 33);
+        s.desc.sampling.brickSize = 8;
+        s.desc.sampling.step = 1.0;
+        return s;
+    }
+    return std::nullopt;
+}
+
+// Scenes of extreme voxel values: the whole int16 range, floats from 1e-30 to 1e30.
+inline std::optional<Scene> valueScene(const std::string& name) {
+    const auto constant = [](double value) {
+        return makeVolume({16, 16, 16}, [value](int, int, int) { return value; });
+    };
     if (name == "int16-full-range") {
         TransferFunction tf;
         tf.opacity = {{-32768.0, 0.05}, {0.0, 0.0}, {32767.0, 0.6}};
@@ -163,6 +193,17 @@ inline Scene makeScene(const std::string& name) {
         const double scale = name == "float-1e-30" ? 1e-30 : 1e30;
         return scene(scaledBlobs(scale), scaledRampTf(scale, true));
     }
+    if (name == "constant-1e30") {
+        // 1e30 inside the ramp (0.5e30 .. 1.5e30): visible, so rays sample it.
+        return scene(constant(1e30), scaledRampTf(1e28, true));
+    }
+    return std::nullopt;
+}
+
+// Scenes of extreme geometry: spacings, dimensions, zoom, a far origin, a wide field of
+// view, clip faces and axes along the rays.
+inline std::optional<Scene> geometryScene(const std::string& name) {
+    const auto blobVolume = [] { return makeVolume({32, 32, 32}, blobs, VoxelType::Int16); };
     if (name == "spacing-1-1-1000" || name == "spacing-1e-3-1-1") {
         const bool thickZ = name == "spacing-1-1-1000";
         Volume v = makeVolume(
@@ -226,28 +267,14 @@ inline Scene makeScene(const std::string& name) {
         s.desc.sampling.interpolation = Interpolation::Cubic;
         return s;
     }
-    if (name == "preint-equal") {
-        Scene s = scene(constant(120.0), rampTf(false));
-        s.desc.sampling.preintegrate = true;
-        return s;
-    }
-    if (name.rfind("constant-shaded-", 0) == 0) {
-        Scene s = scene(constant(120.0), rampTf(true));
-        s.desc.sampling.interpolation =
-            name == "constant-shaded-cubic" ? Interpolation::Cubic : Interpolation::Linear;
-        return s;
-    }
-    if (name == "constant-1e30") {
-        // 1e30 inside the ramp (0.5e30 .. 1.5e30): visible, so rays sample it.
-        return scene(constant(1e30), scaledRampTf(1e28, true));
-    }
-    if (name == "brick-border") {
-        // Brick borders at multiples of 8 voxels; the centre ray runs along j
-        // from j = 0, so with step 1 its samples fall exactly on them.
-        Scene s = scene(makeVolume({33, 33, 33}, blobs, VoxelType::Int16), rampTf(true), 33);
-        s.desc.sampling.brickSize = 8;
-        s.desc.sampling.step = 1.0;
-        return s;
+    return std::nullopt;
+}
+
+inline Scene makeScene(const std::string& name) {
+    for (const auto make : {samplingScene, valueScene, geometryScene}) {
+        if (std::optional<Scene> s = make(name)) {
+            return std::move(*s);
+        }
     }
     throw std::invalid_argument("no scene " + name);
 }

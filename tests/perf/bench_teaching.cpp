@@ -72,6 +72,77 @@ struct FollowerProcess {
     QString output;
 };
 
+// Starts the followers, a quarter in each process, the free lookers spread, and
+// waits until every process says its followers joined.
+void startFollowers(std::vector<FollowerProcess>& processes, ServerProcess& server,
+                    const QString& session, int followerCount, int freeLookCount,
+                    const QTemporaryDir& dir) {
+    for (int p = 0; p < kFollowerProcesses; ++p) {
+        const int count =
+            followerCount / kFollowerProcesses + (p < followerCount % kFollowerProcesses ? 1 : 0);
+        const int looking =
+            freeLookCount / kFollowerProcesses + (p < freeLookCount % kFollowerProcesses ? 1 : 0);
+        FollowerProcess& f = processes[std::size_t(p)];
+        f.arrivalsFile = dir.filePath(QString("arrivals-%1.txt").arg(p));
+        f.process->start(QString(LUCENT_BIN_DIR) + "/teaching_followers",
+                         {QString::number(server.port()), kToken, session, QString::number(count),
+                          QString::number(looking), f.arrivalsFile});
+    }
+    for (FollowerProcess& f : processes) {
+        QVERIFY2(QTest::qWaitFor(
+                     [&] {
+                         f.output += QString::fromUtf8(f.process->readAllStandardOutput());
+                         return f.output.contains("joined\n");
+                     },
+                     180000),
+                 qPrintable("followers did not join: " + f.output + server.log()));
+    }
+}
+
+// What the followers saw, gathered over their processes.
+struct FollowerReports {
+    std::vector<double> latencies; // the pointer's, ms
+    std::vector<double> shares;    // each follower's share of the session's frames
+    std::vector<double> lookFps;   // each free looker's frame rate
+};
+
+// Asks one process for its report and reads it and its pointer arrivals.
+void readReport(FollowerProcess& f, const std::vector<long long>& pointerSent, long presenterFrames,
+                double runSeconds, FollowerReports& got) {
+    f.process->write("report\n");
+    QVERIFY(QTest::qWaitFor(
+        [&] {
+            f.output += QString::fromUtf8(f.process->readAllStandardOutput());
+            return f.output.contains("done\n");
+        },
+        60000));
+    for (const QString& line : f.output.split('\n')) {
+        const QStringList w = line.split(' ');
+        if (w.size() == 4 && w[0] == "frames") {
+            const double frames = w[2].toDouble();
+            if (w[3] == "1") {
+                got.lookFps.push_back(frames / runSeconds);
+            } else {
+                got.shares.push_back(frames / double(std::max(1L, presenterFrames)));
+            }
+        }
+    }
+    QVERIFY2(!f.output.contains("error "), qPrintable(f.output));
+    QFile arrivals(f.arrivalsFile);
+    QVERIFY(arrivals.open(QIODevice::ReadOnly));
+    for (const QByteArray& line : arrivals.readAll().split('\n')) {
+        const QList<QByteArray> w = line.split(' ');
+        if (w.size() == 4) {
+            const std::size_t number = w[2].toULong();
+            if (number < pointerSent.size()) {
+                got.latencies.push_back(double(w[3].toLongLong() - pointerSent[number]) / 1e6);
+            }
+        }
+    }
+    f.process->closeWriteChannel();
+    f.process->waitForFinished(10000);
+}
+
 } // namespace
 
 class BenchTeaching : public QObject {
@@ -102,25 +173,9 @@ private slots:
         // The followers, a quarter in each process, the free lookers spread.
         QTemporaryDir dir;
         std::vector<FollowerProcess> processes(kFollowerProcesses);
-        for (int p = 0; p < kFollowerProcesses; ++p) {
-            const int count = followerCount / kFollowerProcesses +
-                              (p < followerCount % kFollowerProcesses ? 1 : 0);
-            const int looking = freeLookCount / kFollowerProcesses +
-                                (p < freeLookCount % kFollowerProcesses ? 1 : 0);
-            FollowerProcess& f = processes[std::size_t(p)];
-            f.arrivalsFile = dir.filePath(QString("arrivals-%1.txt").arg(p));
-            f.process->start(QString(LUCENT_BIN_DIR) + "/teaching_followers",
-                             {QString::number(server.port()), kToken, session,
-                              QString::number(count), QString::number(looking), f.arrivalsFile});
-        }
-        for (FollowerProcess& f : processes) {
-            QVERIFY2(QTest::qWaitFor(
-                         [&] {
-                             f.output += QString::fromUtf8(f.process->readAllStandardOutput());
-                             return f.output.contains("joined\n");
-                         },
-                         180000),
-                     qPrintable("followers did not join: " + f.output + server.log()));
+        startFollowers(processes, server, session, followerCount, freeLookCount, dir);
+        if (QTest::currentTestFailed()) {
+            return;
         }
 
         // The lecture: drags and rests, the pointer at 30 Hz, memory each second.
@@ -176,42 +231,16 @@ private slots:
         QTest::qWait(2000); // the last pointers and frames land
 
         // What each follower got.
-        std::vector<double> latencies;
-        std::vector<double> shares, lookFps;
+        FollowerReports got;
         for (FollowerProcess& f : processes) {
-            f.process->write("report\n");
-            QVERIFY(QTest::qWaitFor(
-                [&] {
-                    f.output += QString::fromUtf8(f.process->readAllStandardOutput());
-                    return f.output.contains("done\n");
-                },
-                60000));
-            for (const QString& line : f.output.split('\n')) {
-                const QStringList w = line.split(' ');
-                if (w.size() == 4 && w[0] == "frames") {
-                    const double frames = w[2].toDouble();
-                    if (w[3] == "1") {
-                        lookFps.push_back(frames / runSeconds);
-                    } else {
-                        shares.push_back(frames / double(std::max(1L, presenterFrames)));
-                    }
-                }
+            readReport(f, pointerSent, presenterFrames, runSeconds, got);
+            if (QTest::currentTestFailed()) {
+                return;
             }
-            QVERIFY2(!f.output.contains("error "), qPrintable(f.output));
-            QFile arrivals(f.arrivalsFile);
-            QVERIFY(arrivals.open(QIODevice::ReadOnly));
-            for (const QByteArray& line : arrivals.readAll().split('\n')) {
-                const QList<QByteArray> w = line.split(' ');
-                if (w.size() == 4) {
-                    const std::size_t number = w[2].toULong();
-                    if (number < pointerSent.size()) {
-                        latencies.push_back(double(w[3].toLongLong() - pointerSent[number]) / 1e6);
-                    }
-                }
-            }
-            f.process->closeWriteChannel();
-            f.process->waitForFinished(10000);
         }
+        std::vector<double>& latencies = got.latencies;
+        std::vector<double>& shares = got.shares;
+        const std::vector<double>& lookFps = got.lookFps;
         QVERIFY(!latencies.empty());
         QVERIFY(presenterFrames > 0);
         std::sort(shares.begin(), shares.end());
