@@ -1,5 +1,7 @@
 #include "server/LocalFrameSource.h"
 
+#include <utility>
+
 #include "core/io/Catalog.h"
 #include "core/raycast/SurfaceDepth.h"
 #include "core/scene/Renderer.h"
@@ -42,7 +44,7 @@ void LocalFrameSource::stop() {
     device_.reset();
 }
 
-LocalFrameSource::LoadedSeries*
+const LocalFrameSource::LoadedSeries*
 LocalFrameSource::findLoaded(const std::shared_ptr<const SeriesEntry>& entry) const {
     for (const auto& series : loaded_) {
         if (series->entry == entry) {
@@ -50,6 +52,11 @@ LocalFrameSource::findLoaded(const std::shared_ptr<const SeriesEntry>& entry) co
         }
     }
     return nullptr;
+}
+
+LocalFrameSource::LoadedSeries*
+LocalFrameSource::findLoaded(const std::shared_ptr<const SeriesEntry>& entry) {
+    return const_cast<LoadedSeries*>(std::as_const(*this).findLoaded(entry));
 }
 
 LocalFrameSource::LoadedSeries&

@@ -30,7 +30,7 @@ public:
                                            const std::vector<glm::dvec2>& fractions) override;
     const Volume& volume(const std::shared_ptr<const SeriesEntry>& series) override;
     // The renderer's figures of the last frame of `series` (Renderer::frameDetails);
-    // empty where it is not loaded.
+    // empty where it is not loaded. On the render thread, like render().
     FrameDetails lastFrameDetails(const std::shared_ptr<const SeriesEntry>& series) const;
 
 private:
@@ -39,7 +39,8 @@ private:
     // (a new entry with the same id) is loaded again.
     LoadedSeries& loaded(const std::shared_ptr<const SeriesEntry>& entry);
     // That entry where it is loaded, without loading it; null otherwise.
-    LoadedSeries* findLoaded(const std::shared_ptr<const SeriesEntry>& entry) const;
+    LoadedSeries* findLoaded(const std::shared_ptr<const SeriesEntry>& entry);
+    const LoadedSeries* findLoaded(const std::shared_ptr<const SeriesEntry>& entry) const;
 
     RendererKind backend_;
     std::unique_ptr<RenderDevice> device_;            // made on the render thread by start()

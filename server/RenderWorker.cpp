@@ -62,6 +62,7 @@ void RenderWorker::render(const RenderJob& job) {
     frame.view = job.view;
     frame.seq = job.seq;
     frame.degraded = job.degraded;
+    ImageRGBA8 image;
     try {
         RenderDescription description = job.description;
         const bool interactive = job.quality == Quality::Interactive;
@@ -70,7 +71,7 @@ void RenderWorker::render(const RenderJob& job) {
         }
         QElapsedTimer timer;
         timer.start();
-        ImageRGBA8 image = frames_->render(job.series, description);
+        image = frames_->render(job.series, description);
         FrameHeader header;
         header.renderMs = millisecondsSince(timer);
         timer.restart();
@@ -90,9 +91,11 @@ void RenderWorker::render(const RenderJob& job) {
         const std::string message = frameMessage(
             header, std::string_view(encoded.constData(), std::size_t(encoded.size())));
         frame.message = QByteArray(message.data(), qsizetype(message.size()));
-        frames_->recycle(job.series, std::move(image)); // encoded: its buffers may draw the next
     } catch (const std::exception& e) {
         frame.error = QString::fromUtf8(e.what());
+    }
+    if (frame.error.isEmpty()) {
+        frames_->recycle(job.series, std::move(image)); // encoded: its buffers may draw the next
     }
     emit frameRendered(frame);
 }

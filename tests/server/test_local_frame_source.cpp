@@ -1,7 +1,9 @@
 // The render server's frames drawn in this process on the CPU (no GL): once
 // the render thread hands an encoded image back, the next frame of its size is
 // drawn into its buffers and equals a fresh caster's; an image not handed
-// back, or one of another size, leaves the next frame with new buffers.
+// back, or one of another size, leaves the next frame with new buffers. The
+// render thread's worker hands back every frame it encoded.
+#include <QImage>
 #include <QTest>
 
 #include <memory>
@@ -10,7 +12,9 @@
 #include "core/io/Catalog.h"
 #include "core/raycast/CpuRayCaster.h"
 #include "core/tf/TransferFunction.h"
+#include "protocol/FrameMessage.h"
 #include "server/LocalFrameSource.h"
+#include "server/RenderWorker.h"
 #include "tests/core/raycast/RaycastScenes.h"
 #include "tests/support/RealData.h"
 
@@ -20,6 +24,19 @@ using namespace lucent::test;
 namespace {
 
 const char* const kCt = "dcm_qa_ct/Philips_S21570/S2010";
+
+ImageRGBA8 decodedPng(const QByteArray& message) {
+    const remote::ParsedFrame parsed = remote::parseFrameMessage(
+        std::string_view(message.constData(), std::size_t(message.size())));
+    const QImage q =
+        QImage::fromData(QByteArray(parsed.image.data(), qsizetype(parsed.image.size())), "PNG")
+            .convertToFormat(QImage::Format_RGBA8888);
+    ImageRGBA8 out = ImageRGBA8::filled(q.width(), q.height());
+    for (int y = 0; y < q.height(); ++y) {
+        std::copy_n(q.constScanLine(y), 4 * q.width(), out.at(0, y));
+    }
+    return out;
+}
 
 std::string frameBuffers(const remote::LocalFrameSource& source,
                          const std::shared_ptr<const SeriesEntry>& entry) {
@@ -69,7 +86,7 @@ private slots:
         image = source.render(entry, d);
         QVERIFY(image == expect(d));
         QCOMPARE(frameBuffers(source, entry), std::string("new"));
-        // An image handed back twice, or for a series not loaded, is dropped.
+        // A second hand-back after the frame's own, or one for a series not loaded, is dropped.
         source.recycle(entry, std::move(image));
         source.recycle(entry, ImageRGBA8::filled(64, 64, 0));
         const auto other = std::make_shared<const SeriesEntry>(*entry);
@@ -79,6 +96,37 @@ private slots:
         QVERIFY(image == expect(d));
         QCOMPARE(frameBuffers(source, entry), std::string("recycled"));
         source.stop();
+    }
+
+    void theRenderThreadHandsEncodedFramesBack() {
+        REQUIRE_DATA(kCt);
+        const auto entry =
+            std::make_shared<const SeriesEntry>(scanPath(kRealData / kCt).series.front());
+        const Volume volume = loadSeries(*entry);
+        auto owned = std::make_unique<remote::LocalFrameSource>(RendererKind::Cpu);
+        const remote::LocalFrameSource& source = *owned;
+        remote::RenderWorker worker(std::move(owned));
+        QVERIFY(worker.start().startsWith("cpu"));
+        std::vector<remote::RenderedFrame> frames;
+        QObject::connect(&worker, &remote::RenderWorker::frameRendered,
+                         [&](const remote::RenderedFrame& f) { frames.push_back(f); });
+        remote::RenderJob job;
+        job.view = 1;
+        job.series = entry;
+        job.description = describe(volume, loadPreset("ct-bone"), 96);
+        job.description.volume = nullptr;
+        for (int n = 0; n < 3; ++n) {
+            job.seq = std::uint64_t(n + 1);
+            job.description.camera.azimuth = 7.0 * n;
+            worker.render(job);
+            QCOMPARE(int(frames.size()), n + 1);
+            QVERIFY2(frames.back().error.isEmpty(), qPrintable(frames.back().error));
+            RenderDescription own = job.description;
+            own.volume = &volume;
+            QVERIFY(decodedPng(frames.back().message) == CpuRayCaster(volume).render(own).image);
+            QCOMPARE(frameBuffers(source, entry), std::string(n == 0 ? "new" : "recycled"));
+        }
+        worker.stop();
     }
 };
 

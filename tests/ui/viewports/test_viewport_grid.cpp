@@ -147,6 +147,9 @@ private slots:
         QVERIFY(left->sliceView() != nullptr);
 
         dropPriorOn(window, right, priorDir.path(), prior);
+        if (QTest::currentTestFailed()) {
+            return;
+        }
         QVERIFY(right->session() != nullptr);
         QCOMPARE(right->session()->volume()->seriesUid, prior.seriesUid);
         QCOMPARE(right->session()->volume()->studyDate, std::string("20190101"));
@@ -183,15 +186,27 @@ private slots:
         const double half = right->session()->volume()->geometry().spacing.z / 2.0 + 1e-3;
         const QImage before = b->image();
         verifyLinkedScrolls(*left, *right, 12, 4, 3, half, "linked here");
+        if (QTest::currentTestFailed()) {
+            return;
+        }
         QCoreApplication::processEvents();
         verifyPriorSliceShown(*right, before);
+        if (QTest::currentTestFailed()) {
+            return;
+        }
 
         // "Register" (Ctrl+Alt+R) aligns the pair by itself: its transform (the shift,
         // found from the images) is kept in the store, links the pair before the offset,
         // and every scroll still lands within half a prior slice (plus the 0.5 mm the
         // registration may be off by: the nearest slice may then be the other one).
         registerThePair(*workspace, *left, *right, storeDir.path(), anatomy);
+        if (QTest::currentTestFailed()) {
+            return;
+        }
         verifyLinkedScrolls(*left, *right, 6, -5, -2, half + 0.5, "registered");
+        if (QTest::currentTestFailed()) {
+            return;
+        }
 
         // Planes that are not parallel do not scroll together, and say why.
         right->show(right->session(), ViewportView::Coronal);
@@ -205,8 +220,8 @@ private slots:
         QCOMPARE(left->sliceView()->referencePlanes().size(), std::size_t{1});
     }
 
-    // The prior, listed by the study browser, dragged onto `right`.
 private:
+    // The prior, listed by the study browser, dragged onto `right`.
     static void dropPriorOn(MainWindow& window, Viewport* right, const QString& priorDir,
                             const test::PriorStudy& prior) {
         auto* browser = window.findChild<StudyBrowser*>();

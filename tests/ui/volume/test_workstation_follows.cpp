@@ -260,8 +260,7 @@ class TestWorkstationFollows : public QObject {
 
     // The 3D view follows too, with no volume loaded: the teacher's frame with the
     // mark on it; a drag looks around, from the teacher's camera.
-    static void theViewFollowsWithNoVolume(const Lecture& lecture) {
-        VolumeView view(nullptr, VolumeView::Backend::Cpu);
+    static void theViewFollowsWithNoVolume(const Lecture& lecture, VolumeView& view) {
         view.resize(kSide, kSide);
         view.show();
         QVERIFY(QTest::qWaitForWindowExposed(&view));
@@ -434,7 +433,9 @@ private slots:
         if (QTest::currentTestFailed()) {
             return;
         }
-        theViewFollowsWithNoVolume(lecture);
+        // Kept to the end: one more follower by the invite when it is revoked.
+        VolumeView view(nullptr, VolumeView::Backend::Cpu);
+        theViewFollowsWithNoVolume(lecture, view);
         if (QTest::currentTestFailed()) {
             return;
         }
