@@ -154,12 +154,18 @@ RenderResult DistributedRenderer::render(const RenderDescription& description) {
             .count();
     std::vector<glm::vec4> composite;
     onEveryRank(comm_, "compositing", [&] { composite = compositeParts(d, mine, order); });
+    // Composited: the part's frame draws this rank's next frame of its size.
+    const RenderStats partStats = mine.stats;
+    caster_->recycle(std::move(mine));
+    const bool recycled = frameDetail(caster_->frameDetails(), "frame_buffers") == "recycled";
 
     // Figures of every rank.
     // Samples and bricks summed over the ranks (their part grids, halos included).
-    // The last: ranks whose part took no sample (a clip box left it nothing).
-    double sums[4] = {double(mine.stats.samples), double(mine.stats.bricksTotal),
-                      double(mine.stats.bricksUsed), mine.stats.samples == 0 ? 1.0 : 0.0};
+    // Then: ranks whose part took no sample (a clip box left it nothing), and
+    // ranks whose part was drawn into the buffers of their last frame (CPU).
+    double sums[5] = {double(partStats.samples), double(partStats.bricksTotal),
+                      double(partStats.bricksUsed), partStats.samples == 0 ? 1.0 : 0.0,
+                      recycled ? 1.0 : 0.0};
     comm_.allSum(sums);
     // Per frame, one reduction each way: resident memory, bytes sent, render time.
     double most[3] = {residentMib(), icet_->last().bytesSent, renderMs};
@@ -168,6 +174,7 @@ RenderResult DistributedRenderer::render(const RenderDescription& description) {
     details_ = {
         {"ranks", std::to_string(comm_.size())},
         {"ranks_empty", fixed(sums[3], 0)},
+        {"ranks_frame_buffers_recycled", fixed(sums[4], 0)},
         {"composite_ms", fixed(d.mode == RenderMode::Average ? averageMs_ : icet_->last().totalMs)},
         {"icet_composite_ms", fixed(icet_->last().compositeMs)},
         {"rank0_wait_ms", fixed(waitMs)},
@@ -181,7 +188,7 @@ RenderResult DistributedRenderer::render(const RenderDescription& description) {
     details_.insert(details_.end(), partFigures_.begin(), partFigures_.end());
 
     RenderResult out;
-    out.stats = mine.stats;
+    out.stats = partStats;
     out.stats.samples = std::size_t(sums[0]);
     out.stats.bricksTotal = std::size_t(sums[1]);
     out.stats.bricksUsed = std::size_t(sums[2]);

@@ -153,6 +153,19 @@ private slots:
 
     // Each rank reads only the slices of its box plus halo: with 4 ranks over
     // the 140-slice CT and bricks of 16, no rank opens every file.
+    // Each rank hands its composited part back to its caster: from the second
+    // frame of a size on, every CPU rank draws into the buffers of its last frame.
+    void partFramesAreHandedBack() {
+        const CliRun once = runMpi(3, {"render", kSmallCt, "-o", path("once.png"), "--size",
+                                       "96x96", "--distributed", "--stats"});
+        QVERIFY2(once.exitCode == 0, qPrintable(once.err));
+        QCOMPARE(statOf(once.out, "ranks_frame_buffers_recycled"), 0.0);
+        const CliRun turned = runMpi(3, {"render", kSmallCt, "-o", path("turned.png"), "--size",
+                                         "96x96", "--distributed", "--stats", "--repeat", "3"});
+        QVERIFY2(turned.exitCode == 0, qPrintable(turned.err));
+        QCOMPARE(statOf(turned.out, "ranks_frame_buffers_recycled"), 3.0); // the last frame's
+    }
+
     void aRankReadsOnlyItsSlab() {
         if (!QFileInfo::exists(kLargerCt)) {
             QSKIP("the 140-slice Philips CT is not in ../shared/data");
