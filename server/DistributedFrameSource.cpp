@@ -44,12 +44,12 @@ std::uint64_t DistributedFrameSource::numberOf(const std::shared_ptr<const Serie
     return next_++;
 }
 
-ImageRGBA8 DistributedFrameSource::render(const std::shared_ptr<const SeriesEntry>& series,
-                                          const RenderDescription& description) {
+RenderResult DistributedFrameSource::render(const std::shared_ptr<const SeriesEntry>& series,
+                                            const RenderDescription& description) {
     if (!series_) {
         throw std::logic_error("DistributedFrameSource: render() before start()");
     }
-    return series_->lead(renderCommand(numberOf(series), *series, description), *series).image;
+    return series_->lead(renderCommand(numberOf(series), *series, description), *series);
 }
 
 std::vector<glm::dvec3>

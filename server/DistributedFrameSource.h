@@ -23,8 +23,8 @@ public:
     QString start() override;
     // Releases the other ranks (they return from follow()).
     void stop() override;
-    ImageRGBA8 render(const std::shared_ptr<const SeriesEntry>& series,
-                      const RenderDescription& description) override;
+    RenderResult render(const std::shared_ptr<const SeriesEntry>& series,
+                        const RenderDescription& description) override;
     // Refused: the volume lies in parts on the ranks, none holds a whole ray.
     std::vector<glm::dvec3> surfaceAnchors(const std::shared_ptr<const SeriesEntry>& series,
                                            const RenderDescription& description,

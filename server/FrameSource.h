@@ -15,6 +15,7 @@
 #include "core/image/Image.h"
 #include "core/io/SeriesEntry.h"
 #include "core/scene/RenderDescription.h"
+#include "core/scene/Renderer.h"
 #include "core/volume/Volume.h"
 
 namespace lucent::remote {
@@ -27,15 +28,16 @@ public:
     virtual QString start() = 0;
     // Frees the renderers (and the context while it is current).
     virtual void stop() = 0;
-    // The image of `description` (its volume ignored) of `series`. Throws on
-    // failure, with a message for the client.
-    virtual ImageRGBA8 render(const std::shared_ptr<const SeriesEntry>& series,
-                              const RenderDescription& description) = 0;
-    // The image `render` gave for `series`, encoded and no longer needed: a
-    // source may draw its next frame of that size into it (Renderer::recycle).
-    // The default drops it.
+    // The frame of `description` (its volume ignored) of `series`: its image,
+    // and its other buffers where the renderer fills them. Throws on failure,
+    // with a message for the client.
+    virtual RenderResult render(const std::shared_ptr<const SeriesEntry>& series,
+                                const RenderDescription& description) = 0;
+    // A frame `render` gave for `series`, encoded and no longer needed: a source
+    // may draw its next frame of that size into it (Renderer::recycle). The
+    // default drops it.
     virtual void recycle(const std::shared_ptr<const SeriesEntry>& /*series*/,
-                         ImageRGBA8&& /*image*/) {}
+                         RenderResult&& /*frame*/) {}
     // A mark's points (fractions of the image of `description`) anchored on the
     // surface they show (core/raycast/SurfaceDepth.h). Throws on failure, with a
     // message for the client.

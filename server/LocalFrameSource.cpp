@@ -18,10 +18,6 @@ struct LocalFrameSource::LoadedSeries {
     std::shared_ptr<const SeriesEntry> entry; // held: its address identifies it
     std::unique_ptr<Volume> volume;
     std::unique_ptr<Renderer> renderer;
-    // The last frame but its image (which went to the encoder), until the image
-    // comes back; `lent` while it is out.
-    RenderResult rest;
-    bool lent = false;
 };
 
 LocalFrameSource::LocalFrameSource(RendererKind backend) : backend_(backend) {}
@@ -79,29 +75,19 @@ LocalFrameSource::loaded(const std::shared_ptr<const SeriesEntry>& entry) {
     return *loaded_.front();
 }
 
-ImageRGBA8 LocalFrameSource::render(const std::shared_ptr<const SeriesEntry>& entry,
-                                    const RenderDescription& description) {
+RenderResult LocalFrameSource::render(const std::shared_ptr<const SeriesEntry>& entry,
+                                      const RenderDescription& description) {
     LoadedSeries& series = loaded(entry);
     RenderDescription d = description;
     d.volume = series.volume.get();
-    RenderResult frame = series.renderer->render(d);
-    ImageRGBA8 image = std::move(frame.image);
-    series.rest = std::move(frame);
-    series.lent = true;
-    return image;
+    return series.renderer->render(d);
 }
 
 void LocalFrameSource::recycle(const std::shared_ptr<const SeriesEntry>& entry,
-                               ImageRGBA8&& image) {
-    LoadedSeries* series = findLoaded(entry);
-    if (series == nullptr || !series->lent) {
-        return;
+                               RenderResult&& frame) {
+    if (LoadedSeries* series = findLoaded(entry)) {
+        series->renderer->recycle(std::move(frame));
     }
-    RenderResult frame = std::move(series->rest);
-    series->rest = {};
-    series->lent = false;
-    frame.image = std::move(image);
-    series->renderer->recycle(std::move(frame));
 }
 
 FrameDetails

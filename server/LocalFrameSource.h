@@ -6,7 +6,6 @@
 #include <list>
 #include <memory>
 
-#include "core/scene/Renderer.h"
 #include "render/RenderDevice.h"
 #include "server/FrameSource.h"
 
@@ -19,12 +18,11 @@ public:
 
     QString start() override;
     void stop() override;
-    ImageRGBA8 render(const std::shared_ptr<const SeriesEntry>& series,
-                      const RenderDescription& description) override;
-    // Hands the image back to the series' renderer with the rest of its frame
-    // (the CPU caster draws the next frame of its size into them); dropped where
-    // the series is no longer loaded.
-    void recycle(const std::shared_ptr<const SeriesEntry>& series, ImageRGBA8&& image) override;
+    RenderResult render(const std::shared_ptr<const SeriesEntry>& series,
+                        const RenderDescription& description) override;
+    // Hands the frame back to the series' renderer (the CPU caster draws the
+    // next frame of its size into it); dropped where the series is no longer loaded.
+    void recycle(const std::shared_ptr<const SeriesEntry>& series, RenderResult&& frame) override;
     std::vector<glm::dvec3> surfaceAnchors(const std::shared_ptr<const SeriesEntry>& series,
                                            const RenderDescription& description,
                                            const std::vector<glm::dvec2>& fractions) override;

@@ -62,7 +62,7 @@ void RenderWorker::render(const RenderJob& job) {
     frame.view = job.view;
     frame.seq = job.seq;
     frame.degraded = job.degraded;
-    ImageRGBA8 image;
+    RenderResult rendered;
     try {
         RenderDescription description = job.description;
         const bool interactive = job.quality == Quality::Interactive;
@@ -71,7 +71,8 @@ void RenderWorker::render(const RenderJob& job) {
         }
         QElapsedTimer timer;
         timer.start();
-        image = frames_->render(job.series, description);
+        rendered = frames_->render(job.series, description);
+        const ImageRGBA8& image = rendered.image;
         FrameHeader header;
         header.renderMs = millisecondsSince(timer);
         timer.restart();
@@ -95,7 +96,7 @@ void RenderWorker::render(const RenderJob& job) {
         frame.error = QString::fromUtf8(e.what());
     }
     if (frame.error.isEmpty()) {
-        frames_->recycle(job.series, std::move(image)); // encoded: its buffers may draw the next
+        frames_->recycle(job.series, std::move(rendered)); // encoded: it may draw the next
     }
     emit frameRendered(frame);
 }

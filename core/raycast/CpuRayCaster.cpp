@@ -163,6 +163,10 @@ CpuRayCaster::CpuRayCaster(const Volume& part, const VolumePart& where)
 CpuRayCaster::~CpuRayCaster() = default;
 
 void CpuRayCaster::recycle(RenderResult&& spent) {
+    const std::size_t n = std::size_t(spent.image.width) * std::size_t(spent.image.height);
+    if (spent.image.pixels.size() != 4 * n || spent.premultiplied.size() != n) {
+        return; // not a whole frame of this caster's: the spare buffers stay
+    }
     cache_->spareImage = std::move(spent.image);
     cache_->sparePremultiplied = std::move(spent.premultiplied);
 }

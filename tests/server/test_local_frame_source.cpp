@@ -1,7 +1,8 @@
 // The render server's frames drawn in this process on the CPU (no GL): once
 // the render thread hands an encoded image back, the next frame of its size is
 // drawn into its buffers and equals a fresh caster's; an image not handed
-// back, or one of another size, leaves the next frame with new buffers. The
+// back, or one of another size, leaves the next frame with new buffers; what
+// is not a whole frame is dropped. The
 // render thread's worker hands back every frame it encoded.
 #include <QImage>
 #include <QTest>
@@ -38,6 +39,13 @@ ImageRGBA8 decodedPng(const QByteArray& message) {
     return out;
 }
 
+// A frame with an image and nothing else: not one a caster made.
+RenderResult imageOnly(int side) {
+    RenderResult r;
+    r.image = ImageRGBA8::filled(side, side, 0);
+    return r;
+}
+
 std::string frameBuffers(const remote::LocalFrameSource& source,
                          const std::shared_ptr<const SeriesEntry>& entry) {
     return frameDetail(source.lastFrameDetails(entry), "frame_buffers").value_or("(none)");
@@ -65,35 +73,36 @@ private slots:
             own.volume = &volume;
             return CpuRayCaster(volume).render(own).image;
         };
-        ImageRGBA8 image = source.render(entry, d);
-        QVERIFY(image == expect(d));
+        RenderResult frame = source.render(entry, d);
+        QVERIFY(frame.image == expect(d));
         QCOMPARE(frameBuffers(source, entry), std::string("new"));
         for (int n = 1; n <= 3; ++n) {
-            source.recycle(entry, std::move(image));
+            source.recycle(entry, std::move(frame));
             d.camera.azimuth = 7.0 * n;
-            image = source.render(entry, d);
-            QVERIFY(image == expect(d));
+            frame = source.render(entry, d);
+            QVERIFY(frame.image == expect(d));
             QCOMPARE(frameBuffers(source, entry), std::string("recycled"));
         }
         // Not handed back: the next frame gets new buffers.
         d.camera.elevation = 10.0;
-        image = source.render(entry, d);
-        QVERIFY(image == expect(d));
+        frame = source.render(entry, d);
+        QVERIFY(frame.image == expect(d));
         QCOMPARE(frameBuffers(source, entry), std::string("new"));
         // Handed back, but the next frame is of another size: new buffers again.
-        source.recycle(entry, std::move(image));
+        source.recycle(entry, std::move(frame));
         d.width = d.height = 64;
-        image = source.render(entry, d);
-        QVERIFY(image == expect(d));
+        frame = source.render(entry, d);
+        QVERIFY(frame.image == expect(d));
         QCOMPARE(frameBuffers(source, entry), std::string("new"));
-        // A second hand-back after the frame's own, or one for a series not loaded, is dropped.
-        source.recycle(entry, std::move(image));
-        source.recycle(entry, ImageRGBA8::filled(64, 64, 0));
+        // A second hand-back of what is not a whole frame, or one for a series not
+        // loaded, is dropped.
+        source.recycle(entry, std::move(frame));
+        source.recycle(entry, imageOnly(64));
         const auto other = std::make_shared<const SeriesEntry>(*entry);
-        source.recycle(other, ImageRGBA8::filled(64, 64, 0));
+        source.recycle(other, imageOnly(64));
         QVERIFY(source.lastFrameDetails(other).empty());
-        image = source.render(entry, d);
-        QVERIFY(image == expect(d));
+        frame = source.render(entry, d);
+        QVERIFY(frame.image == expect(d));
         QCOMPARE(frameBuffers(source, entry), std::string("recycled"));
         source.stop();
     }
